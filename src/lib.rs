@@ -1,0 +1,7 @@
+//! towride: a car towing a light trailer over road obstacles, simulated with flexible
+//! bodies and a Swift-like tyre, integrated by an implicit BDF DAE solver and checked
+//! against recorded accelerometer data.
+
+pub mod cli;
+pub mod solver;
+pub mod verify;

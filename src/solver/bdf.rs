@@ -1,0 +1,1133 @@
+//! Variable-order, variable-step BDF for F(t, y, y') = 0 in fixed-leading-coefficient
+//! form, following SUNDIALS IDA (Hindmarsh et al., "SUNDIALS: Suite of nonlinear and
+//! differential/algebraic equation solvers", ACM TOMS 31 (2005); IDA's `ida.c`, the
+//! functions IDASetCoeffs, IDAPredict, IDATestError, IDAHandleNFlag, IDACompleteStep,
+//! IDAGetSolution) and DASSL (Brenan, Campbell & Petzold 1996, ch. 5).
+//!
+//! The history is kept as modified divided differences phi[j]; the fixed-coefficient
+//! variant keeps backward differences on an equally spaced grid and interpolates them
+//! onto the new grid when the step changes (Shampine & Reichelt 1997, ode15s).
+
+use super::error::SolverError;
+use super::linear::{NewtonMatrix, Singular};
+use super::options::{
+    AlgebraicControl, JacobianSource, LinearSolver, Method, SolverOptions, Stats,
+};
+use super::problem::{DaeProblem, JacobianSink, VarKind};
+
+pub(crate) const MAXORD: usize = 5;
+const UROUND: f64 = f64::EPSILON;
+
+/// What a call to [`Bdf::advance`] ended with.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Advance {
+    /// The solver's internal time has reached or passed `tout`.
+    Reached,
+    /// An event function changed sign at `t` (before `tout`); `index` is which one.
+    Root { t: f64, index: usize },
+}
+
+enum StepFail {
+    Convergence(String),
+    Singular(Singular),
+    NonFinite(String),
+}
+
+/// The BDF integrator bound to one problem.
+pub struct Bdf<'a, P: DaeProblem + ?Sized> {
+    prob: &'a P,
+    opts: SolverOptions,
+    n: usize,
+    kinds: Vec<VarKind>,
+    // History and coefficients (IDA names).
+    phi: Vec<Vec<f64>>,
+    psi: [f64; MAXORD + 2],
+    alpha: [f64; MAXORD + 2],
+    beta: [f64; MAXORD + 2],
+    sigma: [f64; MAXORD + 2],
+    gamma: [f64; MAXORD + 2],
+    tn: f64,
+    hh: f64,
+    hused: f64,
+    kk: usize,
+    kused: usize,
+    knew: usize,
+    ns: usize,
+    phase: u8,
+    cj: f64,
+    cjold: f64,
+    cjlast: f64,
+    cjratio: f64,
+    ck: f64,
+    ss: f64,
+    oldnrm: f64,
+    err_k: f64,
+    err_km1: f64,
+    started: bool,
+    tstop: Option<f64>,
+    // Work vectors.
+    ewt: Vec<f64>,
+    wt_err: Vec<f64>,
+    wt_newton: Vec<f64>,
+    col_scale: Vec<f64>,
+    yy: Vec<f64>,
+    yp: Vec<f64>,
+    ypred: Vec<f64>,
+    yppred: Vec<f64>,
+    ee: Vec<f64>,
+    delta: Vec<f64>,
+    res: Vec<f64>,
+    backup_phi: Vec<Vec<f64>>,
+    backup_psi: [f64; MAXORD + 2],
+    jac: NewtonMatrix,
+    jac_entries: Vec<(usize, usize, f64)>,
+    jac_valid: bool,
+    jac_age: usize,
+    analytic_ok: bool,
+    // Events.
+    g_lo: Vec<f64>,
+    t_lo: f64,
+    g_hi: Vec<f64>,
+    stats: Stats,
+}
+
+impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
+    /// Sets up the integrator at (t0, y0, y'0). The initial values must be consistent
+    /// (see [`super::ic`] for computing the index-1 part).
+    pub fn new(
+        prob: &'a P,
+        t0: f64,
+        y0: &[f64],
+        yp0: &[f64],
+        opts: SolverOptions,
+    ) -> Result<Self, SolverError> {
+        let n = prob.size();
+        opts.validate(n)?;
+        if y0.len() != n || yp0.len() != n {
+            return Err(SolverError::SizeMismatch {
+                what: format!(
+                    "problem has {n} unknowns, y0 {} and yp0 {}",
+                    y0.len(),
+                    yp0.len()
+                ),
+            });
+        }
+        if !t0.is_finite() {
+            return Err(SolverError::NonFiniteInitial {
+                name: "t0".into(),
+                value: t0,
+            });
+        }
+        for (i, v) in y0.iter().chain(yp0.iter()).enumerate() {
+            if !v.is_finite() {
+                let name = if i < n {
+                    prob.var_name(i)
+                } else {
+                    format!("d/dt {}", prob.var_name(i - n))
+                };
+                return Err(SolverError::NonFiniteInitial { name, value: *v });
+            }
+        }
+        let kinds = prob.var_kinds();
+        if kinds.len() != n {
+            return Err(SolverError::SizeMismatch {
+                what: format!("var_kinds has {} entries for {n} unknowns", kinds.len()),
+            });
+        }
+        let pattern = prob.jacobian_pattern();
+        let dense = match opts.linear_solver {
+            LinearSolver::Dense => true,
+            LinearSolver::Sparse => false,
+            LinearSolver::Auto => pattern.is_none() || n < opts.dense_limit,
+        };
+        let jac = NewtonMatrix::new(n, pattern, dense)
+            .map_err(|what| SolverError::SizeMismatch { what })?;
+        let mut phi = vec![vec![0.0; n]; MAXORD + 2];
+        phi[0].copy_from_slice(y0);
+        phi[1].copy_from_slice(yp0); // scaled by h once the first step size is known
+        let n_roots = prob.n_roots();
+        let analytic_ok = opts.jacobian == JacobianSource::Auto;
+        let mut s = Self {
+            prob,
+            n,
+            kinds,
+            phi,
+            psi: [0.0; MAXORD + 2],
+            alpha: [0.0; MAXORD + 2],
+            beta: [0.0; MAXORD + 2],
+            sigma: [0.0; MAXORD + 2],
+            gamma: [0.0; MAXORD + 2],
+            tn: t0,
+            hh: 0.0,
+            hused: 0.0,
+            kk: 1,
+            kused: 0,
+            knew: 1,
+            ns: 0,
+            phase: 0,
+            cj: 0.0,
+            cjold: 0.0,
+            cjlast: 0.0,
+            cjratio: 1.0,
+            ck: 1.0,
+            ss: 20.0,
+            oldnrm: 0.0,
+            err_k: 0.0,
+            err_km1: 0.0,
+            started: false,
+            tstop: None,
+            ewt: vec![0.0; n],
+            wt_err: vec![0.0; n],
+            wt_newton: vec![0.0; n],
+            col_scale: vec![1.0; n],
+            yy: y0.to_vec(),
+            yp: yp0.to_vec(),
+            ypred: vec![0.0; n],
+            yppred: vec![0.0; n],
+            ee: vec![0.0; n],
+            delta: vec![0.0; n],
+            res: vec![0.0; n],
+            backup_phi: vec![vec![0.0; n]; MAXORD + 2],
+            backup_psi: [0.0; MAXORD + 2],
+            jac,
+            jac_entries: Vec::new(),
+            jac_valid: false,
+            jac_age: 0,
+            analytic_ok,
+            g_lo: vec![0.0; n_roots],
+            t_lo: t0,
+            g_hi: vec![0.0; n_roots],
+            stats: Stats::default(),
+            opts,
+        };
+        s.set_ewt();
+        if n_roots > 0 {
+            let mut g = vec![0.0; n_roots];
+            prob.roots(t0, y0, yp0, &mut g);
+            s.stats.root_evals += 1;
+            s.g_lo = g;
+        }
+        Ok(s)
+    }
+
+    /// Never step past `tstop` (for example the end of the road or of the run).
+    pub fn set_stop_time(&mut self, tstop: f64) {
+        self.tstop = Some(tstop);
+    }
+
+    /// Current internal time (the end of the last accepted step).
+    pub fn t(&self) -> f64 {
+        self.tn
+    }
+
+    pub fn stats(&self) -> &Stats {
+        &self.stats
+    }
+
+    pub fn options(&self) -> &SolverOptions {
+        &self.opts
+    }
+
+    /// True when the dense (not sparse) LU path is in use.
+    pub fn uses_dense_lu(&self) -> bool {
+        self.jac.is_dense()
+    }
+
+    /// Structural non-zeros of the iteration matrix.
+    pub fn jacobian_nnz(&self) -> usize {
+        self.jac.nnz()
+    }
+
+    /// Integrates until the internal time reaches `tout` or an event function changes sign.
+    pub fn advance(&mut self, tout: f64) -> Result<Advance, SolverError> {
+        if !tout.is_finite() {
+            return Err(SolverError::BadOutputTime { tout, t: self.tn });
+        }
+        if !self.started {
+            self.start(tout)?;
+        } else if tout < self.tn - self.hused {
+            return Err(SolverError::BadOutputTime { tout, t: self.tn });
+        }
+        // A root between the last reported root and tn may still be pending.
+        if let Some(r) = self.check_roots()? {
+            return Ok(r);
+        }
+        let mut steps_here = 0usize;
+        while self.tn < tout {
+            if let Some(ts) = self.tstop {
+                if self.tn >= ts - 4.0 * UROUND * ts.abs().max(1.0) {
+                    self.tn = ts;
+                    return Ok(Advance::Reached);
+                }
+            }
+            if steps_here >= self.opts.max_steps {
+                return Err(SolverError::TooManySteps {
+                    t: self.tn,
+                    max_steps: self.opts.max_steps,
+                });
+            }
+            self.step()?;
+            steps_here += 1;
+            if let Some(r) = self.check_roots()? {
+                return Ok(r);
+            }
+        }
+        Ok(Advance::Reached)
+    }
+
+    /// First step size and history (IDA's IDAInitialSetup and the start of IDASolve).
+    fn start(&mut self, tout: f64) -> Result<(), SolverError> {
+        let tdist = (tout - self.tn).abs();
+        if tdist == 0.0 {
+            return Err(SolverError::BadOutputTime { tout, t: self.tn });
+        }
+        let mut h = match self.opts.h_init {
+            Some(h) => h,
+            None => {
+                let mut h = 0.001 * tdist;
+                // ||y'0|| over unknowns whose derivative is meaningful.
+                let mut sum = 0.0;
+                for i in 0..self.n {
+                    if self.kinds[i] == VarKind::Differential {
+                        sum += (self.phi[1][i] * self.ewt[i]).powi(2);
+                    }
+                }
+                let ypnorm = (sum / self.n as f64).sqrt();
+                if ypnorm > 0.5 / h {
+                    h = 0.5 / ypnorm;
+                }
+                h
+            }
+        };
+        h = h.min(self.opts.h_max);
+        if let Some(ts) = self.tstop {
+            h = h.min(ts - self.tn);
+        }
+        if h <= 0.0 {
+            return Err(SolverError::StepTooSmall {
+                t: self.tn,
+                h,
+                h_min: self.opts.h_min,
+            });
+        }
+        for v in self.phi[1].iter_mut() {
+            *v *= h;
+        }
+        self.hh = h;
+        self.psi[0] = h;
+        self.cj = 1.0 / h;
+        self.cjlast = self.cj;
+        self.kk = 1;
+        self.kused = 0;
+        self.hused = 0.0;
+        self.ns = 0;
+        self.phase = 0;
+        self.started = true;
+        Ok(())
+    }
+
+    /// Restarts the integration at a new consistent state (after a discontinuity).
+    pub fn reinit(&mut self, t: f64, y: &[f64], yp: &[f64]) -> Result<(), SolverError> {
+        if y.iter().chain(yp).any(|v| !v.is_finite()) {
+            return Err(SolverError::NonFiniteInitial {
+                name: "reinit state".into(),
+                value: f64::NAN,
+            });
+        }
+        self.tn = t;
+        self.phi[0].copy_from_slice(y);
+        self.phi[1].copy_from_slice(yp);
+        self.started = false;
+        self.jac_valid = false;
+        self.t_lo = t;
+        self.set_ewt();
+        if !self.g_lo.is_empty() {
+            let mut g = vec![0.0; self.g_lo.len()];
+            self.prob.roots(t, y, yp, &mut g);
+            self.stats.root_evals += 1;
+            self.g_lo = g;
+        }
+        Ok(())
+    }
+
+    fn set_ewt(&mut self) {
+        for i in 0..self.n {
+            self.ewt[i] = 1.0 / (self.opts.rtol * self.phi[0][i].abs() + self.opts.atol_of(i));
+        }
+    }
+
+    /// Error-test and Newton weights for the current step size (index-k unknowns get
+    /// h^(k-1), Hairer & Wanner II, VII.3).
+    fn set_step_weights(&mut self) {
+        let hs = self.hh.abs().min(1.0);
+        for i in 0..self.n {
+            let kind = self.kinds[i];
+            let scale = hs.powi(kind.level() - 1);
+            // Unknowns of index k are solved for as h^(k-1) times their correction, which
+            // with row equilibration keeps cond(J) bounded as h -> 0.
+            self.col_scale[i] = if self.opts.scale_newton_matrix {
+                1.0 / scale
+            } else {
+                1.0
+            };
+            match self.opts.algebraic {
+                AlgebraicControl::Full => {
+                    self.wt_err[i] = self.ewt[i];
+                    self.wt_newton[i] = self.ewt[i];
+                }
+                AlgebraicControl::Scaled => {
+                    self.wt_err[i] = self.ewt[i] * scale;
+                    self.wt_newton[i] = self.ewt[i] * scale;
+                }
+                AlgebraicControl::Exclude => {
+                    self.wt_err[i] = if kind.is_algebraic() {
+                        0.0
+                    } else {
+                        self.ewt[i]
+                    };
+                    self.wt_newton[i] = self.ewt[i] * scale;
+                }
+            }
+        }
+    }
+
+    fn wrms(&self, v: &[f64], w: &[f64]) -> f64 {
+        let s: f64 = v.iter().zip(w).map(|(a, b)| (a * b) * (a * b)).sum();
+        (s / self.n as f64).sqrt()
+    }
+
+    /// One accepted step, with retries (IDAStep).
+    fn step(&mut self) -> Result<(), SolverError> {
+        let tsave = self.tn;
+        let mut ncf = 0usize;
+        let mut nef = 0usize;
+        if let Some(ts) = self.tstop {
+            if self.tn + self.hh > ts {
+                self.hh = ts - self.tn;
+            }
+        }
+        loop {
+            self.save_history();
+            self.set_coeffs();
+            self.tn = tsave + self.hh;
+            if let Some(ts) = self.tstop {
+                if (self.tn - ts).abs() <= 4.0 * UROUND * ts.abs().max(1.0) {
+                    self.tn = ts;
+                }
+            }
+            self.set_step_weights();
+            self.predict();
+            let outcome = self.nonlinear_solve();
+            let failure = match outcome {
+                Ok(()) => {
+                    let enorm_k = self.test_error();
+                    if self.ck * enorm_k > 1.0 {
+                        nef += 1;
+                        self.stats.error_test_failures += 1;
+                        self.stats.rejected_steps += 1;
+                        if nef >= self.opts.max_error_failures {
+                            self.restore(tsave);
+                            return Err(SolverError::ErrorTestFailure {
+                                t: tsave,
+                                h: self.hh,
+                                failures: nef,
+                                worst: self
+                                    .worst_components(&self.ee.clone(), &self.wt_err.clone()),
+                            });
+                        }
+                        self.restore(tsave);
+                        self.phase = 1;
+                        let rr = if nef == 1 {
+                            let err_knew = if self.knew == self.kk {
+                                self.err_k
+                            } else {
+                                self.err_km1
+                            };
+                            self.kk = self.knew;
+                            (0.9 * (2.0 * err_knew + 0.0001).powf(-1.0 / (self.kk as f64 + 1.0)))
+                                .clamp(0.25, 0.9)
+                        } else if nef == 2 {
+                            self.kk = self.knew;
+                            0.25
+                        } else {
+                            self.kk = 1;
+                            0.25
+                        };
+                        self.hh *= rr;
+                        None
+                    } else {
+                        self.complete_step();
+                        return Ok(());
+                    }
+                }
+                Err(f) => Some(f),
+            };
+            if let Some(f) = failure {
+                ncf += 1;
+                self.stats.convergence_failures += 1;
+                self.stats.rejected_steps += 1;
+                self.restore(tsave);
+                self.phase = 1;
+                if ncf >= self.opts.max_convergence_failures {
+                    return Err(match f {
+                        StepFail::Singular(s) => SolverError::SingularMatrix {
+                            t: tsave,
+                            h: self.hh,
+                            detail: self.describe_singular(&s),
+                        },
+                        StepFail::NonFinite(eqs) => SolverError::NonFiniteResidual {
+                            t: tsave,
+                            equations: eqs,
+                        },
+                        StepFail::Convergence(worst) => SolverError::ConvergenceFailure {
+                            t: tsave,
+                            h: self.hh,
+                            failures: ncf,
+                            worst,
+                        },
+                    });
+                }
+                self.hh *= 0.25;
+                self.jac_valid = false;
+            }
+            if self.hh.abs() < self.opts.h_min
+                || self.hh.abs() <= 10.0 * UROUND * tsave.abs().max(1.0)
+            {
+                return Err(SolverError::StepTooSmall {
+                    t: tsave,
+                    h: self.hh,
+                    h_min: self.opts.h_min,
+                });
+            }
+        }
+    }
+
+    fn save_history(&mut self) {
+        let top = (self.kk + 1).min(MAXORD + 1);
+        for j in 0..=top {
+            self.backup_phi[j].copy_from_slice(&self.phi[j]);
+        }
+        self.backup_psi = self.psi;
+    }
+
+    fn restore(&mut self, tsave: f64) {
+        self.tn = tsave;
+        let top = (self.kk + 1).min(MAXORD + 1);
+        for j in 0..=top {
+            self.phi[j].copy_from_slice(&self.backup_phi[j]);
+        }
+        self.psi = self.backup_psi;
+    }
+
+    /// Coefficients of the step about to be taken (IDASetCoeffs).
+    fn set_coeffs(&mut self) {
+        let (kk, hh) = (self.kk, self.hh);
+        if hh != self.hused || kk != self.kused {
+            self.ns = 0;
+        }
+        self.ns = (self.ns + 1).min(self.kused + 2);
+        match self.opts.method {
+            Method::Variable => {
+                if kk + 1 >= self.ns {
+                    self.beta[0] = 1.0;
+                    self.alpha[0] = 1.0;
+                    let mut temp1 = hh;
+                    self.gamma[0] = 0.0;
+                    self.sigma[0] = 1.0;
+                    for i in 1..=kk {
+                        let temp2 = self.psi[i - 1];
+                        self.psi[i - 1] = temp1;
+                        self.beta[i] = self.beta[i - 1] * self.psi[i - 1] / temp2;
+                        temp1 = temp2 + hh;
+                        self.alpha[i] = hh / temp1;
+                        self.sigma[i] = i as f64 * self.sigma[i - 1] * self.alpha[i];
+                        self.gamma[i] = self.gamma[i - 1] + self.alpha[i - 1] / hh;
+                    }
+                    self.psi[kk] = temp1;
+                }
+                if self.ns <= kk {
+                    for i in self.ns..=kk {
+                        let b = self.beta[i];
+                        for v in self.phi[i].iter_mut() {
+                            *v *= b;
+                        }
+                    }
+                }
+            }
+            Method::FixedCoefficient => {
+                if self.kused > 0 && hh != self.hused {
+                    rescale_differences(&mut self.phi, kk, hh / self.hused);
+                }
+                self.beta[0] = 1.0;
+                self.alpha[0] = 1.0;
+                self.gamma[0] = 0.0;
+                self.sigma[0] = 1.0;
+                for i in 0..=kk {
+                    self.psi[i] = (i as f64 + 1.0) * hh;
+                }
+                for i in 1..=kk {
+                    self.beta[i] = 1.0;
+                    self.alpha[i] = 1.0 / (i as f64 + 1.0);
+                    self.sigma[i] = i as f64 * self.sigma[i - 1] * self.alpha[i];
+                    self.gamma[i] = self.gamma[i - 1] + self.alpha[i - 1] / hh;
+                }
+            }
+        }
+        let mut alphas = 0.0;
+        let mut alpha0 = 0.0;
+        for i in 0..kk {
+            alphas -= 1.0 / (i as f64 + 1.0);
+            alpha0 -= self.alpha[i];
+        }
+        self.cjlast = self.cj;
+        self.cj = -alphas / hh;
+        self.ck = (self.alpha[kk] + alphas - alpha0).abs().max(self.alpha[kk]);
+    }
+
+    /// Predictor: the history polynomial evaluated at the new time (IDAPredict).
+    fn predict(&mut self) {
+        self.ypred.copy_from_slice(&self.phi[0]);
+        self.yppred.fill(0.0);
+        for j in 1..=self.kk {
+            let g = self.gamma[j];
+            for ((yp, ypp), p) in self
+                .ypred
+                .iter_mut()
+                .zip(self.yppred.iter_mut())
+                .zip(&self.phi[j])
+            {
+                *yp += p;
+                *ypp += g * p;
+            }
+        }
+    }
+
+    /// Modified Newton on the corrector (IDANls with IDA's convergence test).
+    fn nonlinear_solve(&mut self) -> Result<(), StepFail> {
+        self.cjratio = if self.cjold > 0.0 {
+            self.cj / self.cjold
+        } else {
+            0.0
+        };
+        let age_limit =
+            self.opts.max_jacobian_age > 0 && self.jac_age >= self.opts.max_jacobian_age;
+        let mut setup = !self.jac_valid || !(0.6..=5.0 / 3.0).contains(&self.cjratio) || age_limit;
+        if self.cj != self.cjlast {
+            self.ss = 100.0;
+        }
+        loop {
+            let fresh = setup;
+            if setup {
+                self.setup_matrix()?;
+            }
+            match self.newton_iterate() {
+                Ok(()) => {
+                    self.jac_age += 1;
+                    return Ok(());
+                }
+                Err(StepFail::Convergence(w)) if fresh => return Err(StepFail::Convergence(w)),
+                Err(StepFail::Convergence(_)) => setup = true, // retry once with a fresh matrix
+                Err(e) => return Err(e),
+            }
+        }
+    }
+
+    fn setup_matrix(&mut self) -> Result<(), StepFail> {
+        self.eval_jacobian(self.tn, &self.ypred.clone(), &self.yppred.clone(), self.cj)?;
+        self.stats.lu_factorizations += 1;
+        self.jac
+            .factor(&self.col_scale, self.opts.scale_newton_matrix)
+            .map_err(|s| {
+                self.jac_valid = false;
+                StepFail::Singular(s)
+            })?;
+        self.cjold = self.cj;
+        self.cjratio = 1.0;
+        self.ss = 20.0;
+        self.jac_valid = true;
+        self.jac_age = 0;
+        Ok(())
+    }
+
+    /// Evaluates the iteration matrix at (t, y, y'), analytically or by coloured
+    /// finite differences (IDA's difference-quotient increments).
+    fn eval_jacobian(&mut self, t: f64, y: &[f64], yp: &[f64], cj: f64) -> Result<(), StepFail> {
+        self.stats.jacobian_evals += 1;
+        self.jac.clear();
+        if self.analytic_ok {
+            self.jac_entries.clear();
+            let provided = {
+                let mut sink = JacobianSink {
+                    entries: &mut self.jac_entries,
+                };
+                self.prob.jacobian(t, y, yp, cj, &mut sink)
+            };
+            if provided {
+                for &(r, c, v) in &self.jac_entries {
+                    if self.jac.add(r, c, v).is_err() {
+                        return Err(StepFail::NonFinite(format!(
+                            "Jacobian entry ({}, {}) = d {} / d {} lies outside the declared pattern",
+                            r,
+                            c,
+                            self.prob.eq_name(r),
+                            self.prob.var_name(c)
+                        )));
+                    }
+                }
+                return Ok(());
+            }
+            self.analytic_ok = false;
+        }
+        let n = self.n;
+        let mut f0 = vec![0.0; n];
+        self.prob.residual(t, y, yp, &mut f0);
+        self.stats.residual_evals += 1;
+        let mut yw = y.to_vec();
+        let mut ypw = yp.to_vec();
+        let mut f1 = vec![0.0; n];
+        let mut col = vec![0.0; n];
+        let srur = UROUND.sqrt();
+        let colours = std::mem::take(&mut self.jac.colours);
+        let mut incs = vec![0.0; n];
+        for group in &colours {
+            for &j in group {
+                let mut inc =
+                    (srur * y[j].abs().max((self.hh * yp[j]).abs())).max(1.0 / self.ewt[j]);
+                if self.hh * yp[j] < 0.0 {
+                    inc = -inc;
+                }
+                inc = (y[j] + inc) - y[j];
+                incs[j] = inc;
+                yw[j] += inc;
+                ypw[j] += cj * inc;
+            }
+            self.prob.residual(t, &yw, &ypw, &mut f1);
+            self.stats.residual_evals += 1;
+            for &j in group {
+                for &r in self.jac.column_rows(j) {
+                    col[r] = (f1[r] - f0[r]) / incs[j];
+                }
+                self.jac.set_column_from(j, &col);
+                yw[j] = y[j];
+                ypw[j] = yp[j];
+            }
+        }
+        self.jac.colours = colours;
+        Ok(())
+    }
+
+    fn newton_iterate(&mut self) -> Result<(), StepFail> {
+        self.yy.copy_from_slice(&self.ypred);
+        self.yp.copy_from_slice(&self.yppred);
+        self.ee.fill(0.0);
+        let scale = if self.cjratio != 1.0 {
+            2.0 / (1.0 + self.cjratio)
+        } else {
+            1.0
+        };
+        for m in 0..self.opts.max_newton_iters {
+            self.prob
+                .residual(self.tn, &self.yy, &self.yp, &mut self.res);
+            self.stats.residual_evals += 1;
+            if self.res.iter().any(|v| !v.is_finite()) {
+                let bad: Vec<String> = (0..self.n)
+                    .filter(|&i| !self.res[i].is_finite())
+                    .take(5)
+                    .map(|i| self.prob.eq_name(i))
+                    .collect();
+                return Err(StepFail::NonFinite(bad.join(", ")));
+            }
+            for (d, r) in self.delta.iter_mut().zip(&self.res) {
+                *d = -r;
+            }
+            self.jac
+                .solve(&mut self.delta)
+                .map_err(StepFail::Singular)?;
+            self.stats.newton_iterations += 1;
+            if scale != 1.0 {
+                for d in self.delta.iter_mut() {
+                    *d *= scale;
+                }
+            }
+            let cj = self.cj;
+            for i in 0..self.n {
+                let d = self.delta[i];
+                self.ee[i] += d;
+                self.yy[i] += d;
+                self.yp[i] += cj * d;
+            }
+            let delnrm = self.wrms(&self.delta, &self.wt_newton);
+            if !delnrm.is_finite() {
+                return Err(StepFail::Convergence("non-finite Newton correction".into()));
+            }
+            if m == 0 {
+                self.oldnrm = delnrm;
+                if delnrm <= 1e-4 * self.opts.newton_tol * 1e-4 {
+                    return Ok(());
+                }
+            } else {
+                let rate = (delnrm / self.oldnrm).powf(1.0 / m as f64);
+                if rate > 0.9 {
+                    break;
+                }
+                self.ss = rate / (1.0 - rate);
+            }
+            if self.ss * delnrm <= self.opts.newton_tol {
+                return Ok(());
+            }
+        }
+        Err(StepFail::Convergence(self.worst_components(
+            &self.delta.clone(),
+            &self.wt_newton.clone(),
+        )))
+    }
+
+    /// Local error estimates at orders k, k-1, k-2 and the order to use on a retry
+    /// (IDATestError). Returns ||E_k|| in the error-test weights.
+    fn test_error(&mut self) -> f64 {
+        let kk = self.kk;
+        let enorm_k = self.wrms(&self.ee, &self.wt_err);
+        self.err_k = self.sigma[kk] * enorm_k;
+        let terr_k = (kk as f64 + 1.0) * self.err_k;
+        self.knew = kk;
+        if kk > 1 {
+            let mut d: Vec<f64> = self.phi[kk]
+                .iter()
+                .zip(&self.ee)
+                .map(|(a, b)| a + b)
+                .collect();
+            let enorm_km1 = self.wrms(&d, &self.wt_err);
+            self.err_km1 = self.sigma[kk - 1] * enorm_km1;
+            let terr_km1 = kk as f64 * self.err_km1;
+            if kk > 2 {
+                for (v, p) in d.iter_mut().zip(&self.phi[kk - 1]) {
+                    *v += p;
+                }
+                let enorm_km2 = self.wrms(&d, &self.wt_err);
+                let err_km2 = self.sigma[kk - 2] * enorm_km2;
+                let terr_km2 = (kk as f64 - 1.0) * err_km2;
+                if terr_km1.max(terr_km2) <= terr_k {
+                    self.knew = kk - 1;
+                }
+            } else if terr_km1 <= 0.5 * terr_k {
+                self.knew = kk - 1;
+            }
+        }
+        enorm_k
+    }
+
+    /// Accepts the step: statistics, next order and step size, history update
+    /// (IDACompleteStep).
+    fn complete_step(&mut self) {
+        self.stats.steps += 1;
+        if std::env::var("TOWRIDE_DEBUG").is_ok() {
+            let mut idx: Vec<usize> = (0..self.n).collect();
+            idx.sort_by(|&a, &b| {
+                (self.ee[b] * self.wt_err[b])
+                    .abs()
+                    .total_cmp(&(self.ee[a] * self.wt_err[a]).abs())
+            });
+            eprintln!(
+                "t={:.6e} h={:.3e} k={} ck*enorm={:.3} worst {} {:.2e} {} {:.2e}",
+                self.tn,
+                self.hh,
+                self.kk,
+                self.ck * self.wrms(&self.ee, &self.wt_err),
+                self.prob.var_name(idx[0]),
+                (self.ee[idx[0]] * self.wt_err[idx[0]]).abs(),
+                self.prob.var_name(idx[1]),
+                (self.ee[idx[1]] * self.wt_err[idx[1]]).abs()
+            );
+        }
+        let kdiff = self.kk as isize - self.kused as isize;
+        self.kused = self.kk;
+        self.hused = self.hh;
+        self.stats.last_order = self.kk;
+        self.stats.last_step = self.hh;
+        self.stats.order_counts[self.kk - 1] += 1;
+        let maxord = self.opts.max_order;
+        if self.knew + 1 == self.kk || self.kk == maxord {
+            self.phase = 1;
+        }
+        let hmax = self.opts.h_max;
+        if self.phase == 0 {
+            if self.stats.steps > 1 {
+                self.kk += 1;
+                self.hh = (2.0 * self.hh).min(hmax);
+            }
+        } else {
+            #[derive(PartialEq)]
+            enum Action {
+                Lower,
+                Maintain,
+                Raise,
+            }
+            let kk = self.kk;
+            let mut err_kp1 = 0.0;
+            let action = if self.knew + 1 == kk {
+                Action::Lower
+            } else if kk == maxord || kk + 1 >= self.ns || kdiff == 1 {
+                Action::Maintain
+            } else {
+                let d: Vec<f64> = self
+                    .ee
+                    .iter()
+                    .zip(&self.phi[kk + 1])
+                    .map(|(a, b)| a - b)
+                    .collect();
+                err_kp1 = self.wrms(&d, &self.wt_err) / (kk as f64 + 2.0);
+                if kk == 1 {
+                    if err_kp1 >= 0.5 * self.err_k {
+                        Action::Maintain
+                    } else {
+                        Action::Raise
+                    }
+                } else if self.err_km1 <= self.err_k.min(err_kp1) {
+                    Action::Lower
+                } else if err_kp1 >= self.err_k {
+                    Action::Maintain
+                } else {
+                    Action::Raise
+                }
+            };
+            let err_knew = match action {
+                Action::Raise => {
+                    self.kk += 1;
+                    err_kp1
+                }
+                Action::Lower => {
+                    self.kk -= 1;
+                    self.err_km1
+                }
+                Action::Maintain => self.err_k,
+            };
+            let rr = (2.0 * err_knew + 0.0001).powf(-1.0 / (self.kk as f64 + 1.0));
+            if rr >= 2.0 {
+                self.hh = (2.0 * self.hh).min(hmax);
+            } else if rr <= 1.0 {
+                self.hh *= rr.clamp(0.5, 0.9);
+            }
+        }
+        let ku = self.kused;
+        if ku < maxord {
+            self.phi[ku + 1].copy_from_slice(&self.ee);
+        }
+        for (p, e) in self.phi[ku].iter_mut().zip(&self.ee) {
+            *p += e;
+        }
+        for j in (0..ku).rev() {
+            let (lo, hi) = self.phi.split_at_mut(j + 1);
+            for (a, b) in lo[j].iter_mut().zip(&hi[0]) {
+                *a += b;
+            }
+        }
+        self.set_ewt();
+    }
+
+    /// Solution and derivative at `t` from the interpolating polynomial of the last step
+    /// (IDAGetSolution). Accurate for t in [tn - hused, tn].
+    pub fn interpolate(&self, t: f64, y: &mut [f64], yp: &mut [f64]) {
+        let kord = self.kused.max(1);
+        let delt = t - self.tn;
+        let mut c = 1.0;
+        let mut d = 0.0;
+        let mut gam = delt / self.psi[0];
+        y.copy_from_slice(&self.phi[0]);
+        yp.fill(0.0);
+        for j in 1..=kord {
+            d = d * gam + c / self.psi[j - 1];
+            c *= gam;
+            gam = (delt + self.psi[j - 1]) / self.psi[j];
+            for i in 0..self.n {
+                y[i] += c * self.phi[j][i];
+                yp[i] += d * self.phi[j][i];
+            }
+        }
+    }
+
+    /// Looks for a sign change of the event functions over (t_lo, tn] and locates it on
+    /// the interpolant with the Illinois method (as IDA's IDARcheck3).
+    fn check_roots(&mut self) -> Result<Option<Advance>, SolverError> {
+        let nr = self.g_lo.len();
+        if nr == 0 || !self.started || self.tn <= self.t_lo {
+            return Ok(None);
+        }
+        let (mut y, mut yp) = (vec![0.0; self.n], vec![0.0; self.n]);
+        let mut g_hi = std::mem::take(&mut self.g_hi);
+        self.interpolate(self.tn, &mut y, &mut yp);
+        self.prob.roots(self.tn, &y, &yp, &mut g_hi);
+        self.stats.root_evals += 1;
+        let changed = |glo: &[f64], ghi: &[f64]| -> Option<usize> {
+            let mut best: Option<(usize, f64)> = None;
+            for i in 0..glo.len() {
+                if glo[i] != 0.0 && (ghi[i] == 0.0 || glo[i].signum() != ghi[i].signum()) {
+                    let frac = (glo[i] / (glo[i] - ghi[i])).abs();
+                    if best.is_none_or(|(_, f)| frac < f) {
+                        best = Some((i, frac));
+                    }
+                }
+            }
+            best.map(|b| b.0)
+        };
+        let Some(_) = changed(&self.g_lo, &g_hi) else {
+            self.t_lo = self.tn;
+            self.g_lo.copy_from_slice(&g_hi);
+            self.g_hi = g_hi;
+            return Ok(None);
+        };
+        let ttol = 100.0 * UROUND * (self.tn.abs() + self.hh.abs());
+        let (mut tlo, mut thi) = (self.t_lo, self.tn);
+        let mut glo = self.g_lo.clone();
+        let mut ghi = g_hi.clone();
+        let mut gmid = vec![0.0; nr];
+        let mut side = 0i32;
+        let mut idx = changed(&glo, &ghi).expect("sign change found above");
+        for _ in 0..200 {
+            if thi - tlo <= ttol {
+                break;
+            }
+            let (a, b) = (glo[idx], ghi[idx]);
+            let (mut wa, mut wb) = (1.0, 1.0);
+            if side == 1 {
+                wb = 0.5;
+            } else if side == -1 {
+                wa = 0.5;
+            }
+            let mut tmid = thi - (thi - tlo) * (wb * b) / (wb * b - wa * a);
+            let margin = 0.5 * ttol;
+            tmid = tmid.clamp(tlo + margin, thi - margin);
+            self.interpolate(tmid, &mut y, &mut yp);
+            self.prob.roots(tmid, &y, &yp, &mut gmid);
+            self.stats.root_evals += 1;
+            if let Some(i) = changed(&glo, &gmid) {
+                thi = tmid;
+                ghi.copy_from_slice(&gmid);
+                idx = i;
+                side = if side == 1 { 2 } else { 1 };
+            } else {
+                tlo = tmid;
+                glo.copy_from_slice(&gmid);
+                side = if side == -1 { -2 } else { -1 };
+            }
+        }
+        // Continue the next search just past the root.
+        self.t_lo = thi;
+        self.g_lo.copy_from_slice(&ghi);
+        for g in self.g_lo.iter_mut() {
+            if *g == 0.0 {
+                *g = f64::MIN_POSITIVE; // a root exactly at t_lo is not reported twice
+            }
+        }
+        self.g_hi = g_hi;
+        Ok(Some(Advance::Root { t: thi, index: idx }))
+    }
+
+    fn worst_components(&self, v: &[f64], w: &[f64]) -> String {
+        let mut idx: Vec<usize> = (0..self.n).collect();
+        idx.sort_by(|&a, &b| (v[b] * w[b]).abs().total_cmp(&(v[a] * w[a]).abs()));
+        idx.iter()
+            .take(3)
+            .map(|&i| {
+                format!(
+                    "{} (weighted {:.2e})",
+                    self.prob.var_name(i),
+                    (v[i] * w[i]).abs()
+                )
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+
+    fn describe_singular(&self, s: &Singular) -> String {
+        let mut parts = vec![s.detail.clone()];
+        if !s.columns.is_empty() {
+            let names: Vec<String> = s
+                .columns
+                .iter()
+                .take(5)
+                .map(|&c| self.prob.var_name(c))
+                .collect();
+            parts.push(format!("unknowns: {}", names.join(", ")));
+        }
+        if !s.rows.is_empty() {
+            let names: Vec<String> = s
+                .rows
+                .iter()
+                .take(5)
+                .map(|&r| self.prob.eq_name(r))
+                .collect();
+            parts.push(format!("equations: {}", names.join(", ")));
+        }
+        parts.join("; ")
+    }
+}
+
+/// Interpolates backward differences phi[1..=k] of the step h onto the step r*h (the
+/// polynomial through the last k+1 points is kept; ode15s's difRU transformation).
+pub(crate) fn rescale_differences(phi: &mut [Vec<f64>], k: usize, r: f64) {
+    // T[j][m] = sum_i (-1)^i C(j,i) prod_{l=0}^{m-1} (l - i r) / m!
+    let mut t = [[0.0f64; MAXORD + 2]; MAXORD + 2];
+    for j in 1..=k {
+        for m in 1..=k {
+            let mut s = 0.0;
+            let mut binom = 1.0;
+            for i in 0..=j {
+                if i > 0 {
+                    binom *= (j - i + 1) as f64 / i as f64;
+                }
+                let mut p = 1.0;
+                for l in 0..m {
+                    p *= (l as f64 - i as f64 * r) / (l as f64 + 1.0);
+                }
+                s += if i % 2 == 0 { binom * p } else { -binom * p };
+            }
+            t[j][m] = s;
+        }
+    }
+    let n = phi[0].len();
+    let mut new = vec![0.0; k + 1];
+    for i in 0..n {
+        for (j, nj) in new.iter_mut().enumerate().skip(1) {
+            *nj = (1..=k).map(|m| t[j][m] * phi[m][i]).sum();
+        }
+        for j in 1..=k {
+            phi[j][i] = new[j];
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rescaling_keeps_the_polynomial() {
+        // y(t) = 1 + 2t - 3t^2 + t^3 sampled at t = 0, -h, -2h, -3h.
+        let p = |t: f64| 1.0 + 2.0 * t - 3.0 * t * t + t * t * t;
+        let (h, r, k) = (0.1, 0.37, 3);
+        let back = |step: f64| -> Vec<Vec<f64>> {
+            let ys: Vec<f64> = (0..=k).map(|i| p(-(i as f64) * step)).collect();
+            // Backward differences of order 0..=k at t = 0.
+            let mut d = vec![ys.clone()];
+            for j in 1..=k {
+                let prev = &d[j - 1];
+                d.push((0..=k - j).map(|i| prev[i] - prev[i + 1]).collect());
+            }
+            (0..=k).map(|j| vec![d[j][0]]).collect()
+        };
+        let mut phi = back(h);
+        phi.resize(MAXORD + 2, vec![0.0]);
+        rescale_differences(&mut phi, k, r);
+        let expect = back(r * h);
+        for j in 0..=k {
+            assert!((phi[j][0] - expect[j][0]).abs() < 1e-13, "j={j}");
+        }
+        // r = 1 is the identity.
+        let mut same = back(h);
+        same.resize(MAXORD + 2, vec![0.0]);
+        rescale_differences(&mut same, k, 1.0);
+        for j in 0..=k {
+            assert!((same[j][0] - back(h)[j][0]).abs() < 1e-15);
+        }
+    }
+}

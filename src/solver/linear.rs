@@ -1,0 +1,440 @@
+//! The Newton iteration matrix J = dF/dy + cj dF/dy': storage, finite-difference
+//! assembly by column colouring, scaling and LU factorisation (faer, dense or sparse).
+
+use faer::linalg::solvers::{PartialPivLu, SolveCore};
+use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
+use faer::{Conj, Mat, MatMut};
+
+/// Why a factorisation or solve failed; the solver turns this into a step cut or an error.
+#[derive(Debug, Clone)]
+pub(crate) struct Singular {
+    /// Unknowns (columns) or equations (rows) involved, as indices.
+    pub columns: Vec<usize>,
+    pub rows: Vec<usize>,
+    pub detail: String,
+}
+
+enum Storage {
+    Dense {
+        a: Mat<f64>,
+        lu: Option<PartialPivLu<f64>>,
+    },
+    Sparse {
+        symbolic: SymbolicSparseColMat<usize>,
+        values: Vec<f64>,
+        scaled: Vec<f64>,
+        sym_lu: Option<SymbolicLu<usize>>,
+        lu: Option<Lu<usize, f64>>,
+    },
+}
+
+/// The iteration matrix with its sparsity structure and current factorisation.
+pub(crate) struct NewtonMatrix {
+    n: usize,
+    storage: Storage,
+    /// Column-major structure (also used by the dense path for colouring).
+    col_ptr: Vec<usize>,
+    row_idx: Vec<usize>,
+    /// Groups of structurally orthogonal columns for finite differences.
+    pub colours: Vec<Vec<usize>>,
+    row_scale: Vec<f64>,
+    col_scale: Vec<f64>,
+    work: Vec<f64>,
+}
+
+impl NewtonMatrix {
+    /// Builds the structure. `pattern = None` means a full (dense) structure. The diagonal
+    /// is always included so scaled and initial-value matrices stay well formed.
+    pub fn new(
+        n: usize,
+        pattern: Option<Vec<(usize, usize)>>,
+        dense: bool,
+    ) -> Result<Self, String> {
+        let mut cols: Vec<Vec<usize>> = vec![Vec::new(); n];
+        match pattern {
+            Some(p) => {
+                for (r, c) in p {
+                    if r >= n || c >= n {
+                        return Err(format!(
+                            "pattern entry ({r}, {c}) outside a {n} x {n} matrix"
+                        ));
+                    }
+                    cols[c].push(r);
+                }
+                for (c, col) in cols.iter_mut().enumerate() {
+                    col.push(c);
+                    col.sort_unstable();
+                    col.dedup();
+                }
+            }
+            None => {
+                for col in cols.iter_mut() {
+                    *col = (0..n).collect();
+                }
+            }
+        }
+        let mut col_ptr = Vec::with_capacity(n + 1);
+        let mut row_idx = Vec::new();
+        col_ptr.push(0);
+        for col in &cols {
+            row_idx.extend_from_slice(col);
+            col_ptr.push(row_idx.len());
+        }
+        let colours = colour_columns(n, &col_ptr, &row_idx);
+        let storage = if dense {
+            Storage::Dense {
+                a: Mat::zeros(n, n),
+                lu: None,
+            }
+        } else {
+            let symbolic =
+                SymbolicSparseColMat::new_checked(n, n, col_ptr.clone(), None, row_idx.clone());
+            let nnz = row_idx.len();
+            Storage::Sparse {
+                symbolic,
+                values: vec![0.0; nnz],
+                scaled: vec![0.0; nnz],
+                sym_lu: None,
+                lu: None,
+            }
+        };
+        Ok(Self {
+            n,
+            storage,
+            col_ptr,
+            row_idx,
+            colours,
+            row_scale: vec![1.0; n],
+            col_scale: vec![1.0; n],
+            work: vec![0.0; n],
+        })
+    }
+
+    pub fn is_dense(&self) -> bool {
+        matches!(self.storage, Storage::Dense { .. })
+    }
+
+    pub fn nnz(&self) -> usize {
+        self.row_idx.len()
+    }
+
+    /// Rows of column `c` in the structure.
+    pub fn column_rows(&self, c: usize) -> &[usize] {
+        &self.row_idx[self.col_ptr[c]..self.col_ptr[c + 1]]
+    }
+
+    pub fn clear(&mut self) {
+        match &mut self.storage {
+            Storage::Dense { a, .. } => a.fill(0.0),
+            Storage::Sparse { values, .. } => values.fill(0.0),
+        }
+    }
+
+    /// Adds `v` at (r, c); entries outside the structure are an error of the problem.
+    pub fn add(&mut self, r: usize, c: usize, v: f64) -> Result<(), (usize, usize)> {
+        if r >= self.n || c >= self.n {
+            return Err((r, c));
+        }
+        match &mut self.storage {
+            Storage::Dense { a, .. } => {
+                a[(r, c)] += v;
+                Ok(())
+            }
+            Storage::Sparse { values, .. } => {
+                let lo = self.col_ptr[c];
+                let rows = &self.row_idx[lo..self.col_ptr[c + 1]];
+                match rows.binary_search(&r) {
+                    Ok(k) => {
+                        values[lo + k] += v;
+                        Ok(())
+                    }
+                    Err(_) => Err((r, c)),
+                }
+            }
+        }
+    }
+
+    /// Sets column `c` from a dense vector of differences, on its structural rows.
+    pub fn set_column_from(&mut self, c: usize, col: &[f64]) {
+        let (lo, hi) = (self.col_ptr[c], self.col_ptr[c + 1]);
+        match &mut self.storage {
+            Storage::Dense { a, .. } => {
+                for &r in &self.row_idx[lo..hi] {
+                    a[(r, c)] = col[r];
+                }
+            }
+            Storage::Sparse { values, .. } => {
+                for k in lo..hi {
+                    values[k] = col[self.row_idx[k]];
+                }
+            }
+        }
+    }
+
+    /// Value at (r, c), zero outside the structure.
+    #[cfg(test)]
+    pub fn get(&self, r: usize, c: usize) -> f64 {
+        match &self.storage {
+            Storage::Dense { a, .. } => a[(r, c)],
+            Storage::Sparse { values, .. } => {
+                let lo = self.col_ptr[c];
+                let rows = &self.row_idx[lo..self.col_ptr[c + 1]];
+                rows.binary_search(&r)
+                    .map(|k| values[lo + k])
+                    .unwrap_or(0.0)
+            }
+        }
+    }
+
+    /// Factorises diag(row) * J * diag(col_scale). `col_scale` scales unknowns (h^(k-1) for
+    /// index-k unknowns); rows are then equilibrated to unit maximum when `equilibrate`.
+    pub fn factor(&mut self, col_scale: &[f64], equilibrate: bool) -> Result<(), Singular> {
+        let n = self.n;
+        self.col_scale.copy_from_slice(col_scale);
+        let mut row_max = vec![0.0f64; n];
+        for c in 0..n {
+            for k in self.col_ptr[c]..self.col_ptr[c + 1] {
+                let r = self.row_idx[k];
+                let v = (self.value_at(k, c) * col_scale[c]).abs();
+                if v.is_nan() || v.is_infinite() {
+                    return Err(Singular {
+                        columns: vec![c],
+                        rows: vec![r],
+                        detail: format!("non-finite Jacobian entry at equation {r}, unknown {c}"),
+                    });
+                }
+                row_max[r] = row_max[r].max(v);
+            }
+        }
+        if let Some(r) = row_max.iter().position(|m| *m == 0.0) {
+            return Err(Singular {
+                columns: vec![],
+                rows: vec![r],
+                detail: format!("equation {r} has an all-zero row"),
+            });
+        }
+        for r in 0..n {
+            self.row_scale[r] = if equilibrate { 1.0 / row_max[r] } else { 1.0 };
+        }
+        let (col_ptr, row_idx) = (&self.col_ptr, &self.row_idx);
+        let (rs, cs) = (&self.row_scale, &self.col_scale);
+        match &mut self.storage {
+            Storage::Dense { a, lu } => {
+                let mut s = a.clone();
+                for c in 0..n {
+                    for r in 0..n {
+                        s[(r, c)] *= rs[r] * cs[c];
+                    }
+                }
+                let f = s.partial_piv_lu();
+                // Partial pivoting permutes rows only, so U's diagonal index is the unknown.
+                let u = f.U();
+                let umax = (0..n).map(|i| u[(i, i)].abs()).fold(0.0, f64::max);
+                let tiny = umax * f64::EPSILON * (n as f64);
+                let small: Vec<usize> = (0..n).filter(|&i| !(u[(i, i)].abs() > tiny)).collect();
+                if !small.is_empty() {
+                    *lu = None;
+                    return Err(Singular {
+                        detail: format!(
+                            "zero pivot for unknown(s) {:?} (|u_ii| <= {:.1e} * max)",
+                            small,
+                            f64::EPSILON * n as f64
+                        ),
+                        columns: small,
+                        rows: vec![],
+                    });
+                }
+                *lu = Some(f);
+                Ok(())
+            }
+            Storage::Sparse {
+                symbolic,
+                values,
+                scaled,
+                sym_lu,
+                lu,
+            } => {
+                for c in 0..n {
+                    for k in col_ptr[c]..col_ptr[c + 1] {
+                        scaled[k] = values[k] * rs[row_idx[k]] * cs[c];
+                    }
+                }
+                if sym_lu.is_none() {
+                    *sym_lu =
+                        Some(
+                            SymbolicLu::try_new(symbolic.as_ref()).map_err(|e| Singular {
+                                columns: vec![],
+                                rows: vec![],
+                                detail: format!("symbolic LU failed: {e:?}"),
+                            })?,
+                        );
+                }
+                let mat = SparseColMatRef::new(symbolic.as_ref(), scaled);
+                let sym = sym_lu.as_ref().expect("symbolic LU built above").clone();
+                match Lu::try_new_with_symbolic(sym, mat) {
+                    Ok(f) => {
+                        *lu = Some(f);
+                        Ok(())
+                    }
+                    Err(e) => {
+                        *lu = None;
+                        Err(Singular {
+                            columns: vec![],
+                            rows: vec![],
+                            detail: format!("sparse LU failed: {e:?}"),
+                        })
+                    }
+                }
+            }
+        }
+    }
+
+    fn value_at(&self, k: usize, c: usize) -> f64 {
+        match &self.storage {
+            Storage::Dense { a, .. } => a[(self.row_idx[k], c)],
+            Storage::Sparse { values, .. } => values[k],
+        }
+    }
+
+    /// Solves J x = b in place (b in, x out) with the current factorisation.
+    pub fn solve(&mut self, b: &mut [f64]) -> Result<(), Singular> {
+        let n = self.n;
+        for (w, (bi, rs)) in self.work.iter_mut().zip(b.iter().zip(&self.row_scale)) {
+            *w = bi * rs;
+        }
+        let rhs = MatMut::from_column_major_slice_mut(&mut self.work, n, 1);
+        match &self.storage {
+            Storage::Dense { lu, .. } => lu
+                .as_ref()
+                .expect("solve called before factor")
+                .solve_in_place_with_conj(Conj::No, rhs),
+            Storage::Sparse { lu, .. } => lu
+                .as_ref()
+                .expect("solve called before factor")
+                .solve_in_place_with_conj(Conj::No, rhs),
+        }
+        if let Some(i) = self.work.iter().position(|v| !v.is_finite()) {
+            return Err(Singular {
+                columns: vec![i],
+                rows: vec![],
+                detail: format!("non-finite Newton correction on unknown {i}"),
+            });
+        }
+        for (bi, (w, cs)) in b.iter_mut().zip(self.work.iter().zip(&self.col_scale)) {
+            *bi = w * cs;
+        }
+        Ok(())
+    }
+}
+
+/// Greedy distance-2 colouring: columns of one colour share no row, so one residual
+/// evaluation perturbing all of them gives each column's finite difference (Curtis,
+/// Powell & Reid 1974).
+fn colour_columns(n: usize, col_ptr: &[usize], row_idx: &[usize]) -> Vec<Vec<usize>> {
+    let mut row_cols: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for c in 0..n {
+        for &r in &row_idx[col_ptr[c]..col_ptr[c + 1]] {
+            row_cols[r].push(c);
+        }
+    }
+    let mut colour = vec![usize::MAX; n];
+    let mut forbidden_mark = vec![usize::MAX; n + 1];
+    let mut groups: Vec<Vec<usize>> = Vec::new();
+    for c in 0..n {
+        for &r in &row_idx[col_ptr[c]..col_ptr[c + 1]] {
+            for &k in &row_cols[r] {
+                if colour[k] != usize::MAX {
+                    forbidden_mark[colour[k]] = c;
+                }
+            }
+        }
+        let g = (0..)
+            .find(|g| forbidden_mark[*g] != c)
+            .expect("a free colour");
+        colour[c] = g;
+        if g == groups.len() {
+            groups.push(Vec::new());
+        }
+        groups[g].push(c);
+    }
+    groups
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tridiag(n: usize) -> Vec<(usize, usize)> {
+        let mut p = Vec::new();
+        for i in 0..n {
+            p.push((i, i));
+            if i > 0 {
+                p.push((i, i - 1));
+                p.push((i - 1, i));
+            }
+        }
+        p
+    }
+
+    #[test]
+    fn colouring_of_tridiagonal_needs_three_colours() {
+        let m = NewtonMatrix::new(10, Some(tridiag(10)), false).unwrap();
+        assert_eq!(m.colours.len(), 3);
+        // No two columns of one colour share a row.
+        for g in &m.colours {
+            let mut seen = vec![false; 10];
+            for &c in g {
+                for &r in m.column_rows(c) {
+                    assert!(!seen[r]);
+                    seen[r] = true;
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn sparse_and_dense_solve_agree_with_known_solution() {
+        let n = 8;
+        for dense in [true, false] {
+            let mut m = NewtonMatrix::new(n, Some(tridiag(n)), dense).unwrap();
+            for i in 0..n {
+                m.add(i, i, 4.0 + i as f64).unwrap();
+                if i > 0 {
+                    m.add(i, i - 1, -1.0).unwrap();
+                    m.add(i - 1, i, -2.0).unwrap();
+                }
+            }
+            let x: Vec<f64> = (0..n).map(|i| (i as f64 * 0.7).sin()).collect();
+            let mut b = vec![0.0; n];
+            for r in 0..n {
+                for c in 0..n {
+                    b[r] += m.get(r, c) * x[c];
+                }
+            }
+            let scale: Vec<f64> = (0..n)
+                .map(|i| if i % 3 == 0 { 1e-4 } else { 1.0 })
+                .collect();
+            m.factor(&scale, true).unwrap();
+            m.solve(&mut b).unwrap();
+            for i in 0..n {
+                assert!((b[i] - x[i]).abs() < 1e-12, "dense={dense} i={i}");
+            }
+        }
+    }
+
+    #[test]
+    fn singular_matrix_is_reported_not_panicking() {
+        let mut m = NewtonMatrix::new(3, None, true).unwrap();
+        m.add(0, 0, 1.0).unwrap();
+        m.add(1, 1, 1.0).unwrap();
+        m.add(2, 0, 1.0).unwrap();
+        m.add(2, 1, 1.0).unwrap();
+        // Column 2 is zero: no pivot for unknown 2.
+        let err = m.factor(&[1.0; 3], true).unwrap_err();
+        assert!(err.columns.contains(&2), "{err:?}");
+        // Entry outside a sparse pattern is refused.
+        let mut s = NewtonMatrix::new(3, Some(vec![(0, 1)]), false).unwrap();
+        assert!(s.add(2, 0, 1.0).is_err());
+    }
+}

@@ -1,0 +1,226 @@
+//! Solver settings and run statistics.
+
+use serde::{Deserialize, Serialize};
+
+use super::error::SolverError;
+
+/// How the BDF coefficients follow changes of the step size.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Method {
+    /// Variable-coefficient BDF in fixed-leading-coefficient form (IDA, DASSL): the
+    /// formula is built on the actual, unequally spaced history.
+    #[default]
+    Variable,
+    /// Fixed-coefficient BDF (the GSTIFF family): constant-step formulas; on a step change
+    /// the history is interpolated onto an equally spaced grid first.
+    FixedCoefficient,
+}
+
+/// How unknowns of index 2 and 3 enter the error and Newton convergence tests.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum AlgebraicControl {
+    /// Weight index-k unknowns by h^(k-1) (Hairer & Wanner II, VII.3; RADAU5, MEBDFI):
+    /// they are controlled, at the accuracy their index allows.
+    #[default]
+    Scaled,
+    /// Leave every algebraic unknown out of the error test (IDASetSuppressAlg,
+    /// DASPK INFO(16)); Newton convergence still uses the h-scaled weights.
+    Exclude,
+    /// Treat every unknown alike (correct for index-1 problems only).
+    Full,
+}
+
+/// Which linear-algebra path the Newton iteration uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum LinearSolver {
+    /// Dense below `dense_limit` unknowns or when the problem gives no pattern, else sparse.
+    #[default]
+    Auto,
+    Dense,
+    Sparse,
+}
+
+/// Where the iteration matrix comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum JacobianSource {
+    /// The problem's analytic Jacobian when it offers one, else finite differences.
+    #[default]
+    Auto,
+    /// Column-coloured finite differences even when an analytic Jacobian exists.
+    FiniteDifference,
+}
+
+/// Integrator settings. Every field has a sensible default (`SolverOptions::default()`).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SolverOptions {
+    /// Relative tolerance (dimensionless).
+    pub rtol: f64,
+    /// Absolute tolerance, in the units of each unknown; one value or one per unknown.
+    pub atol: Vec<f64>,
+    /// Highest BDF order, 1..=5.
+    pub max_order: usize,
+    /// First step [s]; `None` lets the solver choose from ||y'0||.
+    pub h_init: Option<f64>,
+    /// Largest step [s].
+    pub h_max: f64,
+    /// Smallest step [s] before the solver gives up.
+    pub h_min: f64,
+    /// Step budget for one call.
+    pub max_steps: usize,
+    pub method: Method,
+    pub algebraic: AlgebraicControl,
+    pub linear_solver: LinearSolver,
+    /// Problems with fewer unknowns use dense LU under `LinearSolver::Auto`.
+    pub dense_limit: usize,
+    pub jacobian: JacobianSource,
+    /// Newton iterations per step attempt (IDA: 4).
+    pub max_newton_iters: usize,
+    /// Newton convergence failures allowed in one step (IDA: 10).
+    pub max_convergence_failures: usize,
+    /// Error-test failures allowed in one step (IDA: 10).
+    pub max_error_failures: usize,
+    /// Newton convergence constant: converged when rate/(1-rate)*||delta|| < this (IDA: 0.33).
+    pub newton_tol: f64,
+    /// Rebuild the iteration matrix at least every this many steps (IDA rebuilds only on
+    /// need; 0 disables the age limit).
+    pub max_jacobian_age: usize,
+    /// Row equilibration and h^(k-1) column scaling of the Newton matrix for index-k
+    /// unknowns (keeps its condition number bounded as h -> 0 on index-3 problems).
+    pub scale_newton_matrix: bool,
+}
+
+impl Default for SolverOptions {
+    fn default() -> Self {
+        Self {
+            rtol: 1e-6,
+            atol: vec![1e-6],
+            max_order: 5,
+            h_init: None,
+            h_max: f64::INFINITY,
+            h_min: 0.0,
+            max_steps: 500_000,
+            method: Method::Variable,
+            algebraic: AlgebraicControl::Scaled,
+            linear_solver: LinearSolver::Auto,
+            dense_limit: 40,
+            jacobian: JacobianSource::Auto,
+            max_newton_iters: 4,
+            max_convergence_failures: 10,
+            max_error_failures: 10,
+            newton_tol: 0.33,
+            max_jacobian_age: 0,
+            scale_newton_matrix: true,
+        }
+    }
+}
+
+impl SolverOptions {
+    /// Options with the same relative and absolute tolerance.
+    pub fn with_tol(rtol: f64, atol: f64) -> Self {
+        Self {
+            rtol,
+            atol: vec![atol],
+            ..Self::default()
+        }
+    }
+
+    /// Checks every setting; `n` is the problem size.
+    pub fn validate(&self, n: usize) -> Result<(), SolverError> {
+        let bad = |field: &str, why: String| {
+            Err(SolverError::InvalidSettings {
+                field: field.to_string(),
+                why,
+            })
+        };
+        if !self.rtol.is_finite() || self.rtol < 0.0 {
+            return bad(
+                "rtol",
+                format!("must be finite and >= 0, got {}", self.rtol),
+            );
+        }
+        if self.atol.len() != 1 && self.atol.len() != n {
+            return bad(
+                "atol",
+                format!("needs 1 or {n} values, got {}", self.atol.len()),
+            );
+        }
+        if let Some(a) = self.atol.iter().find(|a| !a.is_finite() || **a < 0.0) {
+            return bad("atol", format!("must be finite and >= 0, got {a}"));
+        }
+        if self.rtol == 0.0 && self.atol.iter().any(|a| *a == 0.0) {
+            return bad(
+                "atol",
+                "rtol and atol are both zero for some unknown: no error weight".into(),
+            );
+        }
+        if !(1..=5).contains(&self.max_order) {
+            return bad(
+                "max_order",
+                format!("must be 1..=5, got {}", self.max_order),
+            );
+        }
+        if self.h_max.is_nan() || self.h_max <= 0.0 {
+            return bad("h_max", format!("must be > 0, got {}", self.h_max));
+        }
+        if !self.h_min.is_finite() || self.h_min < 0.0 || self.h_min >= self.h_max {
+            return bad(
+                "h_min",
+                format!("must be >= 0 and below h_max, got {}", self.h_min),
+            );
+        }
+        if let Some(h) = self.h_init {
+            if !h.is_finite() || h <= 0.0 {
+                return bad("h_init", format!("must be finite and > 0, got {h}"));
+            }
+        }
+        if self.max_newton_iters == 0 {
+            return bad("max_newton_iters", "must be >= 1".into());
+        }
+        if !(self.newton_tol > 0.0 && self.newton_tol.is_finite()) {
+            return bad(
+                "newton_tol",
+                format!("must be > 0, got {}", self.newton_tol),
+            );
+        }
+        if self.max_steps == 0 {
+            return bad("max_steps", "must be >= 1".into());
+        }
+        Ok(())
+    }
+
+    pub(crate) fn atol_of(&self, i: usize) -> f64 {
+        if self.atol.len() == 1 {
+            self.atol[0]
+        } else {
+            self.atol[i]
+        }
+    }
+}
+
+/// Counters of one integration, as IDA reports them.
+#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
+pub struct Stats {
+    /// Accepted steps.
+    pub steps: usize,
+    /// Step attempts rejected by the error test or by Newton failure.
+    pub rejected_steps: usize,
+    pub error_test_failures: usize,
+    pub convergence_failures: usize,
+    /// Residual evaluations, including those spent on finite-difference Jacobians.
+    pub residual_evals: usize,
+    /// Iteration-matrix evaluations (analytic or finite-difference).
+    pub jacobian_evals: usize,
+    pub lu_factorizations: usize,
+    pub newton_iterations: usize,
+    pub root_evals: usize,
+    /// Order and step of the last accepted step.
+    pub last_order: usize,
+    pub last_step: f64,
+    /// Accepted steps per order 1..=5.
+    pub order_counts: [usize; 5],
+}

@@ -1,0 +1,101 @@
+//! The problem side of the solver: a DAE in residual form F(t, y, y') = 0.
+//!
+//! The solver knows nothing about what the equations mean. A problem supplies the
+//! residual, optionally its sparsity pattern and an analytic iteration matrix
+//! dF/dy + cj dF/dy', and tells which unknowns are algebraic (and of which index) so the
+//! error and convergence tests can treat them as index-3 BDF codes do.
+
+/// How an unknown enters the DAE, used by the error test and the Newton scaling.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum VarKind {
+    /// A differential unknown (its derivative appears) or an index-1 algebraic unknown.
+    Differential,
+    /// An algebraic unknown of index 1 (e.g. a force that follows from a smooth equation).
+    Algebraic1,
+    /// An index-2 unknown (velocities of a constrained mechanism, GGL multipliers).
+    Index2,
+    /// An index-3 unknown (Lagrange multipliers of position-level constraints).
+    Index3,
+}
+
+impl VarKind {
+    /// The differentiation index level used for h-scaling: 1 for differential and index-1
+    /// unknowns, 2 and 3 for the higher-index ones (Hairer & Wanner, Solving ODEs II, VII.3).
+    pub fn level(self) -> i32 {
+        match self {
+            VarKind::Differential | VarKind::Algebraic1 => 1,
+            VarKind::Index2 => 2,
+            VarKind::Index3 => 3,
+        }
+    }
+
+    /// True for every unknown whose derivative does not appear in the residual.
+    pub fn is_algebraic(self) -> bool {
+        !matches!(self, VarKind::Differential)
+    }
+}
+
+/// Collects the non-zero entries of the iteration matrix dF/dy + cj dF/dy'.
+///
+/// Entries may be added more than once for the same position; they are summed.
+pub struct JacobianSink<'a> {
+    pub(crate) entries: &'a mut Vec<(usize, usize, f64)>,
+}
+
+impl JacobianSink<'_> {
+    /// Adds `value` at (`row`, `col`).
+    #[inline]
+    pub fn add(&mut self, row: usize, col: usize, value: f64) {
+        self.entries.push((row, col, value));
+    }
+}
+
+/// A differential-algebraic system F(t, y, y') = 0.
+pub trait DaeProblem {
+    /// Number of unknowns (and of equations).
+    fn size(&self) -> usize;
+
+    /// Evaluates the residual F(t, y, y') into `res`.
+    fn residual(&self, t: f64, y: &[f64], yp: &[f64], res: &mut [f64]);
+
+    /// The kind of each unknown. Defaults to all differential (an implicit ODE).
+    fn var_kinds(&self) -> Vec<VarKind> {
+        vec![VarKind::Differential; self.size()]
+    }
+
+    /// Structural non-zeros (row, col) of dF/dy + cj dF/dy'. `None` means dense.
+    fn jacobian_pattern(&self) -> Option<Vec<(usize, usize)>> {
+        None
+    }
+
+    /// Writes the analytic iteration matrix dF/dy + cj dF/dy' into `jac` and returns true,
+    /// or returns false to let the solver build it by (coloured) finite differences.
+    fn jacobian(
+        &self,
+        _t: f64,
+        _y: &[f64],
+        _yp: &[f64],
+        _cj: f64,
+        _jac: &mut JacobianSink,
+    ) -> bool {
+        false
+    }
+
+    /// Number of event functions g(t, y, y') whose sign changes the solver locates.
+    fn n_roots(&self) -> usize {
+        0
+    }
+
+    /// Evaluates the event functions into `g` (length `n_roots()`).
+    fn roots(&self, _t: f64, _y: &[f64], _yp: &[f64], _g: &mut [f64]) {}
+
+    /// A human-readable name of unknown `i`, used in error messages.
+    fn var_name(&self, i: usize) -> String {
+        format!("y[{i}]")
+    }
+
+    /// A human-readable name of equation `i`, used in error messages.
+    fn eq_name(&self, i: usize) -> String {
+        format!("F[{i}]")
+    }
+}
