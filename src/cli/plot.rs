@@ -85,6 +85,7 @@ fn draw<DB: DrawingBackend>(
             .x_label_formatter(&|v| format!("{v:.0e}"))
             .y_label_formatter(&|v| format!("{v:.0e}"))
             .label_style(("sans-serif", 11))
+            .light_line_style(TRANSPARENT)
             .draw()
             .map_err(|x| e(&x))?;
         for (i, s) in panel.series.iter().enumerate() {

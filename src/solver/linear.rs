@@ -15,6 +15,7 @@ pub(crate) struct Singular {
     pub detail: String,
 }
 
+#[allow(clippy::large_enum_variant)] // one per solver, never moved in a hot path
 enum Storage {
     Dense {
         a: Mat<f64>,
@@ -232,7 +233,9 @@ impl NewtonMatrix {
                 let u = f.U();
                 let umax = (0..n).map(|i| u[(i, i)].abs()).fold(0.0, f64::max);
                 let tiny = umax * f64::EPSILON * (n as f64);
-                let small: Vec<usize> = (0..n).filter(|&i| !(u[(i, i)].abs() > tiny)).collect();
+                let small: Vec<usize> = (0..n)
+                    .filter(|&i| u[(i, i)].abs() <= tiny || u[(i, i)].is_nan())
+                    .collect();
                 if !small.is_empty() {
                     *lu = None;
                     return Err(Singular {
@@ -383,7 +386,7 @@ mod tests {
         assert_eq!(m.colours.len(), 3);
         // No two columns of one colour share a row.
         for g in &m.colours {
-            let mut seen = vec![false; 10];
+            let mut seen = [false; 10];
             for &c in g {
                 for &r in m.column_rows(c) {
                     assert!(!seen[r]);

@@ -152,7 +152,7 @@ impl SolverOptions {
         if let Some(a) = self.atol.iter().find(|a| !a.is_finite() || **a < 0.0) {
             return bad("atol", format!("must be finite and >= 0, got {a}"));
         }
-        if self.rtol == 0.0 && self.atol.iter().any(|a| *a == 0.0) {
+        if self.rtol == 0.0 && self.atol.contains(&0.0) {
             return bad(
                 "atol",
                 "rtol and atol are both zero for some unknown: no error weight".into(),
