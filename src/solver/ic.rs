@@ -56,8 +56,8 @@ pub fn consistent_index1<P: DaeProblem + ?Sized>(
         for group in &colours {
             let mut incs = Vec::with_capacity(group.len());
             for &j in group {
-                let inc =
-                    f64::EPSILON.sqrt() * (1.0 / w[j]).max(y[j].abs()).max(yp[j].abs()).max(1e-8);
+                // IDA's difference increment: sqrt(eps) relative, never below 1/w.
+                let inc = (f64::EPSILON.sqrt() * y[j].abs().max(yp[j].abs())).max(1.0 / w[j]);
                 if kinds[j] == VarKind::Differential {
                     yp[j] += inc;
                 } else {

@@ -1,0 +1,91 @@
+//! The command line as a user runs it: JSON fields, files written, clear errors.
+
+use std::process::Command;
+
+fn towride(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_towride"))
+        .args(args)
+        .output()
+        .expect("run towride")
+}
+
+#[test]
+fn verify_json_has_the_fields_a_script_needs() {
+    let out = towride(&[
+        "verify",
+        "--problems",
+        "hires,caraxis",
+        "--tol",
+        "1e-6",
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let recs = v.as_array().unwrap();
+    assert_eq!(recs.len(), 2);
+    for r in recs {
+        for key in [
+            "problem",
+            "rtol",
+            "atol",
+            "t_end",
+            "y",
+            "scd",
+            "steps",
+            "rejected_steps",
+            "residual_evals",
+            "jacobian_evals",
+            "lu_factorizations",
+            "newton_iterations",
+            "wall_s",
+        ] {
+            assert!(r.get(key).is_some(), "missing {key} in {r}");
+        }
+    }
+    let car = recs.iter().find(|r| r["problem"] == "caraxis").unwrap();
+    // y in the test set's component order: 10 components for the car axis.
+    assert_eq!(car["y"].as_array().unwrap().len(), 10);
+    assert!(car["steps"].as_u64().unwrap() > 100);
+}
+
+#[test]
+fn unknown_problem_is_a_clear_error() {
+    let out = towride(&["verify", "--problems", "nosuch"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("unknown problem `nosuch`"), "{err}");
+}
+
+#[test]
+fn bench_solver_writes_csv_and_png() {
+    let dir = std::env::temp_dir().join(format!("towride-bench-{}", std::process::id()));
+    let out = towride(&[
+        "bench",
+        "solver",
+        "--problems",
+        "vdpol",
+        "--tightest",
+        "5",
+        "--min-wall",
+        "0",
+        "--json",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let csv = std::fs::read_to_string(dir.join("work_precision.csv")).unwrap();
+    assert!(csv.starts_with("problem,method,rtol [-]"), "{csv}");
+    // 3 tolerances x 2 methods + header.
+    assert_eq!(csv.lines().count(), 7);
+    let png = std::fs::read(dir.join("work_precision.png")).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+    std::fs::remove_dir_all(&dir).ok();
+}
