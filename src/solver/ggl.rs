@@ -18,7 +18,7 @@
 //! constraints; in exchange the BDF error estimate is valid for q and v and no step-size
 //! restriction of index-3 BDF applies.
 
-use super::problem::{DaeProblem, JacobianSink, VarKind};
+use super::problem::{DaeProblem, VarKind};
 
 /// A constrained mechanical system in first-order form with n positions (and n
 /// velocities v = q' in the unconstrained sense) and m position constraints.
@@ -108,17 +108,6 @@ impl<M: MechanicalDae> DaeProblem for Ggl<M> {
         let mut k = vec![VarKind::Differential; 2 * n];
         k.extend(std::iter::repeat_n(VarKind::Index2, 2 * m));
         k
-    }
-
-    fn jacobian(
-        &self,
-        _t: f64,
-        _y: &[f64],
-        _yp: &[f64],
-        _cj: f64,
-        _jac: &mut JacobianSink,
-    ) -> bool {
-        false
     }
 
     fn var_name(&self, i: usize) -> String {

@@ -299,6 +299,31 @@ impl Andrews {
     }
 
     /// G = dg/dq, 6x7 (`gp` of the Fortran code).
+    /// M(q) w - f(q, v) + G(q)^T lambda, the equations of motion with accelerations w.
+    pub(crate) fn equations_of_motion(
+        &self,
+        tr: &Trig,
+        v: &[f64],
+        w: &[f64],
+        lam: &[f64],
+    ) -> [f64; 7] {
+        let m = self.mass(tr);
+        let f = self.forces(tr, v);
+        let gp = self.gp(tr);
+        let mut out = [0.0; 7];
+        for r in 0..7 {
+            let mut acc = -f[r];
+            for j in 0..7 {
+                acc += m[r][j] * w[j];
+            }
+            for k in 0..6 {
+                acc += gp[k][r] * lam[k];
+            }
+            out[r] = acc;
+        }
+        out
+    }
+
     pub(crate) fn gp(&self, tr: &Trig) -> [[f64; 7]; 6] {
         let (rr, d, ss, e, zt, zf, u) =
             (self.rr, self.d, self.ss, self.e, self.zt, self.zf, self.u);
@@ -503,18 +528,9 @@ impl DaeProblem for Andrews {
         for i in 0..14 {
             res[i] = yp[i] - y[i + 7];
         }
-        let m = self.mass(&tr);
-        let f = self.forces(&tr, v);
-        let gp = self.gp(&tr);
+        let dyn_res = self.equations_of_motion(&tr, v, w, lam);
         for r in 0..7 {
-            let mut acc = -f[r];
-            for j in 0..7 {
-                acc += m[r][j] * w[j];
-            }
-            for k in 0..6 {
-                acc += gp[k][r] * lam[k];
-            }
-            res[14 + r] = -acc;
+            res[14 + r] = -dyn_res[r];
         }
         let g = self.constraints(&tr);
         for k in 0..6 {

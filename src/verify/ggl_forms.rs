@@ -74,20 +74,7 @@ impl MechanicalDae for Andrews {
         lambda: &[f64],
         out: &mut [f64],
     ) {
-        let tr = Trig::new(q);
-        let m = self.mass(&tr);
-        let f = self.forces(&tr, v);
-        let gp = self.gp(&tr);
-        for r in 0..7 {
-            let mut acc = -f[r];
-            for j in 0..7 {
-                acc += m[r][j] * vdot[j];
-            }
-            for k in 0..6 {
-                acc += gp[k][r] * lambda[k];
-            }
-            out[r] = acc;
-        }
+        out.copy_from_slice(&self.equations_of_motion(&Trig::new(q), v, vdot, lambda));
     }
     fn constraints(&self, _t: f64, q: &[f64], out: &mut [f64]) {
         out.copy_from_slice(&self.constraints(&Trig::new(q)));
