@@ -14,11 +14,10 @@ impl<P: DaeProblem + ?Sized> Bdf<'_, P> {
         let terr_k = (kk as f64 + 1.0) * self.err_k;
         self.knew = kk;
         if kk > 1 {
-            let mut d: Vec<f64> = self.phi[kk]
-                .iter()
-                .zip(&self.ee)
-                .map(|(a, b)| a + b)
-                .collect();
+            let mut d = std::mem::take(&mut self.scratch);
+            for ((v, p), e) in d.iter_mut().zip(&self.phi[kk]).zip(&self.ee) {
+                *v = p + e;
+            }
             let enorm_km1 = self.wrms(&d, &self.wt_err);
             self.err_km1 = self.sigma[kk - 1] * enorm_km1;
             let terr_km1 = kk as f64 * self.err_km1;
@@ -35,6 +34,7 @@ impl<P: DaeProblem + ?Sized> Bdf<'_, P> {
             } else if terr_km1 <= 0.5 * terr_k {
                 self.knew = kk - 1;
             }
+            self.scratch = d;
         }
         enorm_k
     }
@@ -73,13 +73,12 @@ impl<P: DaeProblem + ?Sized> Bdf<'_, P> {
             } else if kk == maxord || kk + 1 >= self.ns || kdiff == 1 {
                 Action::Maintain
             } else {
-                let d: Vec<f64> = self
-                    .ee
-                    .iter()
-                    .zip(&self.phi[kk + 1])
-                    .map(|(a, b)| a - b)
-                    .collect();
+                let mut d = std::mem::take(&mut self.scratch);
+                for ((v, e), p) in d.iter_mut().zip(&self.ee).zip(&self.phi[kk + 1]) {
+                    *v = e - p;
+                }
                 err_kp1 = self.wrms(&d, &self.wt_err) / (kk as f64 + 2.0);
+                self.scratch = d;
                 if kk == 1 {
                     if err_kp1 >= 0.5 * self.err_k {
                         Action::Maintain

@@ -85,6 +85,8 @@ pub struct Bdf<'a, P: DaeProblem + ?Sized> {
     delta: Vec<f64>,
     res: Vec<f64>,
     backup_phi: Vec<Vec<f64>>,
+    /// Work vector for the error estimates at neighbouring orders.
+    scratch: Vec<f64>,
     backup_psi: [f64; MAXORD + 2],
     jac: NewtonMatrix,
     jac_entries: Vec<(usize, usize, f64)>,
@@ -195,6 +197,7 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
             delta: vec![0.0; n],
             res: vec![0.0; n],
             backup_phi: vec![vec![0.0; n]; MAXORD + 2],
+            scratch: vec![0.0; n],
             backup_psi: [0.0; MAXORD + 2],
             jac,
             jac_entries: Vec::new(),
