@@ -41,7 +41,7 @@ pub fn run_solver(a: &BenchSolverArgs) -> Result<i32, String> {
                 records.push(runner::run_case(
                     b,
                     tol,
-                    tol,
+                    tol * b.atol_scale,
                     m,
                     Formulation::Ggl,
                     a.min_wall,

@@ -34,7 +34,7 @@ pub fn run(a: &VerifyArgs) -> Result<i32, String> {
             records.push(runner::run_case(
                 b,
                 tol,
-                tol,
+                tol * b.atol_scale,
                 a.method.into(),
                 a.formulation,
                 0.0,

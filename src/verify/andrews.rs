@@ -656,6 +656,7 @@ pub fn benchmark() -> Benchmark {
                  pkg/deTestSet/R/ex_andrews.R; scd over y1..y7 as in report.f getscd. \
                  Published MEBDFI figures supplied with the task (test-set report), not \
                  re-checked.",
+        atol_scale: 1.0,
         ggl: Some({
             let (p, y, yp) = super::ggl_forms::andrews_ggl(&y0_copy, &yp0_copy);
             super::GglForm {

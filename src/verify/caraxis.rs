@@ -319,6 +319,7 @@ pub fn benchmark() -> Benchmark {
                  pkg/deTestSet/R/ex_caraxis.R; reference at t=3 from \
                  pkg/deTestSet/R/ex_reference.R. Published MEBDFI figures supplied with the \
                  task (test-set report), not re-checked.",
+        atol_scale: 1.0,
         ggl: Some({
             let (p, y, yp) = super::ggl_forms::caraxis_ggl(&y0_copy, &yp0_copy);
             super::GglForm {

@@ -136,6 +136,7 @@ pub fn benchmark() -> Benchmark {
                  Cray C90, uround 1.01e-19) from volpatto/pside problems/HIRES/hires.f; \
                  cross-checked with rforge/bvpsolve pkg/deTestSet/src/Ex_hires.f and \
                  pkg/deTestSet/R/ex_reference.R.",
+        atol_scale: 1.0,
         ggl: None,
     }
 }

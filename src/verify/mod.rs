@@ -80,6 +80,10 @@ pub struct Benchmark {
     pub published_steps: Option<PublishedStats>,
     /// Where the problem, its data and its reference come from.
     pub source: &'static str,
+    /// Absolute tolerance as a multiple of the relative one in `verify` and `bench`
+    /// (Robertson: 1e-4, as the SUNDIALS driver for the test-set problem uses, because
+    /// its y1 ~ 2e-8 and y2 ~ 8e-14 are otherwise below atol and uncontrolled).
+    pub atol_scale: f64,
     /// The stabilised index-2 (GGL) form of an index-3 problem, when it has one.
     pub ggl: Option<GglForm>,
 }

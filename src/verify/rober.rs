@@ -113,6 +113,7 @@ pub fn benchmark() -> Benchmark {
         source: "Test Set for IVP Solvers (Mazzia, Magherini, Iavernaro; Bari), problem \
                  'rober': equations and y0 from rforge/bvpsolve pkg/deTestSet/R/ex_rober.R, \
                  reference at t = 1e11 from pkg/deTestSet/R/ex_reference.R.",
+        atol_scale: 1e-4,
         ggl: None,
     }
 }

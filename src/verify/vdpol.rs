@@ -101,6 +101,7 @@ pub fn benchmark() -> Benchmark {
         source: "Test Set for IVP Solvers (Mazzia, Magherini, Iavernaro; Bari), problem \
                  'vdpol' (vdpol.f rev 1.2, 2006): equations, y0, t_end and reference (RADAU, \
                  uround 1.01e-19) from volpatto/pside problems/VdPol/vdpol.f.",
+        atol_scale: 1.0,
         ggl: None,
     }
 }
