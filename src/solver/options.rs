@@ -89,6 +89,10 @@ pub struct SolverOptions {
     /// Rebuild the iteration matrix at least every this many steps (IDA rebuilds only on
     /// need; 0 disables the age limit).
     pub max_jacobian_age: usize,
+    /// The step grows only when the error estimate allows at least this factor (IDA's
+    /// upper fixed-step bound, 2 in classic IDA and DASSL); growth is capped at 2.
+    /// Lower values change the step more often: fewer steps, more factorisations.
+    pub eta_fixed_max: f64,
     /// Row equilibration and h^(k-1) column scaling of the Newton matrix for index-k
     /// unknowns (keeps its condition number bounded as h -> 0 on index-3 problems).
     pub scale_newton_matrix: bool,
@@ -114,6 +118,7 @@ impl Default for SolverOptions {
             max_error_failures: 10,
             newton_tol: 0.33,
             max_jacobian_age: 0,
+            eta_fixed_max: 2.0,
             scale_newton_matrix: true,
         }
     }
@@ -185,6 +190,12 @@ impl SolverOptions {
             return bad(
                 "newton_tol",
                 format!("must be > 0, got {}", self.newton_tol),
+            );
+        }
+        if !(1.0..=2.0).contains(&self.eta_fixed_max) {
+            return bad(
+                "eta_fixed_max",
+                format!("must be in [1, 2], got {}", self.eta_fixed_max),
             );
         }
         if self.max_steps == 0 {

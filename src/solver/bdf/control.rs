@@ -105,8 +105,10 @@ impl<P: DaeProblem + ?Sized> Bdf<'_, P> {
                 Action::Maintain => self.err_k,
             };
             let rr = (2.0 * err_knew + 0.0001).powf(-1.0 / (self.kk as f64 + 1.0));
-            if rr >= 2.0 {
-                self.hh = (2.0 * self.hh).min(hmax);
+            // The step is kept unless it may grow by eta_fixed_max (IDA's
+            // IDASetEtaFixedStepBounds) or must shrink; growth is capped at 2.
+            if rr >= self.opts.eta_fixed_max {
+                self.hh = (rr.min(2.0) * self.hh).min(hmax);
             } else if rr <= 1.0 {
                 self.hh *= rr.clamp(0.5, 0.9);
             }
