@@ -22,7 +22,6 @@ pub(crate) struct Singular {
 enum Storage {
     Dense {
         a: DMatrix<f64>,
-        scaled: DMatrix<f64>,
         lu: Option<LU<f64, Dyn, Dyn>>,
     },
     Sparse {
@@ -90,7 +89,6 @@ impl NewtonMatrix {
         let storage = if dense {
             Storage::Dense {
                 a: DMatrix::zeros(n, n),
-                scaled: DMatrix::zeros(n, n),
                 lu: None,
             }
         } else {
@@ -226,14 +224,9 @@ impl NewtonMatrix {
         let (col_ptr, row_idx) = (&self.col_ptr, &self.row_idx);
         let (rs, cs) = (&self.row_scale, &self.col_scale);
         match &mut self.storage {
-            Storage::Dense { a, scaled, lu } => {
-                for c in 0..n {
-                    for r in 0..n {
-                        scaled[(r, c)] = a[(r, c)] * rs[r] * cs[c];
-                    }
-                }
+            Storage::Dense { a, lu } => {
                 // Partial pivoting permutes rows only, so U's diagonal index is the unknown.
-                let f = std::mem::replace(scaled, DMatrix::zeros(0, 0)).lu();
+                let f = DMatrix::from_fn(n, n, |r, c| a[(r, c)] * rs[r] * cs[c]).lu();
                 let (small, umax) = {
                     let lu_mat = f.lu_internal();
                     let umax = (0..n).map(|i| lu_mat[(i, i)].abs()).fold(0.0, f64::max);
@@ -243,7 +236,6 @@ impl NewtonMatrix {
                         .collect();
                     (small, umax)
                 };
-                *scaled = DMatrix::zeros(n, n);
                 if !small.is_empty() {
                     *lu = None;
                     return Err(Singular {
