@@ -54,7 +54,7 @@ fn atol_for(problem: &str, rtol: f64, rober_factor: f64) -> f64 {
 }
 
 /// Which diffsol dense matrix / LU pair to use.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 enum Linalg {
     Nalgebra,
     Faer,
@@ -70,95 +70,38 @@ impl Linalg {
 }
 
 /// Command-line settings.
+#[derive(clap::Parser, Debug)]
+#[command(
+    about = "towride BDF vs diffsol BDF on the IVP test set's stiff ODEs, compared at equal scd"
+)]
 struct Args {
+    /// Print the JSON summary to stdout.
+    #[arg(long)]
     json: bool,
+    /// Output folder for diffsol_compare.csv and diffsol_compare.json.
+    #[arg(long, default_value_os_t = Path::new(env!("CARGO_MANIFEST_DIR")).join("out"))]
     out: PathBuf,
+    /// Repeat each run until this many seconds have passed [s].
+    #[arg(long, default_value_t = 0.2)]
     min_wall: f64,
-    max_repeats: usize,
+    /// At most this many repeats per run (at least 1).
+    #[arg(long, default_value_t = 50, value_parser = clap::value_parser!(u32).range(1..))]
+    max_repeats: u32,
+    /// Loosest tolerance exponent: rtol = 10^-kmin.
+    #[arg(long, default_value_t = 4)]
     kmin: i32,
+    /// Tightest tolerance exponent: rtol = 10^-kmax.
+    #[arg(long, default_value_t = 10)]
     kmax: i32,
+    /// Problems to run.
+    #[arg(long, value_delimiter = ',', default_values_t = ["hires".to_string(), "vdpol".to_string(), "rober".to_string()])]
     problems: Vec<String>,
+    /// diffsol's dense matrix and LU.
+    #[arg(long, value_enum, default_value = "nalgebra")]
     linalg: Linalg,
+    /// Robertson's atol as a multiple of rtol.
+    #[arg(long, default_value_t = ROBER_ATOL_FACTOR)]
     rober_atol_factor: f64,
-}
-
-fn usage() -> &'static str {
-    "usage: diffsol-compare [--json] [--out DIR] [--min-wall SECONDS] [--max-repeats N] \
-     [--kmin K] [--kmax K] [--problems hires,vdpol,rober] [--linalg nalgebra|faer] \
-     [--rober-atol-factor F]"
-}
-
-fn parse_args() -> Result<Args, String> {
-    let mut a = Args {
-        json: false,
-        out: Path::new(env!("CARGO_MANIFEST_DIR")).join("out"),
-        min_wall: 0.2,
-        max_repeats: 50,
-        kmin: 4,
-        kmax: 10,
-        problems: vec!["hires".into(), "vdpol".into(), "rober".into()],
-        linalg: Linalg::Nalgebra,
-        rober_atol_factor: ROBER_ATOL_FACTOR,
-    };
-    let mut it = std::env::args().skip(1);
-    while let Some(arg) = it.next() {
-        let mut value = |name: &str| {
-            it.next()
-                .ok_or_else(|| format!("{name} needs a value\n{}", usage()))
-        };
-        match arg.as_str() {
-            "--json" => a.json = true,
-            "--out" => a.out = PathBuf::from(value("--out")?),
-            "--min-wall" => {
-                a.min_wall = value("--min-wall")?
-                    .parse()
-                    .map_err(|e| format!("--min-wall: {e}"))?
-            }
-            "--max-repeats" => {
-                a.max_repeats = value("--max-repeats")?
-                    .parse()
-                    .map_err(|e| format!("--max-repeats: {e}"))?
-            }
-            "--kmin" => {
-                a.kmin = value("--kmin")?
-                    .parse()
-                    .map_err(|e| format!("--kmin: {e}"))?
-            }
-            "--kmax" => {
-                a.kmax = value("--kmax")?
-                    .parse()
-                    .map_err(|e| format!("--kmax: {e}"))?
-            }
-            "--problems" => {
-                a.problems = value("--problems")?
-                    .split(',')
-                    .map(str::to_string)
-                    .collect()
-            }
-            "--linalg" => {
-                a.linalg = match value("--linalg")?.as_str() {
-                    "nalgebra" => Linalg::Nalgebra,
-                    "faer" => Linalg::Faer,
-                    other => return Err(format!("--linalg: unknown `{other}` (nalgebra, faer)")),
-                }
-            }
-            "--rober-atol-factor" => {
-                a.rober_atol_factor = value("--rober-atol-factor")?
-                    .parse()
-                    .map_err(|e| format!("--rober-atol-factor: {e}"))?
-            }
-            "-h" | "--help" => {
-                println!("{}", usage());
-                std::process::exit(0);
-            }
-            other => return Err(format!("unknown argument `{other}`\n{}", usage())),
-        }
-    }
-    if a.kmin > a.kmax {
-        return Err("--kmin must not exceed --kmax".into());
-    }
-    a.max_repeats = a.max_repeats.max(1);
-    Ok(a)
 }
 
 /// One run of one solver at one tolerance.
@@ -780,13 +723,11 @@ fn print_tables(points: &[Point], all_ratios: &[Ratio], geo: &[(String, Option<f
 }
 
 fn main() {
-    let args = match parse_args() {
-        Ok(a) => a,
-        Err(e) => {
-            eprintln!("{e}");
-            std::process::exit(2);
-        }
-    };
+    let args = <Args as clap::Parser>::parse();
+    if args.kmin > args.kmax {
+        eprintln!("--kmin must not exceed --kmax");
+        std::process::exit(2);
+    }
     let cases = verify::stiff_odes();
     let mut points: Vec<Point> = Vec::new();
     let mut all_ratios: Vec<Ratio> = Vec::new();
@@ -820,7 +761,7 @@ fn main() {
                 atol,
                 &comps,
                 args.min_wall,
-                args.max_repeats,
+                args.max_repeats as usize,
                 args.linalg,
             ));
         }

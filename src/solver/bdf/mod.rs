@@ -650,24 +650,25 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
     }
 
     fn describe_singular(&self, s: &Singular) -> String {
+        let list = |idx: &[usize], name: &dyn Fn(usize) -> String| {
+            idx.iter()
+                .take(5)
+                .map(|&i| name(i))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
         let mut parts = vec![s.detail.clone()];
         if !s.columns.is_empty() {
-            let names: Vec<String> = s
-                .columns
-                .iter()
-                .take(5)
-                .map(|&c| self.prob.var_name(c))
-                .collect();
-            parts.push(format!("unknowns: {}", names.join(", ")));
+            parts.push(format!(
+                "unknowns: {}",
+                list(&s.columns, &|c| self.prob.var_name(c))
+            ));
         }
         if !s.rows.is_empty() {
-            let names: Vec<String> = s
-                .rows
-                .iter()
-                .take(5)
-                .map(|&r| self.prob.eq_name(r))
-                .collect();
-            parts.push(format!("equations: {}", names.join(", ")));
+            parts.push(format!(
+                "equations: {}",
+                list(&s.rows, &|r| self.prob.eq_name(r))
+            ));
         }
         parts.join("; ")
     }
