@@ -6,5 +6,6 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod cli;
+pub mod input;
 pub mod solver;
 pub mod verify;

@@ -1,0 +1,360 @@
+//! Reading TOML property files with errors that name the file, the line and the field.
+//!
+//! Every input file (mechanisms, flexible bodies, roads, tyres, vehicles, scenes) is read
+//! through [`Source`]: serde does the typing, and both serde's errors and the semantic
+//! checks that follow (a negative mass, a joint naming a missing body, NaN) are reported
+//! as `file:line:column: field `path`: message`, the line found from the TOML spans.
+
+use std::fmt;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+use serde::de::DeserializeOwned;
+use toml_edit::{ImDocument, Item};
+
+/// A bad input file: where, which field, and what is wrong.
+#[derive(Clone, Debug, PartialEq)]
+pub struct InputError {
+    pub file: PathBuf,
+    /// 1-based line and column, when the position is known.
+    pub line: Option<usize>,
+    pub column: Option<usize>,
+    /// Dotted path of the field, e.g. `body[2].mass_kg`; empty for the whole file.
+    pub field: String,
+    pub message: String,
+}
+
+impl fmt::Display for InputError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.file.display())?;
+        if let Some(l) = self.line {
+            write!(f, ":{l}")?;
+            if let Some(c) = self.column {
+                write!(f, ":{c}")?;
+            }
+        }
+        if self.field.is_empty() {
+            write!(f, ": {}", self.message)
+        } else {
+            write!(f, ": field `{}`: {}", self.field, self.message)
+        }
+    }
+}
+
+impl std::error::Error for InputError {}
+
+/// One step of a field path: a table key or an array index.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Seg {
+    Key(String),
+    Index(usize),
+}
+
+impl From<&str> for Seg {
+    fn from(s: &str) -> Self {
+        Seg::Key(s.to_string())
+    }
+}
+
+impl From<String> for Seg {
+    fn from(s: String) -> Self {
+        Seg::Key(s)
+    }
+}
+
+impl From<usize> for Seg {
+    fn from(i: usize) -> Self {
+        Seg::Index(i)
+    }
+}
+
+/// Builds a field path: `path!["body", 2, "mass_kg"]`.
+#[macro_export]
+macro_rules! path {
+    ($($s:expr),* $(,)?) => { vec![$($crate::input::Seg::from($s)),*] };
+}
+
+/// Renders a path as `body[2].mass_kg`.
+pub fn path_string(path: &[Seg]) -> String {
+    let mut s = String::new();
+    for seg in path {
+        match seg {
+            Seg::Key(k) => {
+                if !s.is_empty() {
+                    s.push('.');
+                }
+                s.push_str(k);
+            }
+            Seg::Index(i) => s.push_str(&format!("[{i}]")),
+        }
+    }
+    s
+}
+
+/// A TOML file kept with its text and spans, so any field can be located later.
+pub struct Source {
+    pub path: PathBuf,
+    text: String,
+    doc: ImDocument<String>,
+}
+
+impl Source {
+    /// Reads and parses `path` (syntax only; typing happens in [`Source::parse`]).
+    pub fn read(path: &Path) -> Result<Source, InputError> {
+        let text = std::fs::read_to_string(path).map_err(|e| InputError {
+            file: path.to_path_buf(),
+            line: None,
+            column: None,
+            field: String::new(),
+            message: format!("cannot read: {e}"),
+        })?;
+        Source::from_text(path, text)
+    }
+
+    /// Parses `text` as if read from `path` (used by tests and generated inputs).
+    pub fn from_text(path: &Path, text: String) -> Result<Source, InputError> {
+        match ImDocument::parse(text.clone()) {
+            Ok(doc) => Ok(Source {
+                path: path.to_path_buf(),
+                text,
+                doc,
+            }),
+            Err(e) => {
+                let (line, column) = match e.span() {
+                    Some(s) => line_col(&text, s.start),
+                    None => (None, None),
+                };
+                Err(InputError {
+                    file: path.to_path_buf(),
+                    line,
+                    column,
+                    field: String::new(),
+                    message: format!("TOML syntax: {}", e.message()),
+                })
+            }
+        }
+    }
+
+    /// The raw text.
+    pub fn text(&self) -> &str {
+        &self.text
+    }
+
+    /// Deserialises the whole file into `T`; type errors, unknown and missing keys come
+    /// back located.
+    pub fn parse<T: DeserializeOwned>(&self) -> Result<T, InputError> {
+        toml::from_str(&self.text).map_err(|e| {
+            let span = e.span();
+            let (line, column) = match &span {
+                Some(s) => line_col(&self.text, s.start),
+                None => (None, None),
+            };
+            let field = span
+                .map(|s| path_string(&self.path_at(s)))
+                .unwrap_or_default();
+            InputError {
+                file: self.path.clone(),
+                line,
+                column,
+                field,
+                message: e.message().trim().to_string(),
+            }
+        })
+    }
+
+    /// An error about the field at `path`, located at that field (or at its nearest
+    /// existing parent when the field itself is absent).
+    pub fn error(&self, path: &[Seg], message: impl Into<String>) -> InputError {
+        let (line, column) = match self.span_of(path) {
+            Some(s) => line_col(&self.text, s.start),
+            None => (None, None),
+        };
+        InputError {
+            file: self.path.clone(),
+            line,
+            column,
+            field: path_string(path),
+            message: message.into(),
+        }
+    }
+
+    /// Checks that `value` is finite, else an error at `path`.
+    pub fn finite(&self, path: &[Seg], value: f64) -> Result<f64, InputError> {
+        if value.is_finite() {
+            Ok(value)
+        } else {
+            Err(self.error(path, format!("must be a finite number, got {value}")))
+        }
+    }
+
+    /// Checks that `value` is finite and > 0.
+    pub fn positive(&self, path: &[Seg], value: f64) -> Result<f64, InputError> {
+        self.finite(path, value)?;
+        if value > 0.0 {
+            Ok(value)
+        } else {
+            Err(self.error(path, format!("must be positive, got {value}")))
+        }
+    }
+
+    /// Checks that `value` is finite and >= 0.
+    pub fn non_negative(&self, path: &[Seg], value: f64) -> Result<f64, InputError> {
+        self.finite(path, value)?;
+        if value >= 0.0 {
+            Ok(value)
+        } else {
+            Err(self.error(path, format!("must not be negative, got {value}")))
+        }
+    }
+
+    /// Span of the deepest existing item along `path` (tables, arrays of tables, inline
+    /// tables and arrays alike).
+    fn span_of(&self, path: &[Seg]) -> Option<Range<usize>> {
+        let mut item: &Item = self.doc.as_item();
+        let mut best = None;
+        for seg in path {
+            let next = match seg {
+                Seg::Key(k) => {
+                    if let Some(s) = item
+                        .as_table_like()
+                        .and_then(|t| t.key(k))
+                        .and_then(|k| k.span())
+                    {
+                        best = Some(s);
+                    }
+                    item.get(k.as_str())
+                }
+                Seg::Index(i) => item.get(*i),
+            };
+            match next {
+                Some(n) => {
+                    if let Some(s) = n.span() {
+                        best = Some(s);
+                    }
+                    item = n;
+                }
+                None => break,
+            }
+        }
+        best
+    }
+
+    /// The path of the innermost item whose span contains `span` (for serde errors).
+    fn path_at(&self, span: Range<usize>) -> Vec<Seg> {
+        let mut path = Vec::new();
+        let mut item: &Item = self.doc.as_item();
+        let inside = |s: Option<Range<usize>>| {
+            s.is_some_and(|s| s.start <= span.start && span.start < s.end.max(s.start + 1))
+        };
+        loop {
+            let mut next: Option<(Seg, &Item)> = None;
+            match item {
+                Item::Table(t) => {
+                    for (k, v) in t.iter() {
+                        let key_span = t.key(k).and_then(|kk| kk.span());
+                        if inside(v.span()) || inside(key_span) {
+                            next = Some((Seg::Key(k.to_string()), v));
+                            break;
+                        }
+                    }
+                }
+                Item::ArrayOfTables(a) => {
+                    for (i, t) in a.iter().enumerate() {
+                        if inside(t.span()) {
+                            next = Some((Seg::Index(i), &item[i]));
+                            break;
+                        }
+                    }
+                    // A key inside an array-of-tables entry lies after the header span.
+                    if next.is_none() {
+                        let mut last = None;
+                        for (i, t) in a.iter().enumerate() {
+                            if t.span().is_some_and(|s| s.start <= span.start) {
+                                last = Some(i);
+                            }
+                        }
+                        if let Some(i) = last {
+                            next = Some((Seg::Index(i), &item[i]));
+                        }
+                    }
+                }
+                Item::Value(toml_edit::Value::InlineTable(t)) => {
+                    for (k, v) in t.iter() {
+                        if inside(v.span()) {
+                            path.push(Seg::Key(k.to_string()));
+                            break;
+                        }
+                    }
+                }
+                _ => {}
+            }
+            match next {
+                Some((seg, it)) => {
+                    path.push(seg);
+                    item = it;
+                }
+                None => return path,
+            }
+        }
+    }
+}
+
+/// 1-based (line, column) of a byte offset.
+pub fn line_col(text: &str, offset: usize) -> (Option<usize>, Option<usize>) {
+    let offset = offset.min(text.len());
+    let before = &text[..offset];
+    let line = before.matches('\n').count() + 1;
+    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    (Some(line), Some(col))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde::Deserialize;
+
+    #[derive(Deserialize, Debug)]
+    #[serde(deny_unknown_fields)]
+    #[allow(dead_code)]
+    struct Body {
+        name: String,
+        mass_kg: f64,
+    }
+
+    #[derive(Deserialize, Debug)]
+    #[serde(deny_unknown_fields)]
+    #[allow(dead_code)]
+    struct File {
+        body: Vec<Body>,
+    }
+
+    const TEXT: &str =
+        "# test\n[[body]]\nname = \"a\"\nmass_kg = 1.0\n\n[[body]]\nname = \"b\"\nmass_kg = -2.0\n";
+
+    #[test]
+    fn semantic_error_names_line_and_field() {
+        let src = Source::from_text(Path::new("m.toml"), TEXT.into()).unwrap();
+        let e = src.error(&path!["body", 1, "mass_kg"], "must be positive");
+        assert_eq!(e.line, Some(8));
+        assert_eq!(e.field, "body[1].mass_kg");
+        assert!(e.to_string().starts_with("m.toml:8:"), "{e}");
+    }
+
+    #[test]
+    fn serde_errors_are_located() {
+        let text = TEXT.replace("mass_kg = -2.0", "mas_kg = -2.0");
+        let src = Source::from_text(Path::new("m.toml"), text).unwrap();
+        let e = src.parse::<File>().unwrap_err();
+        assert_eq!(e.line, Some(8), "{e}");
+        assert!(e.field.starts_with("body[1]"), "{e}");
+        assert!(e.message.contains("mas_kg"), "{e}");
+    }
+
+    #[test]
+    fn syntax_error_is_located() {
+        let e = Source::from_text(Path::new("m.toml"), "a = [1,\nb = 2\n".into())
+            .err()
+            .unwrap();
+        assert!(e.line.is_some(), "{e}");
+    }
+}
