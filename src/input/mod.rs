@@ -71,7 +71,7 @@ impl From<usize> for Seg {
 /// Builds a field path: `path!["body", 2, "mass_kg"]`.
 #[macro_export]
 macro_rules! path {
-    ($($s:expr),* $(,)?) => { vec![$($crate::input::Seg::from($s)),*] };
+    ($($s:expr),* $(,)?) => { [$($crate::input::Seg::from($s)),*] };
 }
 
 /// Renders a path as `body[2].mass_kg`.
