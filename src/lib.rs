@@ -7,5 +7,6 @@
 
 pub mod cli;
 pub mod input;
+pub mod model;
 pub mod solver;
 pub mod verify;

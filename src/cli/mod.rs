@@ -2,6 +2,7 @@
 
 mod bench;
 pub mod plot;
+mod run;
 mod verify;
 
 use clap::{Parser, Subcommand};
@@ -23,6 +24,8 @@ struct Cli {
 enum Command {
     /// Run the built-in published benchmark problems (IVP test set) and score them.
     Verify(verify::VerifyArgs),
+    /// Integrate a mechanism file and write its requested outputs.
+    Run(run::RunArgs),
     /// Work-precision benchmarks.
     #[command(subcommand)]
     Bench(BenchCommand),
@@ -56,6 +59,7 @@ pub fn main() -> i32 {
     let result = match cli.command {
         Command::Verify(a) => verify::run(&a),
         Command::Bench(BenchCommand::Solver(a)) => bench::run_solver(&a),
+        Command::Run(a) => run::run(&a),
     };
     match result {
         Ok(code) => code,
@@ -78,4 +82,36 @@ pub(crate) fn progress(len: u64, quiet: bool) -> indicatif::ProgressBar {
             .expect("valid template"),
     );
     pb
+}
+
+/// Refuses models the solver cannot run (a motion on a direction already locked).
+pub(crate) fn model_check(sys: &crate::model::System) -> Result<(), String> {
+    for r in &sys.redundant {
+        if let crate::model::system::Owner::Motion(_) = sys.cons[r.elem].owner {
+            return Err(format!(
+                "{} drives a direction the joints already lock",
+                sys.row_name(&sys.cons[r.elem], r.row)
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// One warning per redundant constraint row, naming what it duplicates.
+pub(crate) fn redundancy_warnings(sys: &crate::model::System) -> Vec<String> {
+    sys.redundant
+        .iter()
+        .map(|r| {
+            let deps: Vec<String> = r
+                .depends_on
+                .iter()
+                .map(|&(e, row, _)| sys.row_name(&sys.cons[e], row))
+                .collect();
+            format!(
+                "redundant constraint eliminated: {} repeats {}",
+                sys.row_name(&sys.cons[r.elem], r.row),
+                deps.join(", ")
+            )
+        })
+        .collect()
 }

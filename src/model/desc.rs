@@ -1,0 +1,364 @@
+//! The validated model description: what a mechanism file or a vehicle template
+//! produces, and what [`super::system::System`] assembles into equations.
+//!
+//! Everything is in SI units. Geometry is stored in body frames (markers) so the
+//! description is independent of where the bodies are; the builders convert the global
+//! hardpoints users write into these local frames once.
+
+use super::function::{Spline, TimeFunction};
+
+/// Body index, `None` for ground.
+pub type BodyId = Option<usize>;
+
+#[derive(Clone, Debug)]
+pub struct Body {
+    pub name: String,
+    /// Mass [kg].
+    pub mass: f64,
+    /// Inertia tensor about the centre of mass in body axes [kg m^2].
+    pub inertia: [[f64; 3]; 3],
+    /// Initial centre-of-mass position in world axes [m].
+    pub position: [f64; 3],
+    /// Initial orientation, unit quaternion (w, x, y, z), body to world.
+    pub orientation: [f64; 4],
+    /// Initial velocity of the centre of mass, world axes [m/s].
+    pub velocity: [f64; 3],
+    /// Initial angular velocity, world axes [rad/s].
+    pub angular_velocity: [f64; 3],
+}
+
+/// A frame fixed on a body: origin and axes in body coordinates.
+#[derive(Clone, Debug)]
+pub struct Marker {
+    pub name: String,
+    pub body: BodyId,
+    /// Origin in body coordinates relative to the centre of mass [m].
+    pub position: [f64; 3],
+    /// Axes as columns, in body coordinates.
+    pub axes: [[f64; 3]; 3],
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum JointKind {
+    Fixed,
+    Revolute,
+    Spherical,
+    Cylindrical,
+    Translational,
+    Universal,
+    /// Origin of I on the z axis of J.
+    Inline,
+    /// Origin of I in the xy plane of J.
+    Inplane,
+    /// z of I perpendicular to z of J.
+    Perpendicular,
+    /// Axes of I parallel to those of J.
+    Orientation,
+}
+
+impl JointKind {
+    pub fn parse(s: &str) -> Option<JointKind> {
+        Some(match s {
+            "fixed" => JointKind::Fixed,
+            "revolute" => JointKind::Revolute,
+            "spherical" => JointKind::Spherical,
+            "cylindrical" => JointKind::Cylindrical,
+            "translational" => JointKind::Translational,
+            "universal" => JointKind::Universal,
+            "inline" => JointKind::Inline,
+            "inplane" => JointKind::Inplane,
+            "perpendicular" => JointKind::Perpendicular,
+            "orientation" => JointKind::Orientation,
+            _ => return None,
+        })
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            JointKind::Fixed => "fixed",
+            JointKind::Revolute => "revolute",
+            JointKind::Spherical => "spherical",
+            JointKind::Cylindrical => "cylindrical",
+            JointKind::Translational => "translational",
+            JointKind::Universal => "universal",
+            JointKind::Inline => "inline",
+            JointKind::Inplane => "inplane",
+            JointKind::Perpendicular => "perpendicular",
+            JointKind::Orientation => "orientation",
+        }
+    }
+
+    /// Which of the six relative motions (tx, ty, tz, rx, ry, rz of I in J's axes) the
+    /// joint removes; used when a joint is replaced by a bushing.
+    pub fn locked(self) -> [bool; 6] {
+        match self {
+            JointKind::Fixed => [true; 6],
+            JointKind::Revolute => [true, true, true, true, true, false],
+            JointKind::Spherical => [true, true, true, false, false, false],
+            JointKind::Cylindrical => [true, true, false, true, true, false],
+            JointKind::Translational => [true, true, false, true, true, true],
+            // The cross axes are z of I and z of J; the locked rotation is about their
+            // common normal, which is J's y axis when I's z lies along J's x.
+            JointKind::Universal => [true, true, true, false, true, false],
+            JointKind::Inline => [true, true, false, false, false, false],
+            JointKind::Inplane => [false, false, true, false, false, false],
+            JointKind::Perpendicular => [false, false, false, false, false, false],
+            JointKind::Orientation => [false, false, false, true, true, true],
+        }
+    }
+}
+
+/// An ideal joint between marker `i` (on the moving body) and marker `j`.
+#[derive(Clone, Debug)]
+pub struct Joint {
+    pub name: String,
+    pub kind: JointKind,
+    pub i: usize,
+    pub j: usize,
+}
+
+/// Force law of one direction: linear, or a tabulated (spline) curve.
+#[derive(Clone, Debug)]
+pub enum Law {
+    Linear(f64),
+    Curve(Spline),
+}
+
+impl Law {
+    /// (value, slope, curvature) at x.
+    pub fn eval(&self, x: f64) -> (f64, f64, f64) {
+        match self {
+            Law::Linear(k) => (k * x, *k, 0.0),
+            Law::Curve(s) => s.eval(x),
+        }
+    }
+
+    /// Slope at zero (for frequency estimates).
+    pub fn stiffness(&self) -> f64 {
+        self.eval(0.0).1
+    }
+}
+
+/// A one-sided stop engaged beyond a clearance: F = k pen^e + c pen' (for pen > 0), the
+/// damping blended in over `damping_depth` so the force starts from zero.
+#[derive(Clone, Debug)]
+pub struct Stop {
+    pub clearance: f64,
+    pub stiffness: f64,
+    pub exponent: f64,
+    pub damping: f64,
+    pub damping_depth: f64,
+}
+
+/// Translational spring-damper between marker origins i and j, acting along the line.
+/// Repulsive force = preload - spring(l - free_length) - damper(l').
+#[derive(Clone, Debug)]
+pub struct SpringDamper {
+    pub name: String,
+    pub i: usize,
+    pub j: usize,
+    pub free_length: f64,
+    pub preload: f64,
+    pub spring: Law,
+    pub damper: Law,
+    /// Engages in compression: l < free_length - clearance.
+    pub bump_stop: Option<Stop>,
+    /// Engages in extension: l > free_length + clearance.
+    pub rebound_stop: Option<Stop>,
+}
+
+/// 6-DOF bushing: deflection of marker i relative to marker j in j's axes (translations,
+/// then the rotation vector); force and torque on i = preload - K(d) - C(d').
+#[derive(Clone, Debug)]
+pub struct Bushing {
+    pub name: String,
+    pub i: usize,
+    pub j: usize,
+    pub stiffness: [Law; 6],
+    pub damping: [Law; 6],
+    pub preload: [f64; 6],
+    /// Set when the bushing stands in for an ideal joint.
+    pub replaces: Option<String>,
+}
+
+/// Rotational spring-damper about the common z axis of markers i and j.
+#[derive(Clone, Debug)]
+pub struct RotSpring {
+    pub name: String,
+    pub i: usize,
+    pub j: usize,
+    pub free_angle: f64,
+    pub preload: f64,
+    pub spring: Law,
+    pub damper: Law,
+}
+
+/// A force and a torque of time on marker i, components in world axes or in i's axes.
+#[derive(Clone, Debug)]
+pub struct Applied {
+    pub name: String,
+    pub i: usize,
+    pub force: [Option<TimeFunction>; 3],
+    pub torque: [Option<TimeFunction>; 3],
+    pub in_marker_axes: bool,
+}
+
+#[derive(Clone, Debug)]
+pub enum Force {
+    Spring(SpringDamper),
+    Bushing(Bushing),
+    Rot(RotSpring),
+    Applied(Applied),
+}
+
+impl Force {
+    pub fn name(&self) -> &str {
+        match self {
+            Force::Spring(s) => &s.name,
+            Force::Bushing(b) => &b.name,
+            Force::Rot(r) => &r.name,
+            Force::Applied(a) => &a.name,
+        }
+    }
+}
+
+/// What a motion prescribes: the joint's translation along or rotation about J's z.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MotionDof {
+    Translation,
+    Rotation,
+}
+
+/// A prescribed joint motion: displacement s(t) directly, or s(t) = s0 + integral of a
+/// prescribed velocity.
+#[derive(Clone, Debug)]
+pub struct Motion {
+    pub name: String,
+    pub joint: usize,
+    pub dof: MotionDof,
+    pub function: TimeFunction,
+    pub is_velocity: bool,
+}
+
+impl Motion {
+    /// (s, s', s'') at t.
+    pub fn eval(&self, t: f64) -> (f64, f64, f64) {
+        if self.is_velocity {
+            let (v, a, _) = self.function.eval(t);
+            (self.function.integral(t), v, a)
+        } else {
+            self.function.eval(t)
+        }
+    }
+}
+
+/// The axes an output is resolved in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Axes {
+    World,
+    Marker(usize),
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MarkerQuantity {
+    Position,
+    Velocity,
+    Acceleration,
+    AngularVelocity,
+    AngularAcceleration,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum JointQuantity {
+    /// Reaction force on the I body at marker I.
+    Force,
+    /// Reaction torque on the I body about marker I.
+    Torque,
+    /// The free coordinate along / about J's z (translation [m] or angle [rad]).
+    Displacement,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ElementQuantity {
+    Force,
+    Deflection,
+    Velocity,
+}
+
+#[derive(Clone, Debug)]
+pub enum Request {
+    Marker {
+        marker: usize,
+        quantity: MarkerQuantity,
+        axes: Axes,
+    },
+    Joint {
+        joint: usize,
+        quantity: JointQuantity,
+        axes: Axes,
+    },
+    Element {
+        element: usize,
+        quantity: ElementQuantity,
+    },
+}
+
+#[derive(Clone, Debug)]
+pub struct Output {
+    pub name: String,
+    pub request: Request,
+}
+
+/// A complete mechanism.
+#[derive(Clone, Debug, Default)]
+pub struct Model {
+    pub name: String,
+    /// Gravity in world axes [m/s^2].
+    pub gravity: [f64; 3],
+    pub bodies: Vec<Body>,
+    pub markers: Vec<Marker>,
+    pub joints: Vec<Joint>,
+    pub forces: Vec<Force>,
+    pub motions: Vec<Motion>,
+    pub outputs: Vec<Output>,
+}
+
+impl Model {
+    pub fn body_name(&self, b: BodyId) -> &str {
+        match b {
+            None => "ground",
+            Some(k) => &self.bodies[k].name,
+        }
+    }
+
+    pub fn marker_index(&self, name: &str) -> Option<usize> {
+        self.markers.iter().position(|m| m.name == name)
+    }
+
+    /// Adds a marker at a world point with world axes, given the bodies' initial poses.
+    pub fn add_marker_world(
+        &mut self,
+        name: String,
+        body: BodyId,
+        point: [f64; 3],
+        axes_world: [[f64; 3]; 3],
+    ) -> usize {
+        use super::math::{mm, mtv, rot, sub, transpose};
+        let (r, a) = match body {
+            None => (
+                [0.0; 3],
+                [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            ),
+            Some(k) => (self.bodies[k].position, rot(&self.bodies[k].orientation)),
+        };
+        let position = mtv(&a, &sub(&point, &r));
+        let axes = mm(&transpose(&a), &axes_world);
+        self.markers.push(Marker {
+            name,
+            body,
+            position,
+            axes,
+        });
+        self.markers.len() - 1
+    }
+}

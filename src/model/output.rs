@@ -1,0 +1,244 @@
+//! Requested outputs: marker kinematics, joint reactions and element measures, evaluated
+//! from a solver state (y, y') and laid out as named channels with units.
+
+use super::desc::{
+    Axes, ElementQuantity, Force, JointQuantity, MarkerQuantity, MotionDof, Request,
+};
+use super::joint::joint_coordinate;
+use super::math::{add, cross, mtv, mv, rot, sub};
+use super::system::{Owner, System};
+
+/// One column of the output table.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct ChannelInfo {
+    pub name: String,
+    pub unit: &'static str,
+    /// Angles that should be unwrapped over time.
+    #[serde(skip)]
+    pub angle: bool,
+}
+
+fn vec_channels(base: &str, unit: &'static str) -> Vec<ChannelInfo> {
+    ["x", "y", "z"]
+        .iter()
+        .map(|c| ChannelInfo {
+            name: format!("{base}.{c}"),
+            unit,
+            angle: false,
+        })
+        .collect()
+}
+
+/// The channels of every requested output, in order.
+pub fn channels(sys: &System) -> Vec<ChannelInfo> {
+    let m = &sys.model;
+    let mut out = Vec::new();
+    for o in &m.outputs {
+        match &o.request {
+            Request::Marker { quantity, .. } => {
+                let unit = match quantity {
+                    MarkerQuantity::Position => "m",
+                    MarkerQuantity::Velocity => "m/s",
+                    MarkerQuantity::Acceleration => "m/s^2",
+                    MarkerQuantity::AngularVelocity => "rad/s",
+                    MarkerQuantity::AngularAcceleration => "rad/s^2",
+                };
+                out.extend(vec_channels(&o.name, unit));
+            }
+            Request::Joint {
+                joint, quantity, ..
+            } => match quantity {
+                JointQuantity::Force => out.extend(vec_channels(&o.name, "N")),
+                JointQuantity::Torque => out.extend(vec_channels(&o.name, "N m")),
+                JointQuantity::Displacement => {
+                    let rotational = matches!(
+                        sys.model.joints[*joint].kind,
+                        super::desc::JointKind::Revolute
+                    );
+                    out.push(ChannelInfo {
+                        name: o.name.clone(),
+                        unit: if rotational { "rad" } else { "m" },
+                        angle: rotational,
+                    });
+                }
+            },
+            Request::Element { element, quantity } => {
+                let f = &m.forces[*element];
+                let names: Vec<(String, &'static str, bool)> = match f {
+                    Force::Spring(_) => vec![(
+                        o.name.clone(),
+                        match quantity {
+                            ElementQuantity::Force => "N",
+                            ElementQuantity::Deflection => "m",
+                            ElementQuantity::Velocity => "m/s",
+                        },
+                        false,
+                    )],
+                    Force::Rot(_) => vec![(
+                        o.name.clone(),
+                        match quantity {
+                            ElementQuantity::Force => "N m",
+                            ElementQuantity::Deflection => "rad",
+                            ElementQuantity::Velocity => "rad/s",
+                        },
+                        *quantity == ElementQuantity::Deflection,
+                    )],
+                    Force::Bushing(_) | Force::Applied(_) => ["x", "y", "z", "rx", "ry", "rz"]
+                        .iter()
+                        .enumerate()
+                        .map(|(a, c)| {
+                            let unit = match (quantity, a < 3) {
+                                (ElementQuantity::Force, true) => "N",
+                                (ElementQuantity::Force, false) => "N m",
+                                (ElementQuantity::Deflection, true) => "m",
+                                (ElementQuantity::Deflection, false) => "rad",
+                                (ElementQuantity::Velocity, true) => "m/s",
+                                (ElementQuantity::Velocity, false) => "rad/s",
+                            };
+                            (format!("{}.{c}", o.name), unit, false)
+                        })
+                        .collect(),
+                };
+                out.extend(names.into_iter().map(|(name, unit, angle)| ChannelInfo {
+                    name,
+                    unit,
+                    angle,
+                }));
+            }
+        }
+    }
+    out
+}
+
+/// Values of every channel at (t, y, y').
+pub fn evaluate(sys: &System, t: f64, y: &[f64], yp: &[f64]) -> Vec<f64> {
+    let nb = sys.nb();
+    let (_, ov, ol, om) = sys.offsets();
+    let q = &y[..7 * nb];
+    let v = &y[ov..ol];
+    let vd = &yp[ov..ol];
+    let lam = &y[ol..om];
+    let m = &sys.model;
+    let mut out = Vec::new();
+    let resolve = |axes: Axes, w: [f64; 3]| -> [f64; 3] {
+        match axes {
+            Axes::World => w,
+            Axes::Marker(k) => mtv(&sys.marker_frame(q, k).axes, &w),
+        }
+    };
+    for o in &m.outputs {
+        match &o.request {
+            Request::Marker {
+                marker,
+                quantity,
+                axes,
+            } => {
+                let mk = &m.markers[*marker];
+                let w = match mk.body {
+                    None => [0.0; 3],
+                    Some(b) => {
+                        let a = rot(&[q[7 * b + 3], q[7 * b + 4], q[7 * b + 5], q[7 * b + 6]]);
+                        let om_b = [v[6 * b + 3], v[6 * b + 4], v[6 * b + 5]];
+                        let al_b = [vd[6 * b + 3], vd[6 * b + 4], vd[6 * b + 5]];
+                        let s = mk.position;
+                        match quantity {
+                            MarkerQuantity::Position => sys.marker_frame(q, *marker).origin,
+                            MarkerQuantity::Velocity => add(
+                                &[v[6 * b], v[6 * b + 1], v[6 * b + 2]],
+                                &mv(&a, &cross(&om_b, &s)),
+                            ),
+                            MarkerQuantity::Acceleration => {
+                                let rel = add(&cross(&al_b, &s), &cross(&om_b, &cross(&om_b, &s)));
+                                add(&[vd[6 * b], vd[6 * b + 1], vd[6 * b + 2]], &mv(&a, &rel))
+                            }
+                            MarkerQuantity::AngularVelocity => mv(&a, &om_b),
+                            MarkerQuantity::AngularAcceleration => mv(&a, &al_b),
+                        }
+                    }
+                };
+                let w = if mk.body.is_none() && *quantity == MarkerQuantity::Position {
+                    mk.position
+                } else {
+                    w
+                };
+                out.extend_from_slice(&resolve(*axes, w));
+            }
+            Request::Joint {
+                joint,
+                quantity,
+                axes,
+            } => {
+                let j = &m.joints[*joint];
+                match quantity {
+                    JointQuantity::Displacement => {
+                        let dof = match j.kind {
+                            super::desc::JointKind::Revolute => MotionDof::Rotation,
+                            _ => MotionDof::Translation,
+                        };
+                        out.push(joint_coordinate(
+                            dof,
+                            &sys.marker_frame(q, j.i),
+                            &sys.marker_frame(q, j.j),
+                        ));
+                    }
+                    JointQuantity::Force | JointQuantity::Torque => {
+                        let (f, tq) = reaction(sys, *joint, t, q, lam);
+                        let w = if *quantity == JointQuantity::Force {
+                            f
+                        } else {
+                            tq
+                        };
+                        out.extend_from_slice(&resolve(*axes, w));
+                    }
+                }
+            }
+            Request::Element { element, quantity } => {
+                let fe = *element;
+                let (_, _, meas) = sys.force_eval(fe, t, q, v);
+                for (f, d, r) in meas {
+                    out.push(match quantity {
+                        ElementQuantity::Force => f,
+                        ElementQuantity::Deflection => d,
+                        ElementQuantity::Velocity => r,
+                    });
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Reaction force (world) on joint `jk`'s I body at marker I, and torque about marker I,
+/// from the multipliers of the joint and of any motion acting on it.
+pub fn reaction(sys: &System, jk: usize, t: f64, q: &[f64], lam: &[f64]) -> ([f64; 3], [f64; 3]) {
+    let j = &sys.model.joints[jk];
+    let Some(bi) = sys.model.markers[j.i].body else {
+        return ([0.0; 3], [0.0; 3]);
+    };
+    let mut gen = [0.0; 6];
+    for e in &sys.cons {
+        let on_joint = match e.owner {
+            Owner::Joint(k) => k == jk,
+            Owner::Motion(k) => sys.model.motions[k].joint == jk,
+        };
+        if !on_joint {
+            continue;
+        }
+        let ev = sys.con_eval(e, t, q);
+        for (r, slot) in e.slot.iter().enumerate() {
+            if let Some(row) = slot {
+                for c in 0..6 {
+                    gen[c] -= ev.b[r][c] * lam[*row];
+                }
+            }
+        }
+    }
+    let a = rot(&[q[7 * bi + 3], q[7 * bi + 4], q[7 * bi + 5], q[7 * bi + 6]]);
+    let f = [gen[0], gen[1], gen[2]];
+    let t_cm = mv(&a, &[gen[3], gen[4], gen[5]]);
+    let r = [q[7 * bi], q[7 * bi + 1], q[7 * bi + 2]];
+    let arm = sub(&sys.marker_frame(q, j.i).origin, &r);
+    // moment about I = moment about the centre of mass - arm x F
+    let t_i = sub(&t_cm, &cross(&arm, &f));
+    (f, t_i)
+}
