@@ -1,5 +1,6 @@
 //! The `towride` command line: a thin layer over the library (one module per command).
 
+mod analyse;
 mod bench;
 pub mod plot;
 mod run;
@@ -26,6 +27,10 @@ enum Command {
     Verify(verify::VerifyArgs),
     /// Integrate a mechanism file and write its requested outputs.
     Run(run::RunArgs),
+    /// Linearise a mechanism about its equilibrium (or a run's state): modes and stiffness ratio.
+    Linear(analyse::LinearArgs),
+    /// Numerical health check: redundant constraints, conditioning, ratios, advice.
+    Doctor(analyse::DoctorArgs),
     /// Work-precision benchmarks.
     #[command(subcommand)]
     Bench(BenchCommand),
@@ -60,6 +65,8 @@ pub fn main() -> i32 {
         Command::Verify(a) => verify::run(&a),
         Command::Bench(BenchCommand::Solver(a)) => bench::run_solver(&a),
         Command::Run(a) => run::run(&a),
+        Command::Linear(a) => analyse::linear(&a),
+        Command::Doctor(a) => analyse::doctor(&a),
     };
     match result {
         Ok(code) => code,
@@ -107,11 +114,18 @@ pub(crate) fn redundancy_warnings(sys: &crate::model::System) -> Vec<String> {
                 .iter()
                 .map(|&(e, row, _)| sys.row_name(&sys.cons[e], row))
                 .collect();
-            format!(
-                "redundant constraint eliminated: {} repeats {}",
-                sys.row_name(&sys.cons[r.elem], r.row),
-                deps.join(", ")
-            )
+            if deps.is_empty() {
+                format!(
+                    "constraint eliminated: {} is degenerate at the initial position (its Jacobian row vanishes)",
+                    sys.row_name(&sys.cons[r.elem], r.row)
+                )
+            } else {
+                format!(
+                    "redundant constraint eliminated: {} repeats {}",
+                    sys.row_name(&sys.cons[r.elem], r.row),
+                    deps.join(", ")
+                )
+            }
         })
         .collect()
 }

@@ -7,11 +7,13 @@
 //! validated [`desc::Model`]; [`system::System`] turns it into equations.
 
 pub mod desc;
+pub mod doctor;
 pub mod dual;
 pub mod force;
 pub mod function;
 pub mod ic;
 pub mod joint;
+pub mod linear;
 pub mod math;
 pub mod output;
 pub mod redundancy;

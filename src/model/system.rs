@@ -438,7 +438,7 @@ impl System {
     }
 
     /// Element loads with derivatives d/d(q_a, v_a, q_b, v_b), 26 columns.
-    fn force_eval_dual(
+    pub fn force_eval_dual(
         &self,
         fe: usize,
         t: f64,
@@ -456,6 +456,11 @@ impl System {
         };
         let (b, g, _) = self.force_generalised::<S26>(fe, t, &pose);
         (b, g)
+    }
+
+    /// Name of force element `fe`.
+    pub fn force_name(&self, fe: usize) -> String {
+        self.model.forces[self.felems[fe].0].name().to_string()
     }
 
     /// Number of force elements.
