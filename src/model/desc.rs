@@ -203,6 +203,8 @@ pub struct Applied {
     pub in_marker_axes: bool,
 }
 
+// A model holds a handful of elements; boxing the large bushing would buy nothing.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Debug)]
 pub enum Force {
     Spring(SpringDamper),

@@ -200,13 +200,13 @@ pub fn accelerations(
 pub fn initial_state(
     sys: &System,
     t: f64,
-    q: &mut Vec<f64>,
-    v: &mut Vec<f64>,
+    q: &mut [f64],
+    v: &mut [f64],
 ) -> Result<(Vec<f64>, Vec<f64>, AssemblyReport), String> {
     let rep = assemble(sys, t, q, v)?;
     let (vd, lam) = accelerations(sys, t, q, v)?;
     let qd = qdot_of(q, v);
-    let mut y = q.clone();
+    let mut y = q.to_vec();
     y.extend_from_slice(v);
     y.extend_from_slice(&lam);
     y.extend(std::iter::repeat_n(0.0, sys.m));

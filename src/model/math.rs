@@ -178,7 +178,7 @@ pub fn quat_from_matrix(a: &[[f64; 3]; 3]) -> [f64; 4] {
 /// Adams does (global x unless z is close to it).
 pub fn frame_from_axes(z: [f64; 3], x: Option<[f64; 3]>) -> Option<[[f64; 3]; 3]> {
     let nz = dot(&z, &z).sqrt();
-    if !(nz > 0.0) {
+    if nz.is_nan() || nz <= 0.0 {
         return None;
     }
     let z = z.map(|c| c / nz);
@@ -190,7 +190,7 @@ pub fn frame_from_axes(z: [f64; 3], x: Option<[f64; 3]>) -> Option<[[f64; 3]; 3]
     let d = dot(&guess, &z);
     let x = sub(&guess, &scale(&z, d));
     let nx = dot(&x, &x).sqrt();
-    if !(nx > 1e-9 * dot(&guess, &guess).sqrt()) {
+    if nx.is_nan() || nx <= 1e-9 * dot(&guess, &guess).sqrt() {
         return None;
     }
     let x = x.map(|c| c / nx);

@@ -116,9 +116,32 @@ pub fn evaluate(sys: &System, t: f64, y: &[f64], yp: &[f64]) -> Vec<f64> {
     let (_, ov, ol, om) = sys.offsets();
     let q = &y[..7 * nb];
     let v = &y[ov..ol];
-    let vd = &yp[ov..ol];
-    let lam = &y[ol..om];
     let m = &sys.model;
+    // Accelerations and reactions from the acceleration-level equations at (q, v) rather
+    // than from the BDF's derivative of its interpolant (y') and its index-2 multipliers:
+    // these are consistent with the error-controlled positions and velocities, so they
+    // carry the integration tolerance instead of an amplified version of it.
+    let needs = m.outputs.iter().any(|o| {
+        matches!(
+            o.request,
+            Request::Marker {
+                quantity: MarkerQuantity::Acceleration | MarkerQuantity::AngularAcceleration,
+                ..
+            } | Request::Joint {
+                quantity: JointQuantity::Force | JointQuantity::Torque,
+                ..
+            }
+        )
+    });
+    let solved = if needs {
+        super::ic::accelerations(sys, t, q, v).ok()
+    } else {
+        None
+    };
+    let (vd, lam): (&[f64], &[f64]) = match &solved {
+        Some((a, l)) => (a, l),
+        None => (&yp[ov..ol], &y[ol..om]),
+    };
     let mut out = Vec::new();
     let resolve = |axes: Axes, w: [f64; 3]| -> [f64; 3] {
         match axes {

@@ -122,7 +122,7 @@ fn unwrap_angles(res: &mut RunResult) {
             let cur = res.rows[k][c] + offset;
             let jump = ((cur - prev) / tau).round();
             offset -= jump * tau;
-            res.rows[k][c] = res.rows[k][c] + offset;
+            res.rows[k][c] += offset;
         }
     }
 }

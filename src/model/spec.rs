@@ -441,7 +441,7 @@ pub fn build(src: &Source, f: File) -> Result<Mechanism, InputError> {
         vec3(src, &p("point_j_m"), &s.point_j_m)?;
         let d = sub(&s.point_i_m, &s.point_j_m);
         let l0 = dot(&d, &d).sqrt();
-        if !(l0 > 0.0) {
+        if l0.is_nan() || l0 <= 0.0 {
             return Err(src.error(
                 &p("point_j_m"),
                 "the two spring points coincide; a spring needs a line of action",
@@ -712,7 +712,7 @@ fn inertia_tensor(src: &Source, k: usize, v: &[f64]) -> Result<[[f64; 3]; 3], In
         }
     };
     for (c, d) in [ixx, iyy, izz].iter().enumerate() {
-        if !(*d > 0.0) {
+        if d.is_nan() || *d <= 0.0 {
             return Err(src.error(
                 &path!["body", k, "inertia_kg_m2", c],
                 format!("principal moment must be positive, got {d}"),

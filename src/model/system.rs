@@ -61,6 +61,15 @@ pub struct Redundant {
     pub depends_on: Vec<(usize, usize, f64)>,
 }
 
+/// A body's (r, p, u, omega) in some scalar.
+pub type BodyPose<S> = (V3<S>, Q4<S>, V3<S>, V3<S>);
+/// An element's bodies, their generalised loads and its measures.
+pub type ElementForces<S> = ([Option<usize>; 2], [[S; 6]; 2], Vec<(S, S, S)>);
+/// A marker frame with rates, its quaternion, the body position and rotation.
+type RateFrame<S> = (MFrame<Rate<S>>, Q4<Rate<S>>, V3<S>, [[S; 3]; 3]);
+/// Kept constraint rows: g, g_t and B as (row, velocity column, value) triplets.
+pub type ConstraintSet = (Vec<f64>, Vec<f64>, Vec<(usize, usize, f64)>);
+
 type T1 = Dual<f64, 13>;
 type T2 = Dual<T1, 15>;
 type S26 = Dual<f64, 26>;
@@ -336,16 +345,13 @@ impl System {
         &self,
         fe: usize,
         t: f64,
-        pose: &dyn Fn(usize, usize) -> (V3<S>, Q4<S>, V3<S>, V3<S>),
-    ) -> ([Option<usize>; 2], [[S; 6]; 2], Vec<(S, S, S)>) {
+        pose: &dyn Fn(usize, usize) -> BodyPose<S>,
+    ) -> ElementForces<S> {
         let (k, mi, mj) = self.felems[fe];
         let bi = self.model.markers[mi].body;
         let bj = mj.and_then(|m| self.model.markers[m].body);
         // Frames as Rate<S> (value + time derivative along the motion).
-        let rate_frame = |mk: usize,
-                          side: usize,
-                          b: Option<usize>|
-         -> (MFrame<Rate<S>>, Q4<Rate<S>>, V3<S>, [[S; 3]; 3]) {
+        let rate_frame = |mk: usize, side: usize, b: Option<usize>| -> RateFrame<S> {
             let mq = self.mquat[mk];
             match b {
                 None => {
@@ -419,13 +425,7 @@ impl System {
     }
 
     /// Element loads and measures at f64 (residual, outputs).
-    pub fn force_eval(
-        &self,
-        fe: usize,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-    ) -> ([Option<usize>; 2], [[f64; 6]; 2], Vec<(f64, f64, f64)>) {
+    pub fn force_eval(&self, fe: usize, t: f64, q: &[f64], v: &[f64]) -> ElementForces<f64> {
         let pose = |b: usize, _side: usize| {
             (
                 [q[7 * b], q[7 * b + 1], q[7 * b + 2]],
@@ -498,7 +498,7 @@ impl System {
 
     /// Kept constraint rows: g, g_t and B as (row, velocity column, value) triplets with
     /// the velocity column counted from 0 (6 per body).
-    pub fn constraints(&self, t: f64, q: &[f64]) -> (Vec<f64>, Vec<f64>, Vec<(usize, usize, f64)>) {
+    pub fn constraints(&self, t: f64, q: &[f64]) -> ConstraintSet {
         let mut g = vec![0.0; self.m];
         let mut gt = vec![0.0; self.m];
         let mut b = Vec::new();

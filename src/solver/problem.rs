@@ -42,7 +42,12 @@ pub struct JacobianSink<'a> {
     pub(crate) entries: &'a mut Vec<(usize, usize, f64)>,
 }
 
-impl JacobianSink<'_> {
+impl<'a> JacobianSink<'a> {
+    /// A sink appending to `entries` (for callers outside the solver, e.g. analyses).
+    pub fn new(entries: &'a mut Vec<(usize, usize, f64)>) -> Self {
+        JacobianSink { entries }
+    }
+
     /// Adds `value` at (`row`, `col`).
     #[inline]
     pub fn add(&mut self, row: usize, col: usize, value: f64) {

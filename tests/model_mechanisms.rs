@@ -1,0 +1,379 @@
+//! The modelling layer against analytical and published references.
+
+use std::path::Path;
+
+use towride::input::Source;
+use towride::model::run::{simulate, RunResult};
+use towride::model::spec::{self, Mechanism};
+use towride::model::{doctor, linear, statics, System};
+use towride::solver::problem::{DaeProblem, JacobianSink};
+
+fn load(path: &str) -> Mechanism {
+    spec::load(Path::new(path)).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn from_text(name: &str, text: &str) -> Result<Mechanism, towride::input::InputError> {
+    let src = Source::from_text(Path::new(name), text.to_string())?;
+    let file = src.parse()?;
+    spec::build(&src, file)
+}
+
+fn run(m: &Mechanism, rate: f64) -> (System, RunResult) {
+    let sys = System::new(m.model.clone());
+    let r = simulate(&sys, 0.0, m.run.end_time_s, rate, &m.solver, None, None);
+    assert!(r.error.is_none(), "{:?}", r.error);
+    (sys, r)
+}
+
+/// Period from the two zero crossings of x (at T/4 and 3T/4), linear interpolation.
+fn period(r: &RunResult) -> f64 {
+    let x = r.channel("bob.cm.position.x").unwrap();
+    let mut cross = Vec::new();
+    for k in 1..x.len() {
+        if x[k - 1].signum() != x[k].signum() && x[k - 1] != 0.0 {
+            let f = x[k - 1] / (x[k - 1] - x[k]);
+            cross.push(r.times[k - 1] + f * (r.times[k] - r.times[k - 1]));
+        }
+    }
+    2.0 * (cross[1] - cross[0])
+}
+
+const PERIOD: f64 = 2.3678419475762; // 4 sqrt(L/g) K(1/sqrt 2), L = 1 m, g = 9.81
+
+#[test]
+fn pendulum_period_with_revolute_joint() {
+    let m = load("scenes/examples/pendulum.toml");
+    let (_, r) = run(&m, 20000.0);
+    let t = period(&r);
+    assert!(((t - PERIOD) / PERIOD).abs() < 1e-6, "period {t}");
+}
+
+#[test]
+fn pendulum_period_with_stiff_bushing() {
+    let text = std::fs::read_to_string("scenes/examples/pendulum.toml").unwrap().replace(
+        "gravity_m_s2 = [0.0, 0.0, -9.81]",
+        "gravity_m_s2 = [0.0, 0.0, -9.81]\njoints_as_bushings = { stiffness_n_m = 1e7, damping_n_s_m = 1e2, stiffness_n_m_rad = 1e3, damping_n_m_s_rad = 1e-3 }",
+    );
+    let text = text.split("[[output]]\njoint").next().unwrap().to_string();
+    let m = from_text("pendulum_bushing.toml", &text).unwrap();
+    let (sys, r) = run(&m, 20000.0);
+    assert_eq!(sys.m, 0, "the joint became a bushing");
+    let t = period(&r);
+    assert!(((t - PERIOD) / PERIOD).abs() < 1e-3, "period {t}");
+}
+
+#[test]
+fn andrews_from_generic_bodies_matches_the_test_set() {
+    let m = load("scenes/examples/andrews.toml");
+    let (sys, r) = run(&m, 1e5);
+    // 7 bodies x 6 - 1 DOF = 41 independent rows out of 10 revolutes x 5 = 50.
+    assert_eq!(sys.m, 41);
+    assert_eq!(sys.redundant.len(), 9);
+    #[allow(clippy::excessive_precision)] // digits as published in ex_andrews.R
+    let q0 = [
+        -0.0617138900142764496358948458001,
+        0.0,
+        0.455279819163070380255912382449,
+        0.222668390165885884674473185609,
+        0.487364979543842550225598953530,
+        -0.222668390165885884674473185609,
+        1.23054744454982119249735015568,
+    ];
+    let reference = [
+        0.1581077119629904e2,
+        -0.1575637105984298e2,
+        0.4082224013073101e-1,
+        -0.5347301163226948,
+        0.5244099658805304,
+        0.5347301163226948,
+        0.1048080741042263e1,
+    ];
+    let names = ["beta", "theta", "gamma", "phi", "delta", "omega", "epsilon"];
+    for k in 0..7 {
+        let v = *r.channel(names[k]).unwrap().last().unwrap() + q0[k];
+        let scd = -((v - reference[k]) / reference[k]).abs().log10();
+        assert!(
+            scd >= 4.0,
+            "{}: {v} vs {} (scd {scd:.2})",
+            names[k],
+            reference[k]
+        );
+    }
+}
+
+fn mass_spring(k: f64, m: f64) -> String {
+    format!(
+        r#"[model]
+name = "mass on a spring"
+gravity_m_s2 = [0.0, 0.0, -9.81]
+[run]
+end_time_s = 1.0
+sample_rate_hz = 100.0
+[[body]]
+name = "mass"
+mass_kg = {m}
+inertia_kg_m2 = [0.1, 0.1, 0.1]
+cm_position_m = [0.0, 0.0, 1.0]
+[[joint]]
+name = "guide"
+type = "translational"
+body_i = "mass"
+body_j = "ground"
+position_m = [0.0, 0.0, 1.0]
+[[spring]]
+name = "k"
+body_i = "mass"
+point_i_m = [0.0, 0.0, 1.0]
+body_j = "ground"
+point_j_m = [0.0, 0.0, 0.0]
+stiffness_n_m = {k}
+"#
+    )
+}
+
+#[test]
+fn linear_frequencies_match_analytical() {
+    let two_pi = 2.0 * std::f64::consts::PI;
+    let (k, mass) = (3000.0, 7.5);
+    let m = from_text("mass_spring.toml", &mass_spring(k, mass)).unwrap();
+    let sys = System::new(m.model);
+    let st = statics::equilibrium(&sys, 0.0, &m.solver).unwrap();
+    // static deflection m g / k
+    let z = st.y[2];
+    assert!((z - (1.0 - mass * 9.81 / k)).abs() < 1e-9, "z = {z}");
+    let lin = linear::linearise(&sys, 0.0, &st.y).unwrap();
+    assert_eq!(lin.dof, 1);
+    let f = (k / mass).sqrt() / two_pi;
+    assert!(
+        ((lin.modes[0].undamped_hz - f) / f).abs() < 1e-6,
+        "{} vs {f}",
+        lin.modes[0].undamped_hz
+    );
+
+    // Two-mass chain: m1 m2 w^4 - (m1 k2 + m2 (k1 + k2)) w^2 + k1 k2 = 0
+    let m = load("scenes/examples/two_mass_chain.toml");
+    let sys = System::new(m.model);
+    let st = statics::equilibrium(&sys, 0.0, &m.solver).unwrap();
+    let lin = linear::linearise(&sys, 0.0, &st.y).unwrap();
+    let (m1, m2, k1, k2): (f64, f64, f64, f64) = (2.0, 1.0, 2000.0, 1000.0);
+    let (a, b, c) = (m1 * m2, -(m1 * k2 + m2 * (k1 + k2)), k1 * k2);
+    let disc = (b * b - 4.0 * a * c).sqrt();
+    let w2 = [(-b - disc) / (2.0 * a), (-b + disc) / (2.0 * a)];
+    assert_eq!(lin.modes.len(), 2);
+    for (mode, w2) in lin.modes.iter().zip(w2) {
+        let f = w2.sqrt() / two_pi;
+        assert!(
+            ((mode.undamped_hz - f) / f).abs() < 1e-6,
+            "{} vs {f}",
+            mode.undamped_hz
+        );
+    }
+}
+
+fn clamped_block(kind: &str) -> String {
+    let attach = |name: &str, x: f64| {
+        if kind == "fixed" {
+            format!("[[joint]]\nname = \"{name}\"\ntype = \"fixed\"\nbody_i = \"block\"\nbody_j = \"ground\"\nposition_m = [{x}, 0.0, 1.0]\n")
+        } else {
+            format!(
+                "[[bushing]]\nname = \"{name}\"\nbody_i = \"block\"\nbody_j = \"ground\"\nposition_m = [{x}, 0.0, 1.0]\nstiffness_n_m = [1e7, 1e7, 1e7]\ndamping_n_s_m = [1e3, 1e3, 1e3]\nstiffness_n_m_rad = [1e5, 1e5, 1e5]\ndamping_n_m_s_rad = [10.0, 10.0, 10.0]\n"
+            )
+        }
+    };
+    format!(
+        "[model]\nname = \"block on two {kind}s\"\ngravity_m_s2 = [0.0, 0.0, -9.81]\n[run]\nend_time_s = 0.5\nsample_rate_hz = 100.0\n[[body]]\nname = \"block\"\nmass_kg = 10.0\ninertia_kg_m2 = [0.5, 0.5, 0.5]\ncm_position_m = [0.0, 0.0, 1.0]\n{}{}[[output]]\nmarker = \"block.cm\"\nquantity = \"position\"\n",
+        attach("left", -0.5),
+        attach("right", 0.5)
+    )
+}
+
+#[test]
+fn over_constrained_body_runs_and_doctor_names_it() {
+    let m = from_text("fixed.toml", &clamped_block("fixed")).unwrap();
+    let (sys, r) = run(&m, 100.0);
+    assert_eq!(sys.redundant.len(), 6);
+    let z = r.channel("block.cm.position.z").unwrap();
+    assert!(z.iter().all(|v| (v - 1.0).abs() < 1e-9));
+    let rep = doctor::examine(&sys, &m.solver, 1e-3);
+    assert_eq!(rep.redundant.len(), 6);
+    assert!(
+        rep.redundant
+            .iter()
+            .all(|r| r.row.contains("fixed joint 'right'")),
+        "{:?}",
+        rep.redundant
+    );
+    assert!(rep
+        .redundant
+        .iter()
+        .all(|r| r.duplicates.iter().any(|d| d.contains("'left'"))));
+    assert!(
+        rep.advice
+            .iter()
+            .any(|a| a.contains("'right' over-constrains") && a.contains("bushing")),
+        "{:?}",
+        rep.advice
+    );
+
+    let m = from_text("bushings.toml", &clamped_block("bushing")).unwrap();
+    let (sys, _) = run(&m, 100.0);
+    assert!(sys.redundant.is_empty());
+    let rep = doctor::examine(&sys, &m.solver, 1e-3);
+    assert!(rep.redundant.is_empty());
+    assert!(!rep.advice.iter().any(|a| a.contains("over-constrains")));
+}
+
+/// Deterministic shuffle (linear congruential), so the test is repeatable.
+fn shuffle<T>(v: &mut [T], seed: &mut u64) {
+    for i in (1..v.len()).rev() {
+        *seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        let j = (*seed >> 33) as usize % (i + 1);
+        v.swap(i, j);
+    }
+}
+
+#[test]
+fn renumbering_bodies_and_joints_changes_nothing() {
+    // At a tight tolerance both runs are converged, so any difference left is what the
+    // ordering itself changes (pivoting, summation order), not the step sequence.
+    let text = std::fs::read_to_string("scenes/examples/elements.toml")
+        .unwrap()
+        .replace("rtol = 1e-7", "rtol = 1e-12")
+        .replace("atol = [1e-8]", "atol = [1e-12]");
+    let base = from_text("elements.toml", &text).unwrap();
+    let (_, r0) = run(&base, 500.0);
+    let mut seed = 12345u64;
+    for trial in 0..3 {
+        let mut doc: toml::Table = toml::from_str(&text).unwrap();
+        for key in ["body", "joint", "spring", "bushing", "motion", "output"] {
+            if let Some(toml::Value::Array(a)) = doc.get_mut(key) {
+                shuffle(a, &mut seed);
+            }
+        }
+        let shuffled = toml::to_string(&doc).unwrap();
+        let m = from_text("shuffled.toml", &shuffled).unwrap();
+        let (_, r) = run(&m, 500.0);
+        for ch in &r0.channels {
+            let a = r0.channel(&ch.name).unwrap();
+            let b = r.channel(&ch.name).unwrap();
+            let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(1e-300);
+            let worst = a
+                .iter()
+                .zip(&b)
+                .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+            assert!(
+                worst <= 1e-9 * scale,
+                "trial {trial}: {} differs by {worst:e} (scale {scale:e})",
+                ch.name
+            );
+        }
+    }
+}
+
+#[test]
+fn analytic_jacobian_matches_finite_differences() {
+    for file in [
+        "scenes/examples/elements.toml",
+        "scenes/examples/andrews.toml",
+    ] {
+        let m = load(file);
+        let sys = System::new(m.model.clone());
+        let (mut q, mut v) = sys.initial_q_v();
+        let (mut y, yp, _) = towride::model::ic::initial_state(&sys, 0.0, &mut q, &mut v).unwrap();
+        // a generic state: velocities and multipliers perturbed, mu = 0 (GGL solution)
+        let (_, ov, ol, om) = sys.offsets();
+        for (i, x) in y[ov..om].iter_mut().enumerate() {
+            *x += 0.3 * ((i as f64) * 1.7).sin() * (1.0 + x.abs());
+        }
+        let _ = ol;
+        let (t, cj) = (0.137, 250.0);
+        let n = sys.size();
+        let mut e = Vec::new();
+        sys.jacobian(t, &y, &yp, cj, &mut JacobianSink::new(&mut e));
+        let mut a = vec![vec![0.0; n]; n];
+        for (r, c, val) in e {
+            a[r][c] += val;
+        }
+        let res = |y: &[f64], yp: &[f64]| {
+            let mut r = vec![0.0; n];
+            sys.residual(t, y, yp, &mut r);
+            r
+        };
+        let mut worst: f64 = 0.0;
+        let mut norm: f64 = 0.0;
+        for j in 0..n {
+            let h = 1e-6 * (1.0 + y[j].abs());
+            let (mut ya, mut yb, mut ypa, mut ypb) = (y.clone(), y.clone(), yp.clone(), yp.clone());
+            ya[j] += h;
+            yb[j] -= h;
+            ypa[j] += h;
+            ypb[j] -= h;
+            let (r1, r2) = (res(&ya, &yp), res(&yb, &yp));
+            let (r3, r4) = (res(&y, &ypa), res(&y, &ypb));
+            for i in 0..n {
+                let fd = (r1[i] - r2[i]) / (2.0 * h) + cj * (r3[i] - r4[i]) / (2.0 * h);
+                worst = worst.max((fd - a[i][j]).abs());
+                norm = norm.max(fd.abs());
+            }
+        }
+        assert!(
+            worst < 1e-6 * norm,
+            "{file}: worst {worst:e}, norm {norm:e}"
+        );
+    }
+}
+
+#[test]
+fn malformed_files_are_refused_with_file_line_and_field() {
+    let good = std::fs::read_to_string("scenes/examples/pendulum.toml").unwrap();
+    let cases = [
+        (
+            "mass_kg = 1.0",
+            "mass_kg = 1.0\ncolour = \"red\"",
+            "colour",
+            "body[0]",
+        ),
+        ("mass_kg = 1.0\n", "", "mass_kg", "body[0]"),
+        (
+            "inertia_kg_m2 = [1e-9, 1e-9, 1e-9]",
+            "inertia_kg_m2 = [1e-9, -1e-9, 1e-9]",
+            "positive",
+            "body[0].inertia_kg_m2[1]",
+        ),
+        (
+            "body_j = \"ground\"",
+            "body_j = \"frame\"",
+            "frame",
+            "joint[0].body_j",
+        ),
+        (
+            "cm_position_m = [1.0, 0.0, 0.0]",
+            "cm_position_m = [1.0, nan, 0.0]",
+            "finite",
+            "body[0].cm_position_m[1]",
+        ),
+    ];
+    for (from, to, says, field) in cases {
+        assert!(good.contains(from));
+        let text = good.replacen(from, to, 1);
+        let err = match from_text("bad.toml", &text) {
+            Err(e) => e,
+            Ok(_) => panic!("accepted: {to}"),
+        };
+        let msg = err.to_string();
+        assert!(err.line.is_some(), "{msg}");
+        assert!(msg.starts_with("bad.toml:"), "{msg}");
+        assert!(msg.contains(says), "{msg}");
+        assert!(err.field.starts_with(field), "{msg} (field {})", err.field);
+        // the line named holds the offending text (or its table header)
+        let line = text.lines().nth(err.line.unwrap() - 1).unwrap();
+        let key = field.rsplit('.').next().unwrap().split('[').next().unwrap();
+        assert!(
+            line.contains(key) || line.contains("[[body]]") || line.contains(says),
+            "line {}: {line} ({msg})",
+            err.line.unwrap()
+        );
+    }
+}
