@@ -89,3 +89,75 @@ fn bench_solver_writes_csv_and_png() {
     assert_eq!(&png[1..4], b"PNG");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn run_linear_and_doctor_speak_json() {
+    let dir = std::env::temp_dir().join(format!("towride-run-{}", std::process::id()));
+    let out = towride(&[
+        "run",
+        "scenes/examples/two_mass_chain.toml",
+        "--out",
+        dir.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["status"], "completed");
+    for key in [
+        "steps",
+        "newton_iterations",
+        "jacobian_evals",
+        "wall_s",
+        "channels",
+        "statics",
+    ] {
+        assert!(!v[key].is_null(), "missing {key}");
+    }
+    let csv = std::fs::read_to_string(dir.join("outputs.csv")).unwrap();
+    assert!(
+        csv.starts_with("time [s],m2.cm.position.x [m]"),
+        "{}",
+        &csv[..80]
+    );
+    assert_eq!(csv.lines().count(), 1 + 1001);
+
+    let out = towride(&["linear", "scenes/examples/two_mass_chain.toml", "--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let f = v["result"]["modes"][0]["undamped_hz"].as_f64().unwrap();
+    assert!((f - 500f64.sqrt() / (2.0 * std::f64::consts::PI)).abs() < 1e-6);
+
+    let out = towride(&["doctor", "scenes/examples/andrews.toml", "--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["redundant"].as_array().unwrap().len(), 9);
+    assert!(v["newton_condition"].as_f64().unwrap() > 1.0);
+}
+
+#[test]
+fn a_bad_mechanism_file_is_named_with_its_line() {
+    let path = std::env::temp_dir().join(format!("towride-bad-{}.toml", std::process::id()));
+    let text = std::fs::read_to_string("scenes/examples/pendulum.toml")
+        .unwrap()
+        .replace("mass_kg = 1.0", "mass_kg = -1.0");
+    std::fs::write(&path, text).unwrap();
+    let out = towride(&["run", path.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains(".toml:17:") && err.contains("body[0].mass_kg") && err.contains("positive"),
+        "{err}"
+    );
+}

@@ -377,3 +377,74 @@ fn malformed_files_are_refused_with_file_line_and_field() {
         );
     }
 }
+
+#[test]
+fn statics_from_far_away() {
+    // A 1 kg bar, CM 0.5 m from a pivot about y, on a torsion spring (20 N m/rad, free
+    // when horizontal), started 2.5 rad away. Equilibrium: k theta = -m g r cos(theta),
+    // unique because k > m g r.
+    let (k, m, g, r) = (20.0f64, 1.0f64, 9.81f64, 0.5f64);
+    let th0 = 2.5f64;
+    let text = format!(
+        r#"[model]
+name = "bar on a torsion spring"
+gravity_m_s2 = [0.0, 0.0, -{g}]
+[run]
+end_time_s = 1.0
+sample_rate_hz = 100.0
+start = "statics"
+[[body]]
+name = "bar"
+mass_kg = {m}
+inertia_kg_m2 = [0.001, 0.02, 0.02]
+cm_position_m = [{x}, 0.0, {z}]
+x_axis = [{cx}, 0.0, {cz}]
+[[joint]]
+name = "pivot"
+type = "revolute"
+body_i = "bar"
+body_j = "ground"
+position_m = [0.0, 0.0, 0.0]
+z_axis = [0.0, -1.0, 0.0]
+[[rotational_spring]]
+name = "torsion"
+body_i = "bar"
+body_j = "ground"
+position_m = [0.0, 0.0, 0.0]
+z_axis = [0.0, -1.0, 0.0]
+x_axis = [1.0, 0.0, 0.0]
+stiffness_n_m_rad = {k}
+# markers are made at the initial pose, so the spring is free {th0} rad back from there
+free_angle_rad = -{th0}
+"#,
+        x = r * th0.cos(),
+        z = r * th0.sin(),
+        cx = th0.cos(),
+        cz = th0.sin()
+    );
+    let mech = from_text("torsion.toml", &text).unwrap();
+    let sys = System::new(mech.model);
+    let st = statics::equilibrium(&sys, 0.0, &mech.solver).unwrap();
+    // independent root of k th + m g r cos th = 0 by bisection
+    let (mut lo, mut hi) = (-1.0f64, 1.0f64);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if k * mid + m * g * r * mid.cos() > 0.0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    let th = 0.5 * (lo + hi);
+    let (x, z) = (st.y[0], st.y[2]);
+    assert!(
+        (z.atan2(x) - th).abs() < 1e-9,
+        "angle {} vs {th}",
+        z.atan2(x)
+    );
+    assert!(
+        st.report.iterations > 2 && st.report.residual_force < 1e-8,
+        "{:?}",
+        st.report
+    );
+}
