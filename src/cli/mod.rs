@@ -1,6 +1,7 @@
 //! The `towride` command line: a thin layer over the library (one module per command).
 
 mod bench;
+mod modes;
 pub mod plot;
 mod verify;
 
@@ -26,6 +27,8 @@ enum Command {
     /// Work-precision benchmarks.
     #[command(subcommand)]
     Bench(BenchCommand),
+    /// Mode table, mode selection and inertia invariants of a flexible body (flex/*.toml).
+    Modes(modes::ModesArgs),
 }
 
 #[derive(Subcommand, Debug)]
@@ -56,6 +59,7 @@ pub fn main() -> i32 {
     let result = match cli.command {
         Command::Verify(a) => verify::run(&a),
         Command::Bench(BenchCommand::Solver(a)) => bench::run_solver(&a),
+        Command::Modes(a) => modes::run(&a),
     };
     match result {
         Ok(code) => code,

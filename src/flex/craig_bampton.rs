@@ -66,6 +66,9 @@ pub struct ModeRow {
     /// Gamma_d^2 / m_gen for rigid-body directions x, y, z [kg] and rotations about
     /// x, y, z through the centre of mass [kg m^2].
     pub effective_mass: [f64; 6],
+    /// Share of the mode's kinetic energy per section name (lumped bodies under
+    /// "point_mass"), largest first: tells which part moves.
+    pub kinetic_energy_by_section: Vec<(String, f64)>,
 }
 
 /// Reduces the assembled model with `n_fixed` fixed-interface modes.
@@ -172,8 +175,39 @@ pub fn effective_masses(asm: &Assembly, modes: &Mat<f64>) -> Vec<(f64, [f64; 6])
         .collect()
 }
 
+/// Kinetic-energy share of each section (and of the lumped bodies) in mode column `k`.
+pub fn kinetic_energy_by_section(
+    mesh: &Mesh,
+    asm: &Assembly,
+    modes: &Mat<f64>,
+    k: usize,
+) -> Vec<(String, f64)> {
+    let shape = asm.expand(|d| modes[(d, k)]);
+    let mut parts: Vec<(String, f64)> = Vec::new();
+    let mut add = |name: &str, e: f64| match parts.iter_mut().find(|(n, _)| n == name) {
+        Some(p) => p.1 += e,
+        None => parts.push((name.to_string(), e)),
+    };
+    for el in &mesh.elements {
+        let q = nalgebra::SMatrix::<f64, 12, 1>::from_fn(|i, _| shape[el.nodes[i / 6]][i % 6]);
+        add(&el.section, (q.transpose() * el.beam.mass() * q)[0]);
+    }
+    for pm in &mesh.point_masses {
+        let u = Vector3::from_fn(|i, _| shape[pm.node][i]);
+        let w = Vector3::from_fn(|i, _| shape[pm.node][3 + i]);
+        let j: f64 = (0..3).map(|i| pm.inertia_kg_m2[i] * w[i] * w[i]).sum();
+        add("point_mass", pm.mass_kg * u.dot(&u) + j);
+    }
+    let total: f64 = parts.iter().map(|p| p.1).sum();
+    for p in &mut parts {
+        p.1 /= total;
+    }
+    parts.sort_by(|a, b| b.1.total_cmp(&a.1));
+    parts
+}
+
 /// The free-free-like mode table of the orthonormalised basis.
-pub fn mode_table(asm: &Assembly, cb: &CraigBampton) -> Vec<ModeRow> {
+pub fn mode_table(mesh: &Mesh, asm: &Assembly, cb: &CraigBampton) -> Vec<ModeRow> {
     effective_masses(asm, &cb.modes)
         .into_iter()
         .enumerate()
@@ -183,6 +217,7 @@ pub fn mode_table(asm: &Assembly, cb: &CraigBampton) -> Vec<ModeRow> {
             kind: cb.kinds[k],
             generalised_mass: gm,
             effective_mass: eff,
+            kinetic_energy_by_section: kinetic_energy_by_section(mesh, asm, &cb.modes, k),
         })
         .collect()
 }

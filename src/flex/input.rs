@@ -220,6 +220,8 @@ pub struct SelectionIn {
     pub min_energy_share: Option<f64>,
     /// Interfaces where the scene's loads enter (default: all).
     pub load_interfaces: Option<Vec<String>>,
+    /// Load the interfaces with moments too (default true; false for ball joints).
+    pub load_moments: Option<bool>,
 }
 
 #[derive(Clone, Debug, Deserialize)]

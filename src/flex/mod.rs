@@ -106,7 +106,7 @@ impl FlexBody {
             .fixed_interface_modes
             .unwrap_or(mesh.fixed_interface_modes);
         let cb = craig_bampton::reduce(&mesh, &assembly, n_fixed).map_err(model_err)?;
-        let table = craig_bampton::mode_table(&assembly, &cb);
+        let table = craig_bampton::mode_table(&mesh, &assembly, &cb);
         let mut modal = ModalData::build(&mesh, &assembly, &cb);
         let rule = options
             .rule

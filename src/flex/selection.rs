@@ -54,6 +54,8 @@ pub struct LoadPath {
     pub min_energy_share: f64,
     /// Interfaces where loads enter; empty: all.
     pub load_interfaces: Vec<String>,
+    /// Unit moments as well as unit forces (false: forces only, as through a ball joint).
+    pub load_moments: bool,
 }
 
 impl Rule {
@@ -124,6 +126,7 @@ impl Rule {
                     band_hz: band,
                     min_energy_share: share,
                     load_interfaces,
+                    load_moments: s.load_moments.unwrap_or(true),
                 }))
             }
         }
@@ -135,7 +138,8 @@ impl Rule {
             Rule::Cutoff { max_hz } => format!("frequency cutoff {max_hz} Hz"),
             Rule::List { modes } => format!("explicit list {modes:?}"),
             Rule::LoadPath(l) => format!(
-                "load paths from {}, band {}-{} Hz, energy share >= {} %",
+                "load paths ({}) from {}, band {}-{} Hz, energy share >= {} %",
+                if l.load_moments { "forces and moments" } else { "forces" },
                 if l.load_interfaces.is_empty() {
                     "all interfaces".to_string()
                 } else {
@@ -256,7 +260,8 @@ pub fn load_path_cases(body: &ModalData, rule: &LoadPath) -> Result<Vec<LoadCase
             }
             Some(a.lu())
         };
-        for d in 0..6 {
+        let directions = if rule.load_moments { 6 } else { 3 };
+        for d in 0..directions {
             let g: DVector<f64> = gi.row(d).transpose();
             let p: Vec<f64> = match &lu {
                 None => (0..nm).map(|k| g[6 + k]).collect(),
