@@ -2,6 +2,9 @@
 //! (clamped-free and free-free), Saint-Venant torsion, axial waves, and Timoshenko's
 //! simply supported beam.
 
+// Modes, DOFs and directions are indexed in step, as in the library.
+#![allow(clippy::needless_range_loop)]
+
 use std::f64::consts::PI;
 use std::path::Path;
 

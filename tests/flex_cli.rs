@@ -11,8 +11,18 @@ fn towride(args: &[&str]) -> std::process::Output {
 
 #[test]
 fn modes_json_has_the_mode_table_selection_and_mass_properties() {
-    let out = towride(&["modes", "flex/hitch_crossbeam.toml", "--variant", "5", "--json"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = towride(&[
+        "modes",
+        "flex/hitch_crossbeam.toml",
+        "--variant",
+        "5",
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let modes = v["modes"].as_array().unwrap();
     // 3 interface nodes x 6 + 8 fixed-interface modes.
@@ -35,8 +45,18 @@ fn modes_json_has_the_mode_table_selection_and_mass_properties() {
 
 #[test]
 fn modes_cutoff_selects_by_frequency() {
-    let out = towride(&["modes", "flex/hitch_crossbeam.toml", "--cutoff", "300", "--json"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = towride(&[
+        "modes",
+        "flex/hitch_crossbeam.toml",
+        "--cutoff",
+        "300",
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     for m in v["modes"].as_array().unwrap() {
         let f = m["frequency_hz"].as_f64().unwrap();
@@ -54,5 +74,8 @@ fn modes_text_and_bad_file_errors() {
     let out = towride(&["modes", "flex/hitch_crossbeam.toml", "--variant", "11"]);
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("flex/hitch_crossbeam.toml") && err.contains("no variant 11"), "{err}");
+    assert!(
+        err.contains("flex/hitch_crossbeam.toml") && err.contains("no variant 11"),
+        "{err}"
+    );
 }

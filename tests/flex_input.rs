@@ -95,7 +95,11 @@ fn element_naming_a_missing_node() {
 
 #[test]
 fn zero_length_element() {
-    let text = GOOD.replacen("position_m = [1.0, 0.5, 0.0]", "position_m = [1.0, 0.0, 0.0]", 1);
+    let text = GOOD.replacen(
+        "position_m = [1.0, 0.5, 0.0]",
+        "position_m = [1.0, 0.0, 0.0]",
+        1,
+    );
     let e = refuse("zero_length.toml", &text, None);
     let line = line_of(&text, "node_b = \"c\"", 0);
     assert!(e.contains(&format!(":{line}:")), "{e}");

@@ -52,6 +52,14 @@ struct ModeRecord {
     kinetic_energy_by_section: Vec<(String, f64)>,
 }
 
+/// A fixed-interface normal mode with its effective mass relative to the held
+/// interface (rigid-body directions about the centre of mass).
+#[derive(Serialize)]
+struct FixedModeRecord {
+    frequency_hz: f64,
+    effective_mass: [f64; 6],
+}
+
 #[derive(Serialize)]
 struct NodeRecord {
     name: String,
@@ -82,6 +90,7 @@ struct Report {
     dof: usize,
     fixed_interface_modes: usize,
     fixed_interface_frequencies_hz: Vec<f64>,
+    fixed_interface_table: Vec<FixedModeRecord>,
     mass_kg: f64,
     com_m: [f64; 3],
     /// About the centre of mass.
@@ -95,7 +104,7 @@ struct Report {
 
 fn rule_from_args(a: &ModesArgs, file_rule: &Rule) -> Result<Option<Rule>, String> {
     if let Some(c) = a.cutoff {
-        if !(c > 0.0) {
+        if c.is_nan() || c <= 0.0 {
             return Err(format!("--cutoff must be positive, got {c}"));
         }
         return Ok(Some(Rule::Cutoff { max_hz: c }));
@@ -108,7 +117,11 @@ fn rule_from_args(a: &ModesArgs, file_rule: &Rule) -> Result<Option<Rule>, Strin
     if a.band.is_some() || a.share.is_some() {
         let band = match &a.band {
             Some(b) if b.len() == 2 && b[0] >= 0.0 && b[1] > b[0] => [b[0], b[1]],
-            Some(b) => return Err(format!("--band needs LOW,HIGH with 0 <= LOW < HIGH, got {b:?}")),
+            Some(b) => {
+                return Err(format!(
+                    "--band needs LOW,HIGH with 0 <= LOW < HIGH, got {b:?}"
+                ))
+            }
             None => match file_rule {
                 Rule::LoadPath(l) => l.band_hz,
                 _ => return Err("--share needs --band (the file's rule is not load_path)".into()),
@@ -210,6 +223,17 @@ pub fn run(a: &ModesArgs) -> Result<i32, String> {
             .iter()
             .map(|&w| frequency_hz(w))
             .collect(),
+        fixed_interface_table: crate::flex::craig_bampton::effective_masses(
+            &body.assembly,
+            &body.cb.fixed_interface_modes,
+        )
+        .into_iter()
+        .zip(&body.cb.fixed_interface_omega2)
+        .map(|((_, e), &w)| FixedModeRecord {
+            frequency_hz: frequency_hz(w),
+            effective_mass: e,
+        })
+        .collect(),
         mass_kg: md.mass_kg,
         com_m: md.com_m,
         inertia_kg_m2: md.inertia_com_kg_m2,
@@ -225,7 +249,12 @@ pub fn run(a: &ModesArgs) -> Result<i32, String> {
                 position_m: n.position_m,
             })
             .collect(),
-        selected_modes: md.modes.iter().filter(|m| m.selected).map(|m| m.number).collect(),
+        selected_modes: md
+            .modes
+            .iter()
+            .filter(|m| m.selected)
+            .map(|m| m.number)
+            .collect(),
         selection_rule: body.rule.describe(),
         invariants: summary(&body),
         modes,
@@ -304,13 +333,26 @@ fn print_text(r: &Report) {
     }
     println!();
     println!(
-        "fixed-interface modes [Hz]: {}",
-        r.fixed_interface_frequencies_hz
-            .iter()
-            .map(|f| format!("{f:.1}"))
-            .collect::<Vec<_>>()
-            .join(", ")
+        "fixed-interface modes (interface held), effective mass in % of the body's mass / inertia:"
     );
+    println!(
+        "{:>4} {:>12} {:>7} {:>7} {:>7} {:>7} {:>7} {:>7}",
+        "", "freq [Hz]", "x", "y", "z", "rx", "ry", "rz"
+    );
+    let totals = [
+        r.mass_kg,
+        r.mass_kg,
+        r.mass_kg,
+        r.inertia_kg_m2[0][0],
+        r.inertia_kg_m2[1][1],
+        r.inertia_kg_m2[2][2],
+    ];
+    for (i, m) in r.fixed_interface_table.iter().enumerate() {
+        let p: Vec<String> = (0..6)
+            .map(|d| format!("{:>7.2}", 100.0 * m.effective_mass[d] / totals[d]))
+            .collect();
+        println!("{:>4} {:>12.4} {}", i + 1, m.frequency_hz, p.join(" "));
+    }
     println!(
         "selection ({}): {} of {} elastic modes: {:?}",
         r.selection_rule,

@@ -139,3 +139,77 @@ impl Assembly {
         r
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::flex::modes::static_solution;
+    use crate::input::Source;
+    use std::path::Path;
+
+    /// A cantilever whose tip is tied by a spider to a node offset by e along z: a
+    /// lateral force F on that node bends the beam and twists it by the moment e F, so
+    /// the node moves F L^3 / (3 E I_z) + e^2 F L / (G J) (Euler-Bernoulli, Saint-Venant).
+    #[test]
+    fn spider_transmits_force_and_moment_rigidly() {
+        let (l, e): (f64, f64) = (0.8, 0.15);
+        let text = format!(
+            r#"name = "spider"
+shear_deformation = false
+[[material]]
+name = "steel"
+youngs_modulus_pa = 2.1e11
+poissons_ratio = 0.3
+density_kg_m3 = 7850.0
+[[section]]
+name = "bar"
+shape = "round_solid"
+diameter_m = 0.03
+[[node]]
+name = "root"
+position_m = [0.0, 0.0, 0.0]
+[[node]]
+name = "tip"
+position_m = [{l}, 0.0, 0.0]
+[[node]]
+name = "arm"
+position_m = [{l}, 0.0, {e}]
+[[element]]
+node_a = "root"
+node_b = "tip"
+section = "bar"
+material = "steel"
+divisions = 4
+[[interface]]
+name = "root"
+node = "root"
+[[interface]]
+name = "arm"
+node = "arm"
+spider = ["tip"]
+"#
+        );
+        let src = Source::from_text(Path::new("spider.toml"), text).unwrap();
+        let mesh = Mesh::from_source(&src, None).unwrap();
+        let asm = Assembly::new(&mesh);
+        let root = asm.dofs(mesh.node_index("root").unwrap());
+        let arm = asm.dofs(mesh.node_index("arm").unwrap());
+        let f = 100.0;
+        let mut load = vec![0.0; asm.n_dof];
+        load[arm[1]] = f;
+        let u = static_solution(asm.k.as_ref(), &root, &load).unwrap();
+        let d = 0.03f64;
+        let i = std::f64::consts::PI * d.powi(4) / 64.0;
+        let (em, g) = (2.1e11, 2.1e11 / 2.6);
+        let want = f * l.powi(3) / (3.0 * em * i) + e * e * f * l / (g * 2.0 * i);
+        assert!(
+            (u[arm[1]] - want).abs() < 1e-9 * want,
+            "{} vs {want}",
+            u[arm[1]]
+        );
+        // The tied tip follows the arm rigidly: theta_x equal, tip y = arm y - e theta_x.
+        let tip = asm.expand(|k| u[k])[mesh.node_index("tip").unwrap()];
+        assert!((tip[3] - u[arm[3]]).abs() < 1e-12);
+        assert!((tip[1] - (u[arm[1]] + e * u[arm[3]])).abs() < 1e-12);
+    }
+}

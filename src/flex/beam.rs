@@ -120,7 +120,7 @@ pub fn local_axes(
 ) -> Result<Matrix3<f64>, BeamError> {
     let d = b - a;
     let l = d.norm();
-    if !(l > 1e-9) {
+    if l.is_nan() || l <= 1e-9 {
         return Err(BeamError::ZeroLength);
     }
     let ex = d / l;

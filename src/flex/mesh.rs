@@ -517,14 +517,14 @@ fn build(src: &Source, f: &FlexFile, variant: Option<u32>) -> Result<Mesh, Input
         return Err(src.error(&path!["element"], "the model has no elements"));
     }
     let mut parent: Vec<usize> = (0..nodes.len()).collect();
-    fn root(p: &mut Vec<usize>, mut i: usize) -> usize {
+    fn root(p: &mut [usize], mut i: usize) -> usize {
         while p[i] != i {
             p[i] = p[p[i]];
             i = p[i];
         }
         i
     }
-    let join = |a: usize, b: usize, p: &mut Vec<usize>| {
+    let join = |a: usize, b: usize, p: &mut [usize]| {
         let (ra, rb) = (root(p, a), root(p, b));
         p[ra] = rb;
     };

@@ -139,7 +139,11 @@ impl Rule {
             Rule::List { modes } => format!("explicit list {modes:?}"),
             Rule::LoadPath(l) => format!(
                 "load paths ({}) from {}, band {}-{} Hz, energy share >= {} %",
-                if l.load_moments { "forces and moments" } else { "forces" },
+                if l.load_moments {
+                    "forces and moments"
+                } else {
+                    "forces"
+                },
                 if l.load_interfaces.is_empty() {
                     "all interfaces".to_string()
                 } else {
