@@ -211,7 +211,8 @@ fn held_ball_deflection(md: &ModalData, d: usize, load: f64) -> DVector<f64> {
     a.view_mut((nz, 0), (nc, nz)).copy_from(&c);
     a.view_mut((0, nz), (nz, nc)).copy_from(&c.transpose());
     let mut rhs = DVector::zeros(nz + nc);
-    rhs.rows_mut(0, nz).copy_from(&(gb.row(d).transpose() * load));
+    rhs.rows_mut(0, nz)
+        .copy_from(&(gb.row(d).transpose() * load));
     let z = a.lu().solve(&rhs).unwrap();
     (&gb * z.rows(0, nz)).rows(0, 3).into_owned()
 }
