@@ -6,6 +6,7 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod cli;
+pub mod flex;
 pub mod input;
 pub mod model;
 pub mod solver;

@@ -2,6 +2,7 @@
 
 mod analyse;
 mod bench;
+mod modes;
 pub mod plot;
 mod run;
 mod verify;
@@ -34,6 +35,8 @@ enum Command {
     /// Work-precision benchmarks.
     #[command(subcommand)]
     Bench(BenchCommand),
+    /// Mode table, mode selection and inertia invariants of a flexible body (flex/*.toml).
+    Modes(modes::ModesArgs),
 }
 
 #[derive(Subcommand, Debug)]
@@ -67,6 +70,7 @@ pub fn main() -> i32 {
         Command::Run(a) => run::run(&a),
         Command::Linear(a) => analyse::linear(&a),
         Command::Doctor(a) => analyse::doctor(&a),
+        Command::Modes(a) => modes::run(&a),
     };
     match result {
         Ok(code) => code,

@@ -1,0 +1,132 @@
+//! Flexible bodies from beam finite-element models: 3D Timoshenko beams, rigid spiders,
+//! Craig-Bampton reduction orthonormalised into a free-free-like mode table, mode
+//! selection, and the data a floating-frame modal body needs ([`ModalData`]).
+//!
+//! Pipeline: `flex/*.toml` -> [`Mesh`] (checked, variant applied) -> [`Assembly`]
+//! (K, M; spiders eliminated) -> [`CraigBampton`] (constraint + fixed-interface modes,
+//! orthonormalised, rigid-body modes identified) -> [`ModalData`] (elastic modes, shapes
+//! at interface and marker nodes, invariants, damping, selection). [`FlexBody::load`]
+//! runs it all. Formulas and sources: `docs/flex.md`.
+
+pub mod assemble;
+pub mod beam;
+pub mod craig_bampton;
+pub mod damping;
+pub mod input;
+pub mod invariants;
+pub mod material;
+pub mod mesh;
+pub mod modal;
+pub mod modes;
+pub mod section;
+pub mod selection;
+
+use std::fmt;
+use std::path::Path;
+
+pub use assemble::Assembly;
+pub use craig_bampton::{CraigBampton, ModeKind, ModeRow};
+pub use damping::Damping;
+pub use invariants::Invariants;
+pub use mesh::Mesh;
+pub use modal::{ModalData, ModalMode, ModalNode, NodeKind};
+pub use selection::{LoadPath, Rule, Selection};
+
+use crate::input::InputError;
+
+/// A flexible-body failure: a bad file, or a model the numerics refuse.
+#[derive(Clone, Debug)]
+pub enum FlexError {
+    Input(InputError),
+    /// The file is fine but the model is not (a mechanism, too many modes asked...).
+    Model {
+        file: String,
+        message: String,
+    },
+}
+
+impl fmt::Display for FlexError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            FlexError::Input(e) => write!(f, "{e}"),
+            FlexError::Model { file, message } => write!(f, "{file}: {message}"),
+        }
+    }
+}
+
+impl std::error::Error for FlexError {}
+
+impl From<InputError> for FlexError {
+    fn from(e: InputError) -> Self {
+        FlexError::Input(e)
+    }
+}
+
+/// Choices that override the file's.
+#[derive(Clone, Debug, Default)]
+pub struct Options {
+    /// Fixed-interface modes of the reduction (file: `fixed_interface_modes`).
+    pub fixed_interface_modes: Option<usize>,
+    /// Mode selection (file: `[selection]`).
+    pub rule: Option<Rule>,
+}
+
+/// A flexible body: the FE model, its reduction, mode table, selection and modal data.
+#[derive(Clone, Debug)]
+pub struct FlexBody {
+    pub mesh: Mesh,
+    pub assembly: Assembly,
+    pub cb: CraigBampton,
+    /// Orthonormalised modes, rigid-body modes included.
+    pub table: Vec<ModeRow>,
+    pub rule: Rule,
+    pub selection: Selection,
+    /// All elastic modes, flagged `selected` by `rule`; `modal.selected()` keeps those.
+    pub modal: ModalData,
+}
+
+impl FlexBody {
+    /// Reads `path` (variant `variant`, None for the base sections) and reduces it.
+    pub fn load(
+        path: &Path,
+        variant: Option<u32>,
+        options: &Options,
+    ) -> Result<FlexBody, FlexError> {
+        let mesh = Mesh::read(path, variant)?;
+        FlexBody::from_mesh(mesh, options)
+    }
+
+    pub fn from_mesh(mesh: Mesh, options: &Options) -> Result<FlexBody, FlexError> {
+        let model_err = |message: String| FlexError::Model {
+            file: mesh.path.display().to_string(),
+            message,
+        };
+        let assembly = Assembly::new(&mesh);
+        let n_fixed = options
+            .fixed_interface_modes
+            .unwrap_or(mesh.fixed_interface_modes);
+        let cb = craig_bampton::reduce(&mesh, &assembly, n_fixed).map_err(model_err)?;
+        let table = craig_bampton::mode_table(&mesh, &assembly, &cb);
+        let mut modal = ModalData::build(&mesh, &assembly, &cb);
+        let rule = options
+            .rule
+            .clone()
+            .unwrap_or_else(|| mesh.selection.clone());
+        let selection = selection::select(&modal, &rule).map_err(model_err)?;
+        modal.set_selection(&selection.selected);
+        Ok(FlexBody {
+            mesh,
+            assembly,
+            cb,
+            table,
+            rule,
+            selection,
+            modal,
+        })
+    }
+}
+
+/// The modal data of `path` / `variant` with the file's selection flagged.
+pub fn modal_data(path: &Path, variant: Option<u32>) -> Result<ModalData, FlexError> {
+    Ok(FlexBody::load(path, variant, &Options::default())?.modal)
+}
