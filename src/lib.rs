@@ -7,5 +7,7 @@
 
 pub mod cli;
 pub mod input;
+pub mod road;
 pub mod solver;
+pub mod tyre;
 pub mod verify;
