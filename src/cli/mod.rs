@@ -1,6 +1,7 @@
 //! The `towride` command line: a thin layer over the library (one module per command).
 
 mod bench;
+pub mod lineplot;
 pub mod plot;
 mod verify;
 

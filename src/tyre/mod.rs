@@ -295,27 +295,49 @@ impl WheelFrame {
     }
 }
 
-/// C1 blend of max(v, 0) over [-eps, eps]: 0 below, (v + eps)^2 / (4 eps) inside, v above.
-/// Smooth enough for the BDF error control at touch-down and lift-off, exact outside.
+/// One-sided C1 ramp for max(v, 0): exactly 0 for v <= 0, exactly v for v >= delta, and
+/// v^2 (2 delta - v) / delta^2 in between (value and slope match at both ends). Used for
+/// contact forces: no force before contact, the exact linear law once delta deep, and a
+/// smooth enough onset for the BDF error control at touch-down and lift-off.
 #[inline]
-pub fn pos_blend(v: f64, eps: f64) -> f64 {
-    if v <= -eps {
+pub fn ramp(v: f64, delta: f64) -> f64 {
+    if v <= 0.0 {
         0.0
-    } else if v >= eps {
+    } else if v >= delta {
         v
     } else {
-        (v + eps) * (v + eps) / (4.0 * eps)
+        v * v * (2.0 * delta - v) / (delta * delta)
     }
 }
 
-/// Derivative of [`pos_blend`]: a continuous step from 0 to 1 over [-eps, eps].
+/// C1 smooth step from 0 (v <= 0) to 1 (v >= delta): 3 u^2 - 2 u^3 with u = v / delta.
 #[inline]
-pub fn step_blend(v: f64, eps: f64) -> f64 {
-    if v <= -eps {
+pub fn smooth_step(v: f64, delta: f64) -> f64 {
+    if v <= 0.0 {
         0.0
-    } else if v >= eps {
+    } else if v >= delta {
         1.0
     } else {
-        (v + eps) / (2.0 * eps)
+        let u = v / delta;
+        u * u * (3.0 - 2.0 * u)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ramp_is_c1_and_exact_outside() {
+        let d = 1e-3;
+        assert_eq!(ramp(-1e-9, d), 0.0);
+        assert_eq!(ramp(0.0, d), 0.0);
+        assert_eq!(ramp(2e-3, d), 2e-3);
+        let h = 1e-9;
+        let slope = |v: f64| (ramp(v + h, d) - ramp(v - h, d)) / (2.0 * h);
+        assert!(slope(h).abs() < 1e-5);
+        assert!((slope(d - 2.0 * h) - 1.0).abs() < 1e-5);
+        assert!((ramp(d, d) - d).abs() < 1e-18);
+        assert_eq!(smooth_step(0.5 * d, d), 0.5);
     }
 }

@@ -11,7 +11,7 @@ use crate::solver::VarKind;
 
 use super::envelope::EffectiveRoad;
 use super::params::TyreParams;
-use super::{pos_blend, step_blend, ContactOutputs, HubLoad, WheelFrame, WheelKinematics};
+use super::{ramp, smooth_step, ContactOutputs, HubLoad, WheelFrame, WheelKinematics};
 
 /// State indices of the point follower.
 pub mod idx {
@@ -69,10 +69,10 @@ impl PointFollower {
         let s_dot = kin.velocity.dot(&fr.ex);
         let rho_dot = -(kin.velocity.z - tan * s_dot);
         let eps = p.contact_blend;
-        let f_raw = p.cz * pos_blend(rho, eps) + p.vertical_damping * rho_dot * step_blend(rho, eps);
-        let f_n = pos_blend(f_raw, eps * p.cz);
+        let f_raw = p.cz * ramp(rho, eps) + p.vertical_damping * rho_dot * smooth_step(rho, eps);
+        let f_n = ramp(f_raw, eps * p.cz);
         let omega = kin.omega.dot(&fr.ey);
-        let r_e = p.rolling_radius(pos_blend(rho, eps), omega);
+        let r_e = p.rolling_radius(ramp(rho, eps), omega);
         let v_roll = r_e * omega;
         let v_slip = kin.velocity.dot(&t) - v_roll;
         let sigma = p.d.sigma_point;

@@ -15,7 +15,7 @@ use crate::solver::VarKind;
 
 use super::envelope::{EffectiveRoad, TandemCams};
 use super::params::TyreParams;
-use super::{pos_blend, step_blend, ContactOutputs, HubLoad, WheelFrame, WheelKinematics};
+use super::{ramp, smooth_step, ContactOutputs, HubLoad, WheelFrame, WheelKinematics};
 
 /// State indices of the rigid-ring tyre.
 pub mod idx {
@@ -127,11 +127,11 @@ impl RigidRing {
 
         // Normal force: residual spring and damper, C1 blend at touch-down, never tensile.
         let eps = p.contact_blend;
-        let f_raw = d.c_rz * pos_blend(rho, eps) + d.k_rz * rho_dot * step_blend(rho, eps);
-        let f_n = pos_blend(f_raw, eps * d.c_rz);
+        let f_raw = d.c_rz * ramp(rho, eps) + d.k_rz * rho_dot * smooth_step(rho, eps);
+        let f_n = ramp(f_raw, eps * d.c_rz);
 
         // Total deflection (residual plus ring) for the rolling radius and contact length.
-        let rho_tot = pos_blend(rho, eps) + offset.dot(&n);
+        let rho_tot = ramp(rho, eps) + offset.dot(&n);
         let r_e = p.rolling_radius(rho_tot, omega_b);
         // Slip of the contact patch: material velocity of the ring at the contact point.
         // Written as in Swift, V_s = V_c - V_r with the contact point's velocity
