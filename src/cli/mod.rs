@@ -3,6 +3,7 @@
 mod bench;
 pub mod lineplot;
 pub mod plot;
+mod tyre_rig;
 mod verify;
 
 use clap::{Parser, Subcommand};
@@ -27,6 +28,8 @@ enum Command {
     /// Work-precision benchmarks.
     #[command(subcommand)]
     Bench(BenchCommand),
+    /// Run a tyre test rig (cleat or quarter rig) from a TOML file.
+    TyreRig(tyre_rig::TyreRigArgs),
 }
 
 #[derive(Subcommand, Debug)]
@@ -57,6 +60,7 @@ pub fn main() -> i32 {
     let result = match cli.command {
         Command::Verify(a) => verify::run(&a),
         Command::Bench(BenchCommand::Solver(a)) => bench::run_solver(&a),
+        Command::TyreRig(a) => tyre_rig::run(&a),
     };
     match result {
         Ok(code) => code,
