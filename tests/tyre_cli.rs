@@ -45,6 +45,6 @@ fn tyre_rig_bad_file_names_it() {
     let out = towride(&["tyre-rig", f.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("bad.toml:7"), "{err}");
+    assert!(err.contains("bad.toml:6") && err.contains("speed_m_s"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }
