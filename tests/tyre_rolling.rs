@@ -91,3 +91,30 @@ fn slow_roll_over_a_step_makes_no_spurious_slip() {
     assert!(worst_slip < 1e-3, "spurious slip {worst_slip}");
     assert!(worst_lean < 0.02 * fz_max, "rim load does not follow the tilted normal: {worst_lean} N");
 }
+
+/// The rigid-ring tyre rolls over the CSV profile and the parry3d height field (the cams
+/// work on any road type); its effective road follows each hump, filtered more on the
+/// short 0.4 m hump of the profile than on the 1 m hump of the height field, and never
+/// above the road.
+#[test]
+fn rolls_over_profile_and_height_field_roads() {
+    for (file, peak, ratio) in [
+        ("roads/profile_example.toml", 0.015, 0.8),
+        ("roads/height_field_example.toml", 0.05, 0.95),
+    ] {
+        let tyre = Tyre::from_file(Path::new("vehicles/tyres/car_185_60r14.tir"), TyreKind::RigidRing).unwrap();
+        let road = Road::from_file(Path::new(file)).unwrap();
+        let speed = 30.0 / 3.6;
+        let rig = towride::tyre::rig::QuarterRig::new(tyre, road, speed, 0.0, 300.0, 0.6, 3000.0);
+        let opts = rig_options(&rig.tyre, 1e-5, &[1e-6, 1e-4, 1e-3]);
+        let run = rig.run(None, 4.0 / speed, 1e-3, &opts).unwrap();
+        let w_max = run.samples.iter().map(|s| s.effective_height_m).fold(f64::MIN, f64::max);
+        let road_max = run.samples.iter().map(|s| rig.road.height(s.x_m, 0.0)).fold(f64::MIN, f64::max);
+        println!(
+            "{file}: {} steps, road peak under the centre {road_max:.4} m, effective height peak {w_max:.4} m",
+            run.stats.steps
+        );
+        assert!((road_max - peak).abs() < 1e-3);
+        assert!(w_max <= road_max + 1e-9 && w_max > ratio * road_max, "{w_max} vs {road_max}");
+    }
+}
