@@ -30,14 +30,21 @@ fn thesis_ramp_geometry() {
         (2.0, 0.0),
     ];
     for (x, z) in cases {
-        assert!((r.height(x, 0.3) - z).abs() < 1e-12, "z({x}) = {}", r.height(x, 0.3));
+        assert!(
+            (r.height(x, 0.3) - z).abs() < 1e-12,
+            "z({x}) = {}",
+            r.height(x, 0.3)
+        );
     }
     assert!((r.slope(1.02, 0.0).0 - 1.0).abs() < 1e-12);
     assert!((r.slope(1.48, 0.0).0 + 1.0).abs() < 1e-12);
     assert!(r.is_flat(-5.0, 0.999, 0.0));
     assert!(r.is_flat(1.501, 9.0, 0.0));
     assert!(!r.is_flat(0.5, 1.001, 0.0));
-    assert!(!r.is_flat(1.1, 1.2, 0.0), "the plateau lies inside an obstacle");
+    assert!(
+        !r.is_flat(1.1, 1.2, 0.0),
+        "the plateau lies inside an obstacle"
+    );
     let mut k = Vec::new();
     r.kinks_along([0.0, 0.0], [1.0, 0.0], 0.0, 3.0, &mut k);
     let want = [1.0, 1.05, 1.45, 1.5];
@@ -49,7 +56,10 @@ fn thesis_ramp_geometry() {
     k.clear();
     let d = [0.5, 3f64.sqrt() / 2.0];
     r.kinks_along([0.0, 0.0], d, 0.0, 4.0, &mut k);
-    assert!((k[0] - 2.0).abs() < 1e-12 && (k[3] - 3.0).abs() < 1e-12, "{k:?}");
+    assert!(
+        (k[0] - 2.0).abs() < 1e-12 && (k[3] - 3.0).abs() < 1e-12,
+        "{k:?}"
+    );
 }
 
 #[test]
@@ -64,7 +74,10 @@ fn ramp_length_at_the_top() {
 
 #[test]
 fn circular_bumps_of_the_measurement_plan() {
-    for (file, h) in [("roads/bump_25mm.toml", 0.025), ("roads/bump_50mm.toml", 0.05)] {
+    for (file, h) in [
+        ("roads/bump_25mm.toml", 0.025),
+        ("roads/bump_50mm.toml", 0.05),
+    ] {
         let r = Road::from_file(Path::new(file)).unwrap();
         let c = 0.5;
         let radius = (c * c / 4.0 + h * h) / (2.0 * h);
@@ -100,11 +113,14 @@ fn bad_inputs_are_located() {
     println!("{e}");
     assert_eq!(e.line, Some(8));
     assert_eq!(e.field, "obstacle[0].height_m");
-    let text = text.replace("height_m = -0.05", "height_m = 0.05").replace("flank_angle_deg = 45.0", "flank_angle_deg = 5.0");
+    let text = text
+        .replace("height_m = -0.05", "height_m = 0.05")
+        .replace("flank_angle_deg = 45.0", "flank_angle_deg = 5.0");
     let e = Road::from_file(&write("flat_flank.toml", &text)).unwrap_err();
     println!("{e}");
     assert!(e.message.contains("no plateau"), "{e}");
-    let text = "[road]\nkind = \"flat\"\nheight_m = 0.0\n\n[[obstacle]]\nkind = \"hump\"\nstart_m = 1.0\n";
+    let text =
+        "[road]\nkind = \"flat\"\nheight_m = 0.0\n\n[[obstacle]]\nkind = \"hump\"\nstart_m = 1.0\n";
     let e = Road::from_file(&write("kind.toml", text)).unwrap_err();
     println!("{e}");
     assert!(e.line.is_some() && e.message.contains("hump"), "{e}");

@@ -30,7 +30,10 @@ fn two_track_profile() {
     }
     assert!(r.is_flat(0.0, 1.7, half));
     assert!(!r.is_flat(0.0, 1.9, half));
-    assert!(r.is_flat(1.7, 2.5, -half), "the right track is flat where the left has its hump");
+    assert!(
+        r.is_flat(1.7, 2.5, -half),
+        "the right track is flat where the left has its hump"
+    );
     assert!(!r.is_flat(2.8, 3.2, -half));
     let mut k = Vec::new();
     r.kinks_along([1.0, half], [1.0, 0.0], 0.0, 0.11, &mut k);
@@ -41,8 +44,16 @@ fn two_track_profile() {
 fn bad_profile_names_its_line() {
     let dir = std::env::temp_dir().join(format!("towride-prof-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(dir.join("p.csv"), "# comment\nx_m,z_left_m,z_right_m\n0.0,0,0\n1.0,0,0\n0.5,0,0\n").unwrap();
-    std::fs::write(dir.join("p.toml"), "[road]\nkind = \"profile\"\nfile = \"p.csv\"\ntrack_width_m = 1.4\n").unwrap();
+    std::fs::write(
+        dir.join("p.csv"),
+        "# comment\nx_m,z_left_m,z_right_m\n0.0,0,0\n1.0,0,0\n0.5,0,0\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("p.toml"),
+        "[road]\nkind = \"profile\"\nfile = \"p.csv\"\ntrack_width_m = 1.4\n",
+    )
+    .unwrap();
     let e = Road::from_file(&dir.join("p.toml")).unwrap_err();
     println!("{e}");
     assert_eq!(e.line, Some(5));
@@ -84,7 +95,10 @@ fn height_field_through_parry() {
     let (sx, sy) = r.slope(x, y);
     let fx = (triangle_height(&data, x + 1e-6, y) - triangle_height(&data, x - 1e-6, y)) / 2e-6;
     let fy = (triangle_height(&data, x, y + 1e-6) - triangle_height(&data, x, y - 1e-6)) / 2e-6;
-    assert!((sx - fx).abs() < 1e-6 && (sy - fy).abs() < 1e-6, "{sx} {sy} vs {fx} {fy}");
+    assert!(
+        (sx - fx).abs() < 1e-6 && (sy - fy).abs() < 1e-6,
+        "{sx} {sy} vs {fx} {fy}"
+    );
     assert_eq!(r.flat_height(0.0, 1.4, -1.0, 1.0), Some(0.0));
     assert_eq!(r.flat_height(0.0, 1.6, -1.0, 1.0), None);
     let mut k = Vec::new();

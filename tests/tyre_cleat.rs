@@ -32,9 +32,21 @@ struct Peaks {
 
 fn peaks(r: &RigRun) -> Peaks {
     Peaks {
-        fz_max: r.samples.iter().map(|s| s.hub_fz_n).fold(f64::MIN, f64::max),
-        fx_min: r.samples.iter().map(|s| s.hub_fx_n).fold(f64::MAX, f64::min),
-        fx_max: r.samples.iter().map(|s| s.hub_fx_n).fold(f64::MIN, f64::max),
+        fz_max: r
+            .samples
+            .iter()
+            .map(|s| s.hub_fz_n)
+            .fold(f64::MIN, f64::max),
+        fx_min: r
+            .samples
+            .iter()
+            .map(|s| s.hub_fx_n)
+            .fold(f64::MAX, f64::min),
+        fx_max: r
+            .samples
+            .iter()
+            .map(|s| s.hub_fx_n)
+            .fold(f64::MIN, f64::max),
     }
 }
 
@@ -74,9 +86,15 @@ fn in_plane_modes(rim_iyy: f64) -> Vec<f64> {
     let k_c = 1.0 / (1.0 / c_rx + 1.0 / k_tread);
     // Unknowns (phi_w, phi_b, x_b).
     let k = Matrix3::new(
-        c_th, -c_th, 0.0,
-        -c_th, c_th + k_c * r * r, -k_c * r,
-        0.0, -k_c * r, c_b + k_c,
+        c_th,
+        -c_th,
+        0.0,
+        -c_th,
+        c_th + k_c * r * r,
+        -k_c * r,
+        0.0,
+        -k_c * r,
+        c_b + k_c,
     );
     let m = [rim_iyy, i_b, m_b];
     let mut a_sym = k;
@@ -125,11 +143,20 @@ fn check(name: &str, road: &str, speed: f64, after_x: f64) -> RigRun {
     println!(
         "{name}: dominant frequency Fz {f_z:.1} Hz (loaded vertical ring mode from the file {f_ref:.1} Hz), Fx {f_x:.1} Hz (FREQ_LONG {f_long} Hz)"
     );
-    assert!((f_z / f_ref - 1.0).abs() < 0.05, "Fz rings at {f_z} Hz, expected {f_ref}");
+    assert!(
+        (f_z / f_ref - 1.0).abs() < 0.05,
+        "Fz rings at {f_z} Hz, expected {f_ref}"
+    );
     // Fx rings at one of the in-plane modes (rim-and-ring rotation, ring fore-aft).
     let modes = in_plane_modes(0.6);
-    let nearest = modes.iter().map(|m| (f_x / m - 1.0).abs()).fold(f64::MAX, f64::min);
-    println!("{name}: in-plane modes from the file {modes:.1?} Hz; Fx within {:.1} % of one", 100.0 * nearest);
+    let nearest = modes
+        .iter()
+        .map(|m| (f_x / m - 1.0).abs())
+        .fold(f64::MAX, f64::min);
+    println!(
+        "{name}: in-plane modes from the file {modes:.1?} Hz; Fx within {:.1} % of one",
+        100.0 * nearest
+    );
     assert!(nearest < 0.15, "Fx rings at {f_x} Hz, modes {modes:?}");
     fine
 }
@@ -137,9 +164,19 @@ fn check(name: &str, road: &str, speed: f64, after_x: f64) -> RigRun {
 #[test]
 fn cleat_and_ramp_show_the_ring_resonance() {
     // 10 mm x 20 mm cleat at 1 m, 40 km/h; cams clear it 0.34 m after its edge.
-    let cleat = check("cleat 10 mm, 40 km/h", "roads/cleat_10mm.toml", 40.0 / 3.6, 1.40);
+    let cleat = check(
+        "cleat 10 mm, 40 km/h",
+        "roads/cleat_10mm.toml",
+        40.0 / 3.6,
+        1.40,
+    );
     // The thesis ramp at 20 km/h with the axle height held (drum-rig style).
-    let ramp = check("ramp 50 mm, 20 km/h", "roads/ramp_thesis.toml", 20.0 / 3.6, 1.85);
+    let ramp = check(
+        "ramp 50 mm, 20 km/h",
+        "roads/ramp_thesis.toml",
+        20.0 / 3.6,
+        1.85,
+    );
     let panel = |r: &RigRun, name: &str| LinePanel {
         title: format!("{name}: load on the rim"),
         x_label: "time [s]".into(),
@@ -156,6 +193,14 @@ fn cleat_and_ramp_show_the_ring_resonance() {
         ],
     };
     let png = out_dir().join("cleat.png");
-    line_panels(&png, &[panel(&cleat, "cleat 10 mm, 40 km/h"), panel(&ramp, "ramp 50 mm, 20 km/h")], 1).unwrap();
+    line_panels(
+        &png,
+        &[
+            panel(&cleat, "cleat 10 mm, 40 km/h"),
+            panel(&ramp, "ramp 50 mm, 20 km/h"),
+        ],
+        1,
+    )
+    .unwrap();
     println!("plot: {}", png.display());
 }

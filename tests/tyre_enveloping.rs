@@ -73,15 +73,28 @@ fn step_and_ramp_enveloping() {
     // --- 50 mm step at x = 1 m.
     let s = sweep(&step, &cams, 0.4, 1.6, dx);
     for i in 1..s.w.len() {
-        assert!(s.w[i] >= s.w[i - 1] - 1e-12, "step: w falls at x = {}", s.x[i]);
+        assert!(
+            s.w[i] >= s.w[i - 1] - 1e-12,
+            "step: w falls at x = {}",
+            s.x[i]
+        );
     }
     let first = s.x[s.w.iter().position(|&w| w > 1e-6).unwrap()];
-    assert!(first < foot - 0.05, "step: first rise at {first} m, not ahead of the foot");
-    assert!((s.w.last().unwrap() - h).abs() < 1e-12, "step: full height not reached");
+    assert!(
+        first < foot - 0.05,
+        "step: first rise at {first} m, not ahead of the foot"
+    );
+    assert!(
+        (s.w.last().unwrap() - h).abs() < 1e-12,
+        "step: full height not reached"
+    );
     let max_tan_step = s.tan.iter().cloned().fold(0.0, f64::max);
     let max_deg_step = max_tan_step.atan().to_degrees();
     // A point follower sees a vertical face; the enveloped step must stay far below 45 deg.
-    assert!(max_deg_step < 35.0, "step: largest effective slope {max_deg_step} deg");
+    assert!(
+        max_deg_step < 35.0,
+        "step: largest effective slope {max_deg_step} deg"
+    );
     // Continuity: no increment larger than the steepest effective slope allows.
     let max_dwdx = s.dw.iter().cloned().fold(0.0, f64::max);
     for i in 1..s.w.len() {
@@ -96,20 +109,41 @@ fn step_and_ramp_enveloping() {
     let r = sweep(&ramp, &cams, 0.4, 2.1, dx);
     let i_top = r.x.iter().position(|&x| x >= 1.25).unwrap();
     for i in 1..=i_top {
-        assert!(r.w[i] >= r.w[i - 1] - 1e-12, "ramp: w falls on the way up at {}", r.x[i]);
+        assert!(
+            r.w[i] >= r.w[i - 1] - 1e-12,
+            "ramp: w falls on the way up at {}",
+            r.x[i]
+        );
     }
     for i in i_top + 1..r.w.len() {
-        assert!(r.w[i] <= r.w[i - 1] + 1e-12, "ramp: w rises on the way down at {}", r.x[i]);
+        assert!(
+            r.w[i] <= r.w[i - 1] + 1e-12,
+            "ramp: w rises on the way down at {}",
+            r.x[i]
+        );
     }
     let first = r.x[r.w.iter().position(|&w| w > 1e-6).unwrap()];
     assert!(first < foot - 0.05, "ramp: first rise at {first} m");
-    assert!((r.w[i_top] - h).abs() < 1e-12, "ramp: full height not reached: {}", r.w[i_top]);
-    let max_deg_ramp = r.tan.iter().map(|t| t.abs()).fold(0.0, f64::max).atan().to_degrees();
+    assert!(
+        (r.w[i_top] - h).abs() < 1e-12,
+        "ramp: full height not reached: {}",
+        r.w[i_top]
+    );
+    let max_deg_ramp = r
+        .tan
+        .iter()
+        .map(|t| t.abs())
+        .fold(0.0, f64::max)
+        .atan()
+        .to_degrees();
     // The point follower sees the flank itself.
     let (flank, _) = ramp.slope(1.025, 0.0);
     let flank_deg = flank.atan().to_degrees();
     assert!((flank_deg - 45.0).abs() < 1e-9);
-    assert!(max_deg_ramp < 30.0, "ramp: largest effective slope {max_deg_ramp} deg");
+    assert!(
+        max_deg_ramp < 30.0,
+        "ramp: largest effective slope {max_deg_ramp} deg"
+    );
 
     // --- independent reference: one tandem, brute-force cams, several positions.
     let single = {
@@ -122,7 +156,12 @@ fn step_and_ramp_enveloping() {
             let e = single.effective(road, [x, 0.0], [1.0, 0.0], [0.0, 1.0]);
             let wf = brute_cam(road, &p, x + 0.5 * single.l_s);
             let wr = brute_cam(road, &p, x - 0.5 * single.l_s);
-            assert!((e.height - 0.5 * (wf + wr)).abs() < 2e-6, "x = {x}: {} vs {}", e.height, 0.5 * (wf + wr));
+            assert!(
+                (e.height - 0.5 * (wf + wr)).abs() < 2e-6,
+                "x = {x}: {} vs {}",
+                e.height,
+                0.5 * (wf + wr)
+            );
             assert!(
                 (e.tan_slope - (wf - wr) / single.l_s).abs() < 5e-5,
                 "x = {x}: slope {} vs {}",
@@ -141,8 +180,14 @@ fn step_and_ramp_enveloping() {
             worst = ((fd - r.dw[i]).abs(), r.x[i]);
         }
     }
-    println!("worst dw/ds difference {:.2e} at x = {:.4}", worst.0, worst.1);
-    assert!(worst.0 < 1e-3, "dw/ds differs from differences by {worst:?}");
+    println!(
+        "worst dw/ds difference {:.2e} at x = {:.4}",
+        worst.0, worst.1
+    );
+    assert!(
+        worst.0 < 1e-3,
+        "dw/ds differs from differences by {worst:?}"
+    );
 
     println!(
         "enveloping: step first rise {:.4} m, max slope {max_deg_step:.2} deg; ramp max slope {max_deg_ramp:.2} deg (flank {flank_deg:.1} deg), l_s {:.4} m, cam a {:.4} b {:.4} m",
@@ -160,7 +205,11 @@ fn step_and_ramp_enveloping() {
         lines: vec![
             Line {
                 label: "road under the centre (point follower)".into(),
-                points: c.x.iter().map(|&x| (x, road.height(x, 0.0) * 1e3)).collect(),
+                points: c
+                    .x
+                    .iter()
+                    .map(|&x| (x, road.height(x, 0.0) * 1e3))
+                    .collect(),
             },
             Line {
                 label: "effective height (tandem cams)".into(),
@@ -175,11 +224,20 @@ fn step_and_ramp_enveloping() {
         lines: vec![
             Line {
                 label: "road under the centre (point follower)".into(),
-                points: c.x.iter().map(|&x| (x, road.slope(x, 0.0).0.atan().to_degrees())).collect(),
+                points: c
+                    .x
+                    .iter()
+                    .map(|&x| (x, road.slope(x, 0.0).0.atan().to_degrees()))
+                    .collect(),
             },
             Line {
                 label: "effective slope (tandem cams)".into(),
-                points: c.x.iter().zip(&c.tan).map(|(&x, &t)| (x, t.atan().to_degrees())).collect(),
+                points: c
+                    .x
+                    .iter()
+                    .zip(&c.tan)
+                    .map(|(&x, &t)| (x, t.atan().to_degrees()))
+                    .collect(),
             },
         ],
     };

@@ -18,7 +18,10 @@ fn contact_intervals(kind: TyreKind, mass: f64) {
     let opts = rig_options(&rig.tyre, 1e-5, &[1e-6, 1e-4, 1e-3]);
     let t_end = 1.5;
     let run = rig.run(None, t_end, 1e-4, &opts).unwrap();
-    assert!(run.samples.iter().all(|s| s.normal_force_n >= 0.0), "tensile contact force");
+    assert!(
+        run.samples.iter().all(|s| s.normal_force_n >= 0.0),
+        "tensile contact force"
+    );
     // Contact changes along the run.
     let mut changes = Vec::new();
     let mut on = true;
@@ -43,9 +46,18 @@ fn contact_intervals(kind: TyreKind, mass: f64) {
     println!("  longest flight {longest:.3} s; flights {flights:.3?}");
     assert!(longest > 0.01, "no real flight");
     assert!(on, "the wheel did not land again before {t_end} s");
-    assert!(changes.len() <= 8, "chatter: {} contact changes", changes.len());
+    assert!(
+        changes.len() <= 8,
+        "chatter: {} contact changes",
+        changes.len()
+    );
     // After landing it carries its weight again: mean load over the last 0.2 s.
-    let tail: Vec<f64> = run.samples.iter().filter(|s| s.t_s > t_end - 0.2).map(|s| s.hub_fz_n).collect();
+    let tail: Vec<f64> = run
+        .samples
+        .iter()
+        .filter(|s| s.t_s > t_end - 0.2)
+        .map(|s| s.hub_fz_n)
+        .collect();
     let mean = tail.iter().sum::<f64>() / tail.len() as f64;
     let weight = -mass * rig.gravity;
     println!("  mean rim load over the last 0.2 s {mean:.1} N (rim weight {weight:.1} N)");

@@ -16,9 +16,14 @@ fn free_rolling(file: &str, kind: TyreKind, load: f64, speed: f64) {
     let rig = CleatRig::new(tyre, road, speed, 0.0, load, Spin::Free, 0.6);
     let opts = rig_options(&rig.tyre, 1e-6, &[1e-3]);
     let run = rig.run(2.0, 1e-3, &opts).unwrap();
-    let max_fx = run.samples.iter().map(|s| s.hub_fx_n.abs().max(s.long_force_n.abs())).fold(0.0, f64::max);
+    let max_fx = run
+        .samples
+        .iter()
+        .map(|s| s.hub_fx_n.abs().max(s.long_force_n.abs()))
+        .fold(0.0, f64::max);
     let re: Vec<f64> = run.samples.iter().map(|s| speed / s.omega_rad_s).collect();
-    let drift = re.iter().cloned().fold(f64::MIN, f64::max) - re.iter().cloned().fold(f64::MAX, f64::min);
+    let drift =
+        re.iter().cloned().fold(f64::MIN, f64::max) - re.iter().cloned().fold(f64::MAX, f64::min);
 
     // MF rolling radius from the file: R_e = r0 Q_RE0 - rho0 (D atan(B rho/rho0) + F rho/rho0)
     // with rho0 = FNOMIN / Cz and the deflection rho = load / Cz (Q_V1 = 0 in these files).
@@ -44,17 +49,32 @@ fn free_rolling(file: &str, kind: TyreKind, load: f64, speed: f64) {
 
 #[test]
 fn car_tyre_rolls_freely() {
-    free_rolling("vehicles/tyres/car_185_60r14.tir", TyreKind::RigidRing, 3500.0, 50.0 / 3.6);
+    free_rolling(
+        "vehicles/tyres/car_185_60r14.tir",
+        TyreKind::RigidRing,
+        3500.0,
+        50.0 / 3.6,
+    );
 }
 
 #[test]
 fn trailer_tyre_rolls_freely() {
-    free_rolling("vehicles/tyres/trailer_155_80r13.tir", TyreKind::RigidRing, 1500.0, 50.0 / 3.6);
+    free_rolling(
+        "vehicles/tyres/trailer_155_80r13.tir",
+        TyreKind::RigidRing,
+        1500.0,
+        50.0 / 3.6,
+    );
 }
 
 #[test]
 fn point_follower_rolls_freely() {
-    free_rolling("vehicles/tyres/car_185_60r14.tir", TyreKind::PointFollower, 3500.0, 50.0 / 3.6);
+    free_rolling(
+        "vehicles/tyres/car_185_60r14.tir",
+        TyreKind::PointFollower,
+        3500.0,
+        50.0 / 3.6,
+    );
 }
 
 /// Rolling slowly over the 50 mm step with the rim free: the effective plane tilts, the
@@ -63,7 +83,11 @@ fn point_follower_rolls_freely() {
 /// effective plane creates no spurious longitudinal slip or tread force.
 #[test]
 fn slow_roll_over_a_step_makes_no_spurious_slip() {
-    let tyre = Tyre::from_file(Path::new("vehicles/tyres/car_185_60r14.tir"), TyreKind::RigidRing).unwrap();
+    let tyre = Tyre::from_file(
+        Path::new("vehicles/tyres/car_185_60r14.tir"),
+        TyreKind::RigidRing,
+    )
+    .unwrap();
     let road = Road::from_file(Path::new("roads/step_50mm.toml")).unwrap();
     let speed = 0.5;
     // Axle held 50 mm higher after the step is impossible on a cleat rig; use the quarter
@@ -82,14 +106,21 @@ fn slow_roll_over_a_step_makes_no_spurious_slip() {
         let lean = s.hub_fx_n + s.normal_force_n * beta.sin();
         worst_lean = worst_lean.max(lean.abs());
     }
-    let fz_max = run.samples.iter().map(|s| s.normal_force_n).fold(0.0, f64::max);
+    let fz_max = run
+        .samples
+        .iter()
+        .map(|s| s.normal_force_n)
+        .fold(0.0, f64::max);
     println!(
         "slow roll over the step: largest effective slope {:.1} deg, largest |slip| {worst_slip:.2e}, largest |Fx_hub + F_n sin(beta)| {worst_lean:.1} N (F_n up to {fz_max:.0} N)",
         max_beta.to_degrees()
     );
     assert!(max_beta.to_degrees() > 10.0, "the step was not climbed");
     assert!(worst_slip < 1e-3, "spurious slip {worst_slip}");
-    assert!(worst_lean < 0.02 * fz_max, "rim load does not follow the tilted normal: {worst_lean} N");
+    assert!(
+        worst_lean < 0.02 * fz_max,
+        "rim load does not follow the tilted normal: {worst_lean} N"
+    );
 }
 
 /// The rigid-ring tyre rolls over the CSV profile and the parry3d height field (the cams
@@ -102,19 +133,34 @@ fn rolls_over_profile_and_height_field_roads() {
         ("roads/profile_example.toml", 0.015, 0.8),
         ("roads/height_field_example.toml", 0.05, 0.95),
     ] {
-        let tyre = Tyre::from_file(Path::new("vehicles/tyres/car_185_60r14.tir"), TyreKind::RigidRing).unwrap();
+        let tyre = Tyre::from_file(
+            Path::new("vehicles/tyres/car_185_60r14.tir"),
+            TyreKind::RigidRing,
+        )
+        .unwrap();
         let road = Road::from_file(Path::new(file)).unwrap();
         let speed = 30.0 / 3.6;
         let rig = towride::tyre::rig::QuarterRig::new(tyre, road, speed, 0.0, 300.0, 0.6, 3000.0);
         let opts = rig_options(&rig.tyre, 1e-5, &[1e-6, 1e-4, 1e-3]);
         let run = rig.run(None, 4.0 / speed, 1e-3, &opts).unwrap();
-        let w_max = run.samples.iter().map(|s| s.effective_height_m).fold(f64::MIN, f64::max);
-        let road_max = run.samples.iter().map(|s| rig.road.height(s.x_m, 0.0)).fold(f64::MIN, f64::max);
+        let w_max = run
+            .samples
+            .iter()
+            .map(|s| s.effective_height_m)
+            .fold(f64::MIN, f64::max);
+        let road_max = run
+            .samples
+            .iter()
+            .map(|s| rig.road.height(s.x_m, 0.0))
+            .fold(f64::MIN, f64::max);
         println!(
             "{file}: {} steps, road peak under the centre {road_max:.4} m, effective height peak {w_max:.4} m",
             run.stats.steps
         );
         assert!((road_max - peak).abs() < 1e-3);
-        assert!(w_max <= road_max + 1e-9 && w_max > ratio * road_max, "{w_max} vs {road_max}");
+        assert!(
+            w_max <= road_max + 1e-9 && w_max > ratio * road_max,
+            "{w_max} vs {road_max}"
+        );
     }
 }

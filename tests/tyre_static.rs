@@ -37,13 +37,31 @@ fn stiffness(file: &str, kind: TyreKind) {
         let (_, run) = drop(file, kind, mass, 0.10);
         let s = run.samples.last().unwrap();
         // Bounced: it left the road again after the first touch-down.
-        let first = run.samples.iter().position(|s| s.normal_force_n > 0.0).unwrap();
-        let touch = run.samples[first..].iter().position(|s| s.normal_force_n > 1000.0).unwrap() + first;
-        let airborne = run.samples[touch..].iter().filter(|s| s.normal_force_n == 0.0).count();
-        assert!(airborne > 0, "{file} {kind:?} {mass} kg: never left the road after landing");
+        let first = run
+            .samples
+            .iter()
+            .position(|s| s.normal_force_n > 0.0)
+            .unwrap();
+        let touch = run.samples[first..]
+            .iter()
+            .position(|s| s.normal_force_n > 1000.0)
+            .unwrap()
+            + first;
+        let airborne = run.samples[touch..]
+            .iter()
+            .filter(|s| s.normal_force_n == 0.0)
+            .count();
+        assert!(
+            airborne > 0,
+            "{file} {kind:?} {mass} kg: never left the road after landing"
+        );
         // Settled: the last 0.5 s move less than 1 um.
-        let tail: Vec<f64> = run.samples[run.samples.len() - 500..].iter().map(|s| s.z_m).collect();
-        let spread = tail.iter().cloned().fold(f64::MIN, f64::max) - tail.iter().cloned().fold(f64::MAX, f64::min);
+        let tail: Vec<f64> = run.samples[run.samples.len() - 500..]
+            .iter()
+            .map(|s| s.z_m)
+            .collect();
+        let spread = tail.iter().cloned().fold(f64::MIN, f64::max)
+            - tail.iter().cloned().fold(f64::MAX, f64::min);
         assert!(spread < 1e-6, "{file}: not settled, spread {spread}");
         let weight = (mass + belt) * g;
         let deflection = r0 - s.z_m;
@@ -56,11 +74,17 @@ fn stiffness(file: &str, kind: TyreKind) {
             run.stats.steps,
             airborne
         );
-        assert!((deflection / expected - 1.0).abs() < 0.01, "{file}: deflection {deflection} vs {expected}");
+        assert!(
+            (deflection / expected - 1.0).abs() < 0.01,
+            "{file}: deflection {deflection} vs {expected}"
+        );
         settled.push((weight, s.z_m));
     }
     let k = (settled[1].0 - settled[0].0) / (settled[0].1 - settled[1].1);
-    println!("{file} {kind:?}: static stiffness {k:.1} N/m vs file {cz} N/m ({:+.4} %)", 100.0 * (k / cz - 1.0));
+    println!(
+        "{file} {kind:?}: static stiffness {k:.1} N/m vs file {cz} N/m ({:+.4} %)",
+        100.0 * (k / cz - 1.0)
+    );
     assert!((k / cz - 1.0).abs() < 0.01, "{file}: stiffness {k} vs {cz}");
 }
 

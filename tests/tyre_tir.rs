@@ -13,27 +13,46 @@ const CAR: &str = "vehicles/tyres/car_185_60r14.tir";
 
 fn edited(from: &str, to: &str) -> (String, usize) {
     let text = std::fs::read_to_string(CAR).unwrap();
-    let line = text.lines().position(|l| l.starts_with(from)).expect("line present") + 1;
+    let line = text
+        .lines()
+        .position(|l| l.starts_with(from))
+        .expect("line present")
+        + 1;
     let out: Vec<String> = text
         .lines()
-        .map(|l| if l.starts_with(from) { to.to_string() } else { l.to_string() })
+        .map(|l| {
+            if l.starts_with(from) {
+                to.to_string()
+            } else {
+                l.to_string()
+            }
+        })
         .collect();
     (out.join("\n") + "\n", line)
 }
 
 fn section_line(text: &str, section: &str) -> usize {
-    text.lines().position(|l| l.trim() == format!("[{section}]")).unwrap() + 1
+    text.lines()
+        .position(|l| l.trim() == format!("[{section}]"))
+        .unwrap()
+        + 1
 }
 
 #[test]
 fn negative_stiffness_is_refused_at_its_line() {
-    let (text, line) = edited("VERTICAL_STIFFNESS", "VERTICAL_STIFFNESS       = -200000   $ typo");
+    let (text, line) = edited(
+        "VERTICAL_STIFFNESS",
+        "VERTICAL_STIFFNESS       = -200000   $ typo",
+    );
     let path = Path::new("bad_stiffness.tir");
     let e = TyreParams::from_tir(&TirFile::parse(path, &text).unwrap()).unwrap_err();
     let msg = e.to_string();
     println!("{msg}");
     assert_eq!(e.line, Some(line));
-    assert!(msg.starts_with(&format!("bad_stiffness.tir:{line}:")), "{msg}");
+    assert!(
+        msg.starts_with(&format!("bad_stiffness.tir:{line}:")),
+        "{msg}"
+    );
     assert!(msg.contains("VERTICAL.VERTICAL_STIFFNESS"), "{msg}");
     assert!(msg.contains("must be positive"), "{msg}");
 }
@@ -56,7 +75,10 @@ fn missing_key_is_refused_at_its_section() {
 fn errors_from_a_real_file_name_it() {
     let dir = std::env::temp_dir().join(format!("towride-tir-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let (text, line) = edited("BELT_MASS", "BELT_MASS                = 9.0   $ more than the tyre");
+    let (text, line) = edited(
+        "BELT_MASS",
+        "BELT_MASS                = 9.0   $ more than the tyre",
+    );
     let file = dir.join("heavy_belt.tir");
     std::fs::write(&file, text).unwrap();
     let e = Tyre::from_file(&file, TyreKind::RigidRing).unwrap_err();
@@ -66,9 +88,13 @@ fn errors_from_a_real_file_name_it() {
     assert_eq!(e.field, "INERTIA.BELT_MASS");
     // Out-of-range physics: a ring too soft for the tyre's vertical stiffness.
     let (text, line) = edited("FREQ_LONG", "FREQ_LONG                = 20.0");
-    let e = TyreParams::from_tir(&TirFile::parse(Path::new("soft.tir"), &text).unwrap()).unwrap_err();
+    let e =
+        TyreParams::from_tir(&TirFile::parse(Path::new("soft.tir"), &text).unwrap()).unwrap_err();
     println!("{e}");
-    assert_eq!((e.line, e.field.as_str()), (Some(line), "STRUCTURAL.FREQ_LONG"));
+    assert_eq!(
+        (e.line, e.field.as_str()),
+        (Some(line), "STRUCTURAL.FREQ_LONG")
+    );
     // Non-SI units are refused.
     let (text, line) = edited("LENGTH", "LENGTH                   = 'mm'");
     let e = TyreParams::from_tir(&TirFile::parse(Path::new("mm.tir"), &text).unwrap()).unwrap_err();

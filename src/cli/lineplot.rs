@@ -53,8 +53,14 @@ fn draw<DB: DrawingBackend>(
             continue;
         }
         let range = |v: &mut dyn Iterator<Item = f64>| {
-            let (lo, hi) = v.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x), b.max(x)));
-            let pad = if hi > lo { 0.05 * (hi - lo) } else { 1.0_f64.max(hi.abs() * 0.1) };
+            let (lo, hi) = v.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+                (a.min(x), b.max(x))
+            });
+            let pad = if hi > lo {
+                0.05 * (hi - lo)
+            } else {
+                1.0_f64.max(hi.abs() * 0.1)
+            };
             (lo - pad)..(hi + pad)
         };
         let xr = range(&mut pts.iter().map(|p| p.0));
@@ -77,10 +83,15 @@ fn draw<DB: DrawingBackend>(
         for (i, l) in panel.lines.iter().enumerate() {
             let colour = Palette99::pick(i).to_rgba();
             chart
-                .draw_series(LineSeries::new(l.points.iter().copied(), colour.stroke_width(2)))
+                .draw_series(LineSeries::new(
+                    l.points.iter().copied(),
+                    colour.stroke_width(2),
+                ))
                 .map_err(|x| e(&x))?
                 .label(l.label.clone())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], colour.stroke_width(2)));
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 16, y)], colour.stroke_width(2))
+                });
         }
         chart
             .configure_series_labels()

@@ -52,12 +52,17 @@ struct Summary {
 pub fn run(a: &TyreRigArgs) -> Result<i32, String> {
     let case = RigCase::from_file(&a.file).map_err(|e| e.to_string())?;
     let rtol = a.rtol.unwrap_or(case.rtol);
-    let run = case.run(Some(rtol)).map_err(|e| format!("{}: {e}", a.file.display()))?;
+    let run = case
+        .run(Some(rtol))
+        .map_err(|e| format!("{}: {e}", a.file.display()))?;
     let (rig, tyre, road) = match &case.setup {
         RigSetup::Cleat { rig, .. } => ("cleat", &rig.tyre, &rig.road),
         RigSetup::Quarter { rig, .. } => ("quarter", &rig.tyre, &rig.road),
     };
-    let name = a.file.file_stem().map_or("rig".into(), |s| s.to_string_lossy().to_string());
+    let name = a
+        .file
+        .file_stem()
+        .map_or("rig".into(), |s| s.to_string_lossy().to_string());
     let (mut csv, mut png) = (None, None);
     if let Some(dir) = &a.out {
         std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
@@ -70,9 +75,21 @@ pub fn run(a: &TyreRigArgs) -> Result<i32, String> {
     }
     let s = &run.samples;
     let fold = |f: &dyn Fn(&crate::tyre::rig::RigSample) -> f64, max: bool| {
-        s.iter().map(f).fold(if max { f64::MIN } else { f64::MAX }, |a, b| if max { a.max(b) } else { a.min(b) })
+        s.iter()
+            .map(f)
+            .fold(if max { f64::MIN } else { f64::MAX }, |a, b| {
+                if max {
+                    a.max(b)
+                } else {
+                    a.min(b)
+                }
+            })
     };
-    let dt = if s.len() > 1 { s[1].t_s - s[0].t_s } else { 0.0 };
+    let dt = if s.len() > 1 {
+        s[1].t_s - s[0].t_s
+    } else {
+        0.0
+    };
     let last = s.last().ok_or("no output")?;
     let sum = Summary {
         file: a.file.display().to_string(),
@@ -97,7 +114,10 @@ pub fn run(a: &TyreRigArgs) -> Result<i32, String> {
         png,
     };
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&sum).map_err(|e| e.to_string())?);
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&sum).map_err(|e| e.to_string())?
+        );
     } else {
         println!("{} ({} rig), tyre {}", sum.file, sum.rig, sum.tyre);
         println!("road: {}", sum.road);

@@ -33,7 +33,12 @@ pub struct HeightField {
 
 impl std::fmt::Debug for HeightField {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "HeightField({} x {} nodes)", self.xs.len(), self.ys.len())
+        write!(
+            f,
+            "HeightField({} x {} nodes)",
+            self.xs.len(),
+            self.ys.len()
+        )
     }
 }
 
@@ -42,12 +47,20 @@ impl HeightField {
     pub fn new(xs: Vec<f64>, ys: Vec<f64>, z: Vec<f64>) -> Result<HeightField, String> {
         let (nx, ny) = (xs.len(), ys.len());
         if nx < 2 || ny < 2 {
-            return Err(format!("a height field needs at least 2 x 2 nodes, got {nx} x {ny}"));
+            return Err(format!(
+                "a height field needs at least 2 x 2 nodes, got {nx} x {ny}"
+            ));
         }
         if z.len() != nx * ny {
             return Err(format!("{} heights for a {nx} x {ny} grid", z.len()));
         }
-        if xs.windows(2).any(|w| !(w[1] > w[0])) || ys.windows(2).any(|w| !(w[1] > w[0])) {
+        if xs
+            .windows(2)
+            .any(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater))
+            || ys
+                .windows(2)
+                .any(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater))
+        {
             return Err("grid coordinates must increase strictly".into());
         }
         if let Some(v) = z.iter().find(|v| !v.is_finite()) {
@@ -109,13 +122,18 @@ impl HeightField {
             .clone();
         let col = |name: &str| -> Result<usize, InputError> {
             headers.iter().position(|h| h == name).ok_or_else(|| {
-                err(Some(1), name, format!("missing column (need x_m, y_m, z_m; found {headers:?})"))
+                err(
+                    Some(1),
+                    name,
+                    format!("missing column (need x_m, y_m, z_m; found {headers:?})"),
+                )
             })
         };
         let (cx, cy, cz) = (col("x_m")?, col("y_m")?, col("z_m")?);
         let mut pts = Vec::new();
         for rec in rdr.records() {
-            let rec = rec.map_err(|e| err(e.position().map(|p| p.line() as usize), "", e.to_string()))?;
+            let rec =
+                rec.map_err(|e| err(e.position().map(|p| p.line() as usize), "", e.to_string()))?;
             let line = rec.position().map(|p| p.line() as usize);
             let num = |c: usize, name: &str| -> Result<f64, InputError> {
                 let v: f64 = rec
@@ -143,7 +161,10 @@ impl HeightField {
             return Err(err(
                 None,
                 "",
-                format!("{} rows do not fill the {nx} x {ny} grid of their coordinates", pts.len()),
+                format!(
+                    "{} rows do not fill the {nx} x {ny} grid of their coordinates",
+                    pts.len()
+                ),
             ));
         }
         let mut z = vec![f64::NAN; nx * ny];
@@ -163,7 +184,10 @@ impl HeightField {
 
     fn clamp_xy(&self, x: f64, y: f64) -> (f64, f64) {
         let (nx, ny) = (self.xs.len(), self.ys.len());
-        (x.clamp(self.xs[0], self.xs[nx - 1]), y.clamp(self.ys[0], self.ys[ny - 1]))
+        (
+            x.clamp(self.xs[0], self.xs[nx - 1]),
+            y.clamp(self.ys[0], self.ys[ny - 1]),
+        )
     }
 
     /// Vertical ray cast onto the mesh: height and upward normal.
@@ -171,9 +195,16 @@ impl HeightField {
         let (x, y) = self.clamp_xy(x, y);
         let start = self.z_top + 1.0;
         let ray = Ray::new(Point::new(x, y, start), Vector::new(0.0, 0.0, -1.0));
-        match self.mesh.cast_local_ray_and_get_normal(&ray, f64::MAX, false) {
+        match self
+            .mesh
+            .cast_local_ray_and_get_normal(&ray, f64::MAX, false)
+        {
             Some(hit) => {
-                let n = if hit.normal.z < 0.0 { -hit.normal } else { hit.normal };
+                let n = if hit.normal.z < 0.0 {
+                    -hit.normal
+                } else {
+                    hit.normal
+                };
                 (start - hit.time_of_impact, n)
             }
             // Only on the very border can floating point miss the mesh: use the bilinear
@@ -183,8 +214,16 @@ impl HeightField {
     }
 
     fn cell(&self, x: f64, y: f64) -> (usize, usize) {
-        let i = self.xs.partition_point(|&v| v <= x).clamp(1, self.xs.len() - 1) - 1;
-        let j = self.ys.partition_point(|&v| v <= y).clamp(1, self.ys.len() - 1) - 1;
+        let i = self
+            .xs
+            .partition_point(|&v| v <= x)
+            .clamp(1, self.xs.len() - 1)
+            - 1;
+        let j = self
+            .ys
+            .partition_point(|&v| v <= y)
+            .clamp(1, self.ys.len() - 1)
+            - 1;
         (i, j)
     }
 
@@ -194,7 +233,10 @@ impl HeightField {
         let u = (x - self.xs[i]) / (self.xs[i + 1] - self.xs[i]);
         let v = (y - self.ys[j]) / (self.ys[j + 1] - self.ys[j]);
         let z = |a: usize, b: usize| self.z[(j + b) * nx + i + a];
-        (1.0 - u) * (1.0 - v) * z(0, 0) + u * (1.0 - v) * z(1, 0) + (1.0 - u) * v * z(0, 1) + u * v * z(1, 1)
+        (1.0 - u) * (1.0 - v) * z(0, 0)
+            + u * (1.0 - v) * z(1, 0)
+            + (1.0 - u) * v * z(0, 1)
+            + u * v * z(1, 1)
     }
 
     pub fn height(&self, x: f64, y: f64) -> f64 {

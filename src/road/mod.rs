@@ -273,7 +273,14 @@ impl Road {
 }
 
 /// Appends s where the line p + s d crosses x = xk, for s in [s0, s1].
-pub(crate) fn push_x_crossing(p: [f64; 2], d: [f64; 2], xk: f64, s0: f64, s1: f64, out: &mut Vec<f64>) {
+pub(crate) fn push_x_crossing(
+    p: [f64; 2],
+    d: [f64; 2],
+    xk: f64,
+    s0: f64,
+    s1: f64,
+    out: &mut Vec<f64>,
+) {
     if d[0].abs() < 1e-12 {
         return;
     }
@@ -284,7 +291,14 @@ pub(crate) fn push_x_crossing(p: [f64; 2], d: [f64; 2], xk: f64, s0: f64, s1: f6
 }
 
 /// Appends s where the line p + s d crosses y = yk, for s in [s0, s1].
-pub(crate) fn push_y_crossing(p: [f64; 2], d: [f64; 2], yk: f64, s0: f64, s1: f64, out: &mut Vec<f64>) {
+pub(crate) fn push_y_crossing(
+    p: [f64; 2],
+    d: [f64; 2],
+    yk: f64,
+    s0: f64,
+    s1: f64,
+    out: &mut Vec<f64>,
+) {
     if d[1].abs() < 1e-12 {
         return;
     }

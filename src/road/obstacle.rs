@@ -45,7 +45,12 @@ pub enum Shape {
     /// Trapezoid: rises from x0 to x1, plateau to x2, falls to x3; `h` high.
     Ramp { x: [f64; 4], h: f64 },
     /// Circular segment over the chord [x0, x0 + chord], `h` high at the middle.
-    Bump { x0: f64, chord: f64, h: f64, radius: f64 },
+    Bump {
+        x0: f64,
+        chord: f64,
+        h: f64,
+        radius: f64,
+    },
     /// A step of height `h` (either sign) at x0, continuing to +infinity.
     Step { x0: f64, h: f64 },
 }
@@ -60,7 +65,7 @@ impl Obstacle {
         flank_angle_deg: f64,
         base: f64,
     ) -> Result<Obstacle, String> {
-        if !(height > 0.0) {
+        if height.is_nan() || height <= 0.0 {
             return Err(format!("ramp height must be positive, got {height}"));
         }
         if !(flank_angle_deg > 0.0 && flank_angle_deg <= 90.0) {
@@ -77,13 +82,18 @@ impl Obstacle {
             LengthAt::Base => length - 2.0 * run,
             LengthAt::Top => length,
         };
-        if !(top >= 0.0) || !(length > 0.0) {
+        if top.is_nan() || top < 0.0 || length.is_nan() || length <= 0.0 {
             return Err(format!(
                 "length {length} m measured at the {} leaves no plateau with {run:.4} m flanks",
                 if at == LengthAt::Base { "base" } else { "top" }
             ));
         }
-        let x = [start, start + run, start + run + top, start + 2.0 * run + top];
+        let x = [
+            start,
+            start + run,
+            start + run + top,
+            start + 2.0 * run + top,
+        ];
         Ok(Obstacle {
             shape: Shape::Ramp { x, h: height },
             base,
@@ -125,7 +135,10 @@ impl Obstacle {
             return Err(format!("step height must be non-zero, got {height}"));
         }
         Ok(Obstacle {
-            shape: Shape::Step { x0: start, h: height },
+            shape: Shape::Step {
+                x0: start,
+                h: height,
+            },
             base,
             y_min: f64::NEG_INFINITY,
             y_max: f64::INFINITY,
@@ -168,7 +181,12 @@ impl Obstacle {
                     h * (p[3] - x) / (p[3] - p[2])
                 }
             }
-            Shape::Bump { x0, chord, h, radius } => {
+            Shape::Bump {
+                x0,
+                chord,
+                h,
+                radius,
+            } => {
                 let u = x - (x0 + chord / 2.0);
                 (radius * radius - u * u).max(0.0).sqrt() - (radius - h)
             }
@@ -192,7 +210,9 @@ impl Obstacle {
                     -h / (p[3] - p[2])
                 }
             }
-            Shape::Bump { x0, chord, radius, .. } => {
+            Shape::Bump {
+                x0, chord, radius, ..
+            } => {
                 let u = x - (x0 + chord / 2.0);
                 -u / (radius * radius - u * u).max(1e-300).sqrt()
             }
@@ -351,7 +371,7 @@ impl ObstacleToml {
         if let Some(y) = y_max {
             o.y_max = src.finite(&at("y_max_m"), *y)?;
         }
-        if !(o.y_min < o.y_max) {
+        if o.y_min >= o.y_max || o.y_min.is_nan() || o.y_max.is_nan() {
             return Err(src.error(&at("y_max_m"), "must be above y_min_m"));
         }
         Ok(o)

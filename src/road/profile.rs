@@ -35,10 +35,10 @@ impl TrackProfile {
         if x.len() < 2 || left.len() != x.len() || right.len() != x.len() {
             return Err("a profile needs at least two points with both tracks".into());
         }
-        if let Some(i) = (1..x.len()).find(|&i| !(x[i] > x[i - 1])) {
+        if let Some(i) = (1..x.len()).find(|&i| x[i].is_nan() || x[i] <= x[i - 1]) {
             return Err(format!("x must increase strictly (point {i})"));
         }
-        if !(track_width > 0.0) {
+        if track_width.is_nan() || track_width <= 0.0 {
             return Err(format!("track width must be positive, got {track_width}"));
         }
         Ok(TrackProfile {
@@ -85,9 +85,8 @@ impl TrackProfile {
         let (cx, cl, cr) = (col("x_m")?, col("z_left_m")?, col("z_right_m")?);
         let (mut x, mut l, mut r) = (Vec::new(), Vec::new(), Vec::new());
         for rec in rdr.records() {
-            let rec = rec.map_err(|e| {
-                err(e.position().map(|p| p.line() as usize), "", e.to_string())
-            })?;
+            let rec =
+                rec.map_err(|e| err(e.position().map(|p| p.line() as usize), "", e.to_string()))?;
             let line = rec.position().map(|p| p.line() as usize);
             let num = |c: usize, name: &str| -> Result<f64, InputError> {
                 let v: f64 = rec
@@ -103,16 +102,20 @@ impl TrackProfile {
             };
             let xi = num(cx, "x_m")?;
             if let Some(&prev) = x.last() {
-                if !(xi > prev) {
-                    return Err(err(line, "x_m", format!("must increase strictly ({xi} after {prev})")));
+                if xi <= prev {
+                    return Err(err(
+                        line,
+                        "x_m",
+                        format!("must increase strictly ({xi} after {prev})"),
+                    ));
                 }
             }
             x.push(xi);
             l.push(num(cl, "z_left_m")?);
             r.push(num(cr, "z_right_m")?);
         }
-        let mut p = TrackProfile::new(x, l, r, track_width, outside)
-            .map_err(|m| err(None, "", m))?;
+        let mut p =
+            TrackProfile::new(x, l, r, track_width, outside).map_err(|m| err(None, "", m))?;
         p.file = file.to_path_buf();
         Ok(p)
     }

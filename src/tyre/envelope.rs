@@ -86,7 +86,11 @@ impl TandemCams {
     pub fn contour_slope(&self, xi: f64) -> f64 {
         let u = (xi.abs() / self.a).min(1.0 - 1e-12);
         if u == 0.0 {
-            return if self.c > 1.0 { 0.0 } else { -self.b / self.a * xi.signum() };
+            return if self.c > 1.0 {
+                0.0
+            } else {
+                -self.b / self.a * xi.signum()
+            };
         }
         -(self.b / self.a)
             * xi.signum()
@@ -95,7 +99,14 @@ impl TandemCams {
     }
 
     /// Lowest point w of one cam centred at p + s d, and dw/ds.
-    pub fn cam(&self, road: &Road, p: [f64; 2], d: [f64; 2], s: f64, kinks: &mut Vec<f64>) -> (f64, f64, bool) {
+    pub fn cam(
+        &self,
+        road: &Road,
+        p: [f64; 2],
+        d: [f64; 2],
+        s: f64,
+        kinks: &mut Vec<f64>,
+    ) -> (f64, f64, bool) {
         let (s0, s1) = (s - self.xi_max, s + self.xi_max);
         let (xa, xb) = (p[0] + s0 * d[0], p[0] + s1 * d[0]);
         let (ya, yb) = (p[1] + s0 * d[1], p[1] + s1 * d[1]);
@@ -146,7 +157,13 @@ impl TandemCams {
 
     /// The effective road under a wheel whose centre projects to `centre` (x, y), heading
     /// along the unit vector `heading` and with the lateral unit vector `lateral`.
-    pub fn effective(&self, road: &Road, centre: [f64; 2], heading: [f64; 2], lateral: [f64; 2]) -> EffectiveRoad {
+    pub fn effective(
+        &self,
+        road: &Road,
+        centre: [f64; 2],
+        heading: [f64; 2],
+        lateral: [f64; 2],
+    ) -> EffectiveRoad {
         let mut kinks = Vec::new();
         let (mut w, mut tan, mut dw, mut dtan) = (0.0, 0.0, 0.0, 0.0);
         let mut flat = true;

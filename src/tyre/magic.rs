@@ -56,10 +56,21 @@ impl MfLongitudinal {
                 t.f64(SEC, "PEX3")?,
                 t.f64(SEC, "PEX4")?,
             ],
-            pkx: [t.positive(SEC, "PKX1")?, t.f64(SEC, "PKX2")?, t.f64(SEC, "PKX3")?],
+            pkx: [
+                t.positive(SEC, "PKX1")?,
+                t.f64(SEC, "PKX2")?,
+                t.f64(SEC, "PKX3")?,
+            ],
             phx: [t.f64(SEC, "PHX1")?, t.f64(SEC, "PHX2")?],
             pvx: [t.f64(SEC, "PVX1")?, t.f64(SEC, "PVX2")?],
-            scale: [sc("LCX")?, sc("LMUX")?, sc("LEX")?, sc("LKX")?, sc("LHX")?, sc("LVX")?],
+            scale: [
+                sc("LCX")?,
+                sc("LMUX")?,
+                sc("LEX")?,
+                sc("LKX")?,
+                sc("LHX")?,
+                sc("LVX")?,
+            ],
         };
         // The friction coefficient must stay positive up to twice the nominal load.
         for dfz in [-1.0, 1.0] {
@@ -131,7 +142,9 @@ mod tests {
         assert_eq!(m.force(0.0, 4000.0), 0.0);
         assert_eq!(m.force(0.3, 0.0), 0.0);
         // The peak is D = mu F_z.
-        let peak = (1..400).map(|i| m.force(i as f64 * 0.0025, 4000.0)).fold(0.0, f64::max);
+        let peak = (1..400)
+            .map(|i| m.force(i as f64 * 0.0025, 4000.0))
+            .fold(0.0, f64::max);
         assert!((peak / (1.1 * 4000.0) - 1.0).abs() < 1e-3, "{peak}");
     }
 }

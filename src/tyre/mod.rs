@@ -38,21 +38,31 @@
 //! road plane has slope angle beta (positive uphill along e_x), normal
 //! n = -sin(beta) e_x + cos(beta) z and tangent t = cos(beta) e_x + sin(beta) z.
 //!
-//! # Rigid-ring states (`ring::idx`)
+//! # Rigid-ring states (`ring::idx`), all differential
 //!
-//! | # | name | kind | meaning |
-//! |---|---|---|---|
-//! | 0, 1 | ring_x_m, ring_z_m | differential | ring centre minus wheel centre along e_x, e_z |
-//! | 2 | windup_rad | differential | ring rotation minus rim rotation |
-//! | 3, 4 | ring_vx_m_s, ring_vz_m_s | differential | ring centre velocity along e_x, e_z |
-//! | 5 | ring_omega_rad_s | differential | ring spin rate |
-//! | 6 | residual_u_m | differential | residual longitudinal spring deflection |
-//! | 7 | tread_u_m | differential | tread deflection, transient slip kappa' = u / a0 |
-//! | 8 | normal_force_n | algebraic, index 1 | normal contact force |
-//! | 9 | long_force_n | algebraic, index 1 | longitudinal contact force (Magic Formula) |
+//! | # | name | meaning |
+//! |---|---|---|
+//! | 0, 1 | ring_x_m, ring_z_m | ring centre minus wheel centre along e_x, e_z [m] |
+//! | 2 | windup_rad | ring rotation minus rim rotation [rad] |
+//! | 3, 4 | ring_vx_m_s, ring_vz_m_s | ring centre velocity along e_x, e_z [m/s] |
+//! | 5 | ring_omega_rad_s | ring spin rate [rad/s] |
+//! | 6 | residual_u_m | residual longitudinal spring deflection [m] |
+//! | 7 | tread_u_m | tread deflection, transient slip kappa' = u / a0 [m] |
 //!
-//! Point follower (`point::idx`): tread_u_m (differential), normal_force_n and
-//! long_force_n (algebraic, index 1).
+//! Point follower (`point::idx`): tread_u_m, kappa' = u / sigma (differential).
+//!
+//! The contact forces are not unknowns: they follow from the states and the road in every
+//! residual evaluation (see [`Tyre::outputs`]). On a road with kinks (obstacle edges) the
+//! effective road's rate jumps and so does the damper part of the normal force; kept
+//! inside the differential equations such a jump is only a kink of the states, which the
+//! BDF error control passes with a few step cuts, whereas an algebraic force unknown
+//! would jump and stall the step size (the error test cannot pass a jump).
+//!
+//! # Integration hints
+//!
+//! The integrator learns of the road only through the residual: limit the step so it cannot
+//! jump over an obstacle (the rigs use h_max = 0.1 / FREQ_LONG), or check
+//! [`crate::road::Road::is_flat`] over [`Tyre::reach`] ahead of the wheel.
 //!
 //! The equations are written out in `docs/road_tyre.md`.
 

@@ -134,10 +134,18 @@ impl TyreParams {
         let belt_iyy = t.positive("INERTIA", "BELT_IYY")?;
         let gravity = t.f64("INERTIA", "GRAVITY")?;
         if belt_mass >= mass {
-            return Err(t.error("INERTIA", "BELT_MASS", format!("must be below MASS ({mass} kg)")));
+            return Err(t.error(
+                "INERTIA",
+                "BELT_MASS",
+                format!("must be below MASS ({mass} kg)"),
+            ));
         }
         if belt_iyy >= iyy {
-            return Err(t.error("INERTIA", "BELT_IYY", format!("must be below IYY ({iyy} kg m^2)")));
+            return Err(t.error(
+                "INERTIA",
+                "BELT_IYY",
+                format!("must be below IYY ({iyy} kg m^2)"),
+            ));
         }
         let fnomin = t.positive("VERTICAL", "FNOMIN")?;
         let cz = t.positive("VERTICAL", "VERTICAL_STIFFNESS")?;
@@ -156,7 +164,11 @@ impl TyreParams {
         let q_ra1 = t.non_negative("CONTACT_PATCH", "Q_RA1")?;
         let q_ra2 = t.non_negative("CONTACT_PATCH", "Q_RA2")?;
         if q_ra1 + q_ra2 <= 0.0 {
-            return Err(t.error("CONTACT_PATCH", "Q_RA1", "Q_RA1 and Q_RA2 cannot both be zero"));
+            return Err(t.error(
+                "CONTACT_PATCH",
+                "Q_RA1",
+                "Q_RA1 and Q_RA2 cannot both be zero",
+            ));
         }
         let ellips_shift = t.positive("CONTACT_PATCH", "ELLIPS_SHIFT")?;
         let ellips_length = t.positive("CONTACT_PATCH", "ELLIPS_LENGTH")?;
@@ -166,7 +178,11 @@ impl TyreParams {
         let ellips_max_step = t.positive("CONTACT_PATCH", "ELLIPS_MAX_STEP")?;
         let nw = t.in_range("CONTACT_PATCH", "ELLIPS_NWIDTH", 1.0, 50.0)?;
         if nw.fract() != 0.0 {
-            return Err(t.error("CONTACT_PATCH", "ELLIPS_NWIDTH", format!("must be a whole number, got {nw}")));
+            return Err(t.error(
+                "CONTACT_PATCH",
+                "ELLIPS_NWIDTH",
+                format!("must be a whole number, got {nw}"),
+            ));
         }
         let mf = MfLongitudinal::from_tir(t, fnomin)?;
 
@@ -289,8 +305,8 @@ impl TyreParams {
     }
 }
 
-/// Half contact length at vertical deflection `rho` (MF-Swift: a = r0 (Q_RA2 rho/r0 +
-/// Q_RA1 sqrt(rho/r0)); Pacejka 2012 sec. 10.x).
+/// Half contact length at vertical deflection `rho`, the MF-Swift contact-length law
+/// a = r0 (Q_RA2 rho/r0 + Q_RA1 sqrt(rho/r0)) (Pacejka 2012, ch. 9-10).
 pub fn half_contact_length(r0: f64, q_ra1: f64, q_ra2: f64, rho: f64) -> f64 {
     let q = rho.max(0.0) / r0;
     r0 * (q_ra2 * q + q_ra1 * q.sqrt())

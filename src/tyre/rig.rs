@@ -9,8 +9,8 @@
 //!   moves forward at constant speed and spins freely. Unknowns: the tyre's states, then
 //!   the wheel centre height, its vertical velocity and the rim spin rate.
 //!
-//! The solver builds the iteration matrix by finite differences (the systems have 11 to
-//! 13 unknowns, below the dense limit). A rig file (TOML, read with
+//! The solver builds the iteration matrix by finite differences (the systems have 2 to
+//! 11 unknowns, below the dense limit). A rig file (TOML, read with
 //! [`crate::input::Source`]) names the tyre, the road and the rig; see
 //! `docs/road_tyre.md` and `scenes/tyre_rigs/`.
 
@@ -86,7 +86,14 @@ impl CleatRig {
 
     /// Consistent initial values: the tyre rolling freely on the road at `x0`.
     pub fn initial(&self) -> (Vec<f64>, Vec<f64>) {
-        let omega = free_rolling_spin(&self.tyre, &self.road, self.x0, self.z_axle, self.speed, 0.0);
+        let omega = free_rolling_spin(
+            &self.tyre,
+            &self.road,
+            self.x0,
+            self.z_axle,
+            self.speed,
+            0.0,
+        );
         let mut y = self.tyre.initial_state(&self.kin(0.0, omega), &self.road);
         y.push(omega);
         let yp = vec![0.0; y.len()];
@@ -190,10 +197,18 @@ impl QuarterRig {
         let road_z = self.road.height(self.x0, 0.0);
         let z = match drop {
             Some(d) => road_z + self.tyre.params().r0 + d,
-            None => height_for_load(&self.tyre, &self.road, self.x0, self.speed, self.total_weight()),
+            None => height_for_load(
+                &self.tyre,
+                &self.road,
+                self.x0,
+                self.speed,
+                self.total_weight(),
+            ),
         };
         let omega = free_rolling_spin(&self.tyre, &self.road, self.x0, z, self.speed, 0.0);
-        let mut y = self.tyre.initial_state(&self.kin(0.0, z, 0.0, omega), &self.road);
+        let mut y = self
+            .tyre
+            .initial_state(&self.kin(0.0, z, 0.0, omega), &self.road);
         y.extend([z, 0.0, omega]);
         let mut yp = vec![0.0; y.len()];
         // A dropped wheel starts in free fall.
@@ -218,7 +233,8 @@ impl DaeProblem for QuarterRig {
             .tyre
             .residual(t, &kin, &self.road, &y[..n], &yp[..n], &mut res[..n]);
         res[n] = yp[n] - vz;
-        res[n + 1] = (self.mass * yp[n + 1] - self.mass * self.gravity - hub.force.z + self.damper * vz)
+        res[n + 1] = (self.mass * yp[n + 1] - self.mass * self.gravity - hub.force.z
+            + self.damper * vz)
             / self.mass;
         res[n + 2] = (self.rim_iyy * yp[n + 2] - hub.torque.y) / self.rim_iyy;
     }
@@ -243,7 +259,11 @@ impl DaeProblem for QuarterRig {
 pub fn free_rolling_spin(tyre: &Tyre, road: &Road, x0: f64, z: f64, speed: f64, vz: f64) -> f64 {
     let mut omega = speed / tyre.params().r0;
     for _ in 0..30 {
-        let kin = WheelKinematics::upright(Vector3::new(x0, 0.0, z), Vector3::new(speed, 0.0, vz), omega);
+        let kin = WheelKinematics::upright(
+            Vector3::new(x0, 0.0, z),
+            Vector3::new(speed, 0.0, vz),
+            omega,
+        );
         let x = tyre.initial_state(&kin, road);
         let re = tyre.outputs(&kin, road, &x).rolling_radius;
         let next = speed / re;
@@ -260,7 +280,11 @@ pub fn height_for_load(tyre: &Tyre, road: &Road, x0: f64, speed: f64, load: f64)
     let p = tyre.params();
     let fz = |z: f64| {
         let omega = free_rolling_spin(tyre, road, x0, z, speed, 0.0);
-        let kin = WheelKinematics::upright(Vector3::new(x0, 0.0, z), Vector3::new(speed, 0.0, 0.0), omega);
+        let kin = WheelKinematics::upright(
+            Vector3::new(x0, 0.0, z),
+            Vector3::new(speed, 0.0, 0.0),
+            omega,
+        );
         let x = tyre.initial_state(&kin, road);
         tyre.outputs(&kin, road, &x).normal_force
     };
@@ -377,11 +401,23 @@ impl CleatRig {
 impl QuarterRig {
     /// Runs the rig (dropped from `drop` m above first contact, or from rest in
     /// equilibrium) to `t_end` with output every `dt`.
-    pub fn run(&self, drop: Option<f64>, t_end: f64, dt: f64, opts: &SolverOptions) -> Result<RigRun, SolverError> {
+    pub fn run(
+        &self,
+        drop: Option<f64>,
+        t_end: f64,
+        dt: f64,
+        opts: &SolverOptions,
+    ) -> Result<RigRun, SolverError> {
         let (y, yp) = self.initial(drop);
         let n = self.n;
         integrate(self, y, yp, t_end, dt, opts, |t, y| {
-            sample_of(&self.tyre, &self.road, t, &self.kin(t, y[n], y[n + 1], y[n + 2]), &y[..n])
+            sample_of(
+                &self.tyre,
+                &self.road,
+                t,
+                &self.kin(t, y[n], y[n + 1], y[n + 2]),
+                &y[..n],
+            )
         })
     }
 }
@@ -466,7 +502,9 @@ fn default_rtol() -> f64 {
 
 impl Default for SolverSection {
     fn default() -> Self {
-        SolverSection { rtol: default_rtol() }
+        SolverSection {
+            rtol: default_rtol(),
+        }
     }
 }
 
@@ -478,8 +516,15 @@ struct OutputSection {
 
 /// A rig read from a file, ready to run.
 pub enum RigSetup {
-    Cleat { rig: CleatRig, duration: f64 },
-    Quarter { rig: QuarterRig, duration: f64, drop: Option<f64> },
+    Cleat {
+        rig: CleatRig,
+        duration: f64,
+    },
+    Quarter {
+        rig: QuarterRig,
+        duration: f64,
+        drop: Option<f64>,
+    },
 }
 
 /// A rig file read and checked.
@@ -514,7 +559,15 @@ impl RigCase {
                 src.positive(&path!["rig", "load_n"], load_n)?;
                 src.positive(&path!["rig", "rim_iyy_kg_m2"], rim_iyy_kg_m2)?;
                 RigSetup::Cleat {
-                    rig: CleatRig::new(tyre, road, speed_m_s, start_x_m, load_n, spin, rim_iyy_kg_m2),
+                    rig: CleatRig::new(
+                        tyre,
+                        road,
+                        speed_m_s,
+                        start_x_m,
+                        load_n,
+                        spin,
+                        rim_iyy_kg_m2,
+                    ),
                     duration: duration_s,
                 }
             }
@@ -537,7 +590,15 @@ impl RigCase {
                     src.non_negative(&path!["rig", "drop_height_m"], d)?;
                 }
                 RigSetup::Quarter {
-                    rig: QuarterRig::new(tyre, road, speed_m_s, start_x_m, mass_kg, rim_iyy_kg_m2, damper_n_s_m),
+                    rig: QuarterRig::new(
+                        tyre,
+                        road,
+                        speed_m_s,
+                        start_x_m,
+                        mass_kg,
+                        rim_iyy_kg_m2,
+                        damper_n_s_m,
+                    ),
                     duration: duration_s,
                     drop: drop_height_m,
                 }
@@ -559,7 +620,11 @@ impl RigCase {
                 let opts = rig_options(&rig.tyre, rtol, &[1e-3]);
                 rig.run(*duration, self.dt, &opts)
             }
-            RigSetup::Quarter { rig, duration, drop } => {
+            RigSetup::Quarter {
+                rig,
+                duration,
+                drop,
+            } => {
                 let opts = rig_options(&rig.tyre, rtol, &[1e-6, 1e-4, 1e-3]);
                 rig.run(*drop, *duration, self.dt, &opts)
             }

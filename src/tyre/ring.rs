@@ -109,7 +109,9 @@ impl RigidRing {
         let vb = fr.ex * vbx + fr.ez * vbz + fr.ey * v_lat;
 
         // Effective road plane under the ring centre.
-        let env: EffectiveRoad = self.cams.effective(road, [pb.x, pb.y], fr.heading, fr.lateral);
+        let env: EffectiveRoad = self
+            .cams
+            .effective(road, [pb.x, pb.y], fr.heading, fr.lateral);
         let tan = env.tan_slope;
         let cosb = 1.0 / (1.0 + tan * tan).sqrt();
         let sinb = tan * cosb;
@@ -218,12 +220,11 @@ impl RigidRing {
             - (-d.c_theta * x[idx::THETA] - d.k_theta * (x[idx::OMEGA_B] - omega_w) + e.m_spin);
         // Massless patch: residual spring-damper force equals the tread force.
         res[idx::UR] = (d.k_rx * xdot[idx::UR] + d.c_rx * x[idx::UR] - e.f_x) / d.c_rx;
-        // Tread transient slip (Pacejka 2012 sec. 7.2 / 9.x, relaxation length a0): the
-        // patch slides at the ring's slip plus the residual spring's rate.
-        res[idx::UT] = xdot[idx::UT]
-            + e.v_slip
-            + xdot[idx::UR]
-            + e.v_roll.abs() / d.a0 * x[idx::UT];
+        // Tread transient slip (first-order relaxation, Pacejka 2012 sec. 7.2; the brush's
+        // relaxation length is the half contact length a0): the patch slides at the ring's
+        // slip plus the residual spring's rate.
+        res[idx::UT] =
+            xdot[idx::UT] + e.v_slip + xdot[idx::UR] + e.v_roll.abs() / d.a0 * x[idx::UT];
         e.hub
     }
 

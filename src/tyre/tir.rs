@@ -77,7 +77,10 @@ impl TirFile {
                 continue;
             }
             if line.starts_with('{') {
-                brace_depth = line.matches('{').count().saturating_sub(line.matches('}').count());
+                brace_depth = line
+                    .matches('{')
+                    .count()
+                    .saturating_sub(line.matches('}').count());
                 continue;
             }
             if let Some(rest) = line.strip_prefix('[') {
@@ -86,7 +89,12 @@ impl TirFile {
                     .next()
                     .filter(|_| rest.contains(']'))
                     .ok_or_else(|| {
-                        err(line_no, indent + 1, String::new(), "section header without `]`".into())
+                        err(
+                            line_no,
+                            indent + 1,
+                            String::new(),
+                            "section header without `]`".into(),
+                        )
                     })?
                     .trim()
                     .to_string();
@@ -126,7 +134,8 @@ impl TirFile {
                 ));
             };
             let mut value = line[eq + 1..].trim();
-            let value_col = indent + eq + 2 + (line[eq + 1..].len() - line[eq + 1..].trim_start().len());
+            let value_col =
+                indent + eq + 2 + (line[eq + 1..].len() - line[eq + 1..].trim_start().len());
             let value = if let Some(q) = value.strip_prefix('\'') {
                 match q.find('\'') {
                     Some(end) => q[..end].to_string(),
@@ -206,7 +215,11 @@ impl TirFile {
             return Err(self.error(section, key, msg));
         };
         let v: f64 = e.value.parse().map_err(|_| {
-            self.error(section, key, format!("expected a number, found `{}`", e.value))
+            self.error(
+                section,
+                key,
+                format!("expected a number, found `{}`", e.value),
+            )
         })?;
         if !v.is_finite() {
             return Err(self.error(section, key, format!("must be finite, got {v}")));
