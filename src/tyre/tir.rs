@@ -1,8 +1,9 @@
 //! A reader for `.tir` tyre property files (the TNO / MF-Tyre / MF-Swift format).
 //!
 //! The format is not TOML: `[SECTION]` headers, `KEY = value` lines, comments starting
-//! with `$` or `!` (whole line or after a value), strings in single quotes, and
-//! brace-delimited tables (`{...}` blocks, e.g. in [SHAPE]) which this reader skips. Keys
+//! with `$` or `!` (whole line or after a value), strings in single quotes, and tables
+//! (a `{column names}` line followed by rows of numbers, e.g. in [SHAPE]) which this
+//! reader skips. Keys
 //! are case-sensitive and looked up per section, so [UNITS] MASS and [INERTIA] MASS do not
 //! clash. The reader keeps the line of every key and every section header so that a
 //! missing key is reported at its section's header and a bad value at its own line, both
@@ -117,6 +118,10 @@ impl TirFile {
                 continue;
             }
             let Some(eq) = line.find('=') else {
+                // Rows of a table (e.g. [SHAPE] {radial width} followed by number pairs).
+                if line.split_whitespace().all(|tok| tok.parse::<f64>().is_ok()) {
+                    continue;
+                }
                 return Err(err(
                     line_no,
                     indent + 1,
