@@ -10,12 +10,25 @@ use towride::road::Road;
 use towride::tyre::rig::{rig_options, CleatRig, Spin};
 use towride::tyre::{Tyre, TyreKind};
 
+/// Starts with the rim spinning 2 % too fast (driving slip), lets it settle for 1 s, then
+/// watches 2 s of free rolling.
 fn free_rolling(file: &str, kind: TyreKind, load: f64, speed: f64) {
     let tyre = Tyre::from_file(Path::new(file), kind).unwrap();
     let road = Road::from_file(Path::new("roads/flat.toml")).unwrap();
-    let rig = CleatRig::new(tyre, road, speed, 0.0, load, Spin::Free, 0.6);
+    let mut rig = CleatRig::new(tyre, road, speed, 0.0, load, Spin::Free, 0.6);
+    rig.initial_spin_factor = 1.02;
     let opts = rig_options(&rig.tyre, 1e-6, &[1e-3]);
-    let run = rig.run(2.0, 1e-3, &opts).unwrap();
+    let all = rig.run(3.0, 1e-3, &opts).unwrap();
+    let first_fx = all.samples[0].long_force_n;
+    let run = towride::tyre::rig::RigRun {
+        samples: all
+            .samples
+            .iter()
+            .filter(|s| s.t_s >= 1.0)
+            .cloned()
+            .collect(),
+        ..all
+    };
     let max_fx = run
         .samples
         .iter()
@@ -35,8 +48,12 @@ fn free_rolling(file: &str, kind: TyreKind, load: f64, speed: f64) {
     let rd = load / cz / rho0;
     let re_ref = r0 * v("Q_RE0") - rho0 * (v("DREFF") * (v("BREFF") * rd).atan() + v("FREFF") * rd);
     let rel = re[re.len() - 1] / re_ref - 1.0;
+    assert!(
+        first_fx.abs() > 100.0,
+        "the 2 % spin offset should start with a real force"
+    );
     println!(
-        "{file} {kind:?} at {speed} m/s, {load} N: max |Fx| {max_fx:.2e} N, R_e = V/Omega {:.6} m (drift {drift:.1e} m over 2 s), MF law {re_ref:.6} m ({:+.3} %), {} steps",
+        "{file} {kind:?} at {speed} m/s, {load} N: Fx at start {first_fx:.0} N; after 1 s max |Fx| {max_fx:.2e} N, R_e = V/Omega {:.6} m (drift {drift:.1e} m over 2 s), MF law {re_ref:.6} m ({:+.3} %), {} steps",
         re[re.len() - 1],
         100.0 * rel,
         run.stats.steps

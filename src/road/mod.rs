@@ -96,12 +96,20 @@ impl Road {
         }
     }
 
-    /// A flat road at `height` carrying `obstacles`.
-    pub fn with_obstacles(height: f64, obstacles: Vec<Obstacle>) -> Road {
-        Road {
+    /// A flat road at `height` carrying `obstacles` (their `base` should be `height`);
+    /// refuses overlapping obstacles.
+    pub fn with_obstacles(height: f64, obstacles: Vec<Obstacle>) -> Result<Road, String> {
+        for i in 0..obstacles.len() {
+            for j in 0..i {
+                if obstacle::overlap(&obstacles[i], &obstacles[j]) {
+                    return Err(format!("obstacle {i} overlaps obstacle {j}"));
+                }
+            }
+        }
+        Ok(Road {
             kind: Kind::Flat { height, obstacles },
             source: None,
-        }
+        })
     }
 
     /// A two-track profile road.

@@ -378,15 +378,18 @@ impl ObstacleToml {
     }
 }
 
-/// Refuses overlapping obstacles (heights would be ambiguous).
+/// True when two obstacles share ground (heights would be ambiguous).
+pub(crate) fn overlap(a: &Obstacle, b: &Obstacle) -> bool {
+    let (a0, a1) = a.x_range();
+    let (b0, b1) = b.x_range();
+    a0 < b1 && b0 < a1 && a.y_min < b.y_max && b.y_min < a.y_max
+}
+
+/// Refuses overlapping obstacles.
 pub(crate) fn check_overlaps(src: &Source, obs: &[Obstacle]) -> Result<(), InputError> {
     for i in 0..obs.len() {
         for j in 0..i {
-            let (a0, a1) = obs[i].x_range();
-            let (b0, b1) = obs[j].x_range();
-            let x_overlap = a0 < b1 && b0 < a1;
-            let y_overlap = obs[i].y_min < obs[j].y_max && obs[j].y_min < obs[i].y_max;
-            if x_overlap && y_overlap {
+            if overlap(&obs[i], &obs[j]) {
                 return Err(src.error(
                     &path!["obstacle", i, "start_m"],
                     format!("obstacle {i} overlaps obstacle {j}"),

@@ -47,6 +47,9 @@ pub struct CleatRig {
     pub spin: Spin,
     /// Spin inertia of everything that turns with the rim [kg m^2].
     pub rim_iyy: f64,
+    /// Initial spin as a multiple of the free-rolling spin (1 = steady free rolling; other
+    /// values start the rim slipping, to watch it settle).
+    pub initial_spin_factor: f64,
     n: usize,
 }
 
@@ -70,6 +73,7 @@ impl CleatRig {
             z_axle: 0.0,
             spin,
             rim_iyy,
+            initial_spin_factor: 1.0,
             n,
         };
         rig.z_axle = height_for_load(&rig.tyre, &rig.road, x0, speed, load);
@@ -86,14 +90,15 @@ impl CleatRig {
 
     /// Consistent initial values: the tyre rolling freely on the road at `x0`.
     pub fn initial(&self) -> (Vec<f64>, Vec<f64>) {
-        let omega = free_rolling_spin(
-            &self.tyre,
-            &self.road,
-            self.x0,
-            self.z_axle,
-            self.speed,
-            0.0,
-        );
+        let omega = self.initial_spin_factor
+            * free_rolling_spin(
+                &self.tyre,
+                &self.road,
+                self.x0,
+                self.z_axle,
+                self.speed,
+                0.0,
+            );
         let mut y = self.tyre.initial_state(&self.kin(0.0, omega), &self.road);
         y.push(omega);
         let yp = vec![0.0; y.len()];

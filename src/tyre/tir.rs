@@ -119,7 +119,10 @@ impl TirFile {
             }
             let Some(eq) = line.find('=') else {
                 // Rows of a table (e.g. [SHAPE] {radial width} followed by number pairs).
-                if line.split_whitespace().all(|tok| tok.parse::<f64>().is_ok()) {
+                if line
+                    .split_whitespace()
+                    .all(|tok| tok.parse::<f64>().is_ok())
+                {
                     continue;
                 }
                 return Err(err(
