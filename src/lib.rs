@@ -9,5 +9,7 @@ pub mod cli;
 pub mod flex;
 pub mod input;
 pub mod model;
+pub mod road;
 pub mod solver;
+pub mod tyre;
 pub mod verify;

@@ -2,9 +2,12 @@
 
 mod analyse;
 mod bench;
+pub mod lineplot;
 mod modes;
 pub mod plot;
+pub mod plot;
 mod run;
+mod tyre_rig;
 mod verify;
 
 use clap::{Parser, Subcommand};
@@ -37,6 +40,8 @@ enum Command {
     Bench(BenchCommand),
     /// Mode table, mode selection and inertia invariants of a flexible body (flex/*.toml).
     Modes(modes::ModesArgs),
+    /// Run a tyre test rig (cleat or quarter rig) from a TOML file.
+    TyreRig(tyre_rig::TyreRigArgs),
 }
 
 #[derive(Subcommand, Debug)]
@@ -71,6 +76,7 @@ pub fn main() -> i32 {
         Command::Linear(a) => analyse::linear(&a),
         Command::Doctor(a) => analyse::doctor(&a),
         Command::Modes(a) => modes::run(&a),
+        Command::TyreRig(a) => tyre_rig::run(&a),
     };
     match result {
         Ok(code) => code,

@@ -1,0 +1,356 @@
+//! A 3D road: heights on a regular (x, y) grid, triangulated and queried through
+//! `parry3d-f64` (a [`TriMesh`] with its bounding-volume tree; heights by a vertical ray
+//! cast, slopes from the hit triangle's normal).
+//!
+//! The CSV has a header `x_m,y_m,z_m` and one row per grid node (any order); the nodes must
+//! fill a full rectangular grid. Each grid cell is split into two triangles along the
+//! diagonal from (x_i, y_j) to (x_i+1, y_j+1). Outside the grid the height is that of the
+//! nearest point of the grid's border.
+
+use std::path::{Path, PathBuf};
+
+use parry3d_f64::math::{Point, Vector};
+use parry3d_f64::query::{Ray, RayCast};
+use parry3d_f64::shape::TriMesh;
+
+use crate::input::InputError;
+
+use super::{push_x_crossing, push_y_crossing};
+
+/// A triangulated height field.
+#[derive(Clone)]
+pub struct HeightField {
+    pub file: PathBuf,
+    xs: Vec<f64>,
+    ys: Vec<f64>,
+    /// Heights, row-major by y: z[j * nx + i] at (xs[i], ys[j]).
+    z: Vec<f64>,
+    /// Per cell: Some(z) when all four corners share the height z.
+    cell_flat: Vec<Option<f64>>,
+    mesh: TriMesh,
+    z_top: f64,
+}
+
+impl std::fmt::Debug for HeightField {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "HeightField({} x {} nodes)",
+            self.xs.len(),
+            self.ys.len()
+        )
+    }
+}
+
+impl HeightField {
+    /// Builds the field from grid coordinates and heights z[j * nx + i].
+    pub fn new(xs: Vec<f64>, ys: Vec<f64>, z: Vec<f64>) -> Result<HeightField, String> {
+        let (nx, ny) = (xs.len(), ys.len());
+        if nx < 2 || ny < 2 {
+            return Err(format!(
+                "a height field needs at least 2 x 2 nodes, got {nx} x {ny}"
+            ));
+        }
+        if z.len() != nx * ny {
+            return Err(format!("{} heights for a {nx} x {ny} grid", z.len()));
+        }
+        if xs
+            .windows(2)
+            .any(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater))
+            || ys
+                .windows(2)
+                .any(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater))
+        {
+            return Err("grid coordinates must increase strictly".into());
+        }
+        if let Some(v) = z.iter().find(|v| !v.is_finite()) {
+            return Err(format!("height {v} is not finite"));
+        }
+        let verts: Vec<Point<f64>> = (0..ny)
+            .flat_map(|j| (0..nx).map(move |i| (i, j)))
+            .map(|(i, j)| Point::new(xs[i], ys[j], z[j * nx + i]))
+            .collect();
+        let mut tris = Vec::with_capacity(2 * (nx - 1) * (ny - 1));
+        let mut cell_flat = Vec::with_capacity((nx - 1) * (ny - 1));
+        for j in 0..ny - 1 {
+            for i in 0..nx - 1 {
+                let v00 = (j * nx + i) as u32;
+                let v10 = v00 + 1;
+                let v01 = v00 + nx as u32;
+                let v11 = v01 + 1;
+                // Counter-clockwise seen from above, so normals point up.
+                tris.push([v00, v10, v11]);
+                tris.push([v00, v11, v01]);
+                let c = [v00, v10, v01, v11].map(|k| z[k as usize]);
+                cell_flat.push(if c.iter().all(|&h| h == c[0]) {
+                    Some(c[0])
+                } else {
+                    None
+                });
+            }
+        }
+        let mesh = TriMesh::new(verts, tris).map_err(|e| format!("triangle mesh: {e:?}"))?;
+        let z_top = z.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+        Ok(HeightField {
+            file: PathBuf::new(),
+            xs,
+            ys,
+            z,
+            cell_flat,
+            mesh,
+            z_top,
+        })
+    }
+
+    /// Reads the grid CSV (see the module docs); errors name the file and line.
+    pub fn from_csv(file: &Path) -> Result<HeightField, InputError> {
+        let err = |line: Option<usize>, field: &str, msg: String| InputError {
+            file: file.to_path_buf(),
+            line,
+            column: None,
+            field: field.to_string(),
+            message: msg,
+        };
+        let mut rdr = csv::ReaderBuilder::new()
+            .trim(csv::Trim::All)
+            .comment(Some(b'#'))
+            .from_path(file)
+            .map_err(|e| err(None, "", format!("cannot read: {e}")))?;
+        let headers = rdr
+            .headers()
+            .map_err(|e| err(Some(1), "", format!("bad header: {e}")))?
+            .clone();
+        let col = |name: &str| -> Result<usize, InputError> {
+            headers.iter().position(|h| h == name).ok_or_else(|| {
+                err(
+                    Some(1),
+                    name,
+                    format!("missing column (need x_m, y_m, z_m; found {headers:?})"),
+                )
+            })
+        };
+        let (cx, cy, cz) = (col("x_m")?, col("y_m")?, col("z_m")?);
+        let mut pts = Vec::new();
+        for rec in rdr.records() {
+            let rec =
+                rec.map_err(|e| err(e.position().map(|p| p.line() as usize), "", e.to_string()))?;
+            let line = rec.position().map(|p| p.line() as usize);
+            let num = |c: usize, name: &str| -> Result<f64, InputError> {
+                let v: f64 = rec
+                    .get(c)
+                    .unwrap_or("")
+                    .parse()
+                    .map_err(|e| err(line, name, format!("not a number: {e}")))?;
+                if v.is_finite() {
+                    Ok(v)
+                } else {
+                    Err(err(line, name, format!("must be finite, got {v}")))
+                }
+            };
+            pts.push((num(cx, "x_m")?, num(cy, "y_m")?, num(cz, "z_m")?, line));
+        }
+        let uniq = |mut v: Vec<f64>| {
+            v.sort_by(f64::total_cmp);
+            v.dedup();
+            v
+        };
+        let xs = uniq(pts.iter().map(|p| p.0).collect());
+        let ys = uniq(pts.iter().map(|p| p.1).collect());
+        let (nx, ny) = (xs.len(), ys.len());
+        if pts.len() != nx * ny {
+            return Err(err(
+                None,
+                "",
+                format!(
+                    "{} rows do not fill the {nx} x {ny} grid of their coordinates",
+                    pts.len()
+                ),
+            ));
+        }
+        let mut z = vec![f64::NAN; nx * ny];
+        for &(x, y, h, line) in &pts {
+            let i = xs.partition_point(|&v| v < x);
+            let j = ys.partition_point(|&v| v < y);
+            let k = j * nx + i;
+            if !z[k].is_nan() {
+                return Err(err(line, "x_m", format!("node ({x}, {y}) given twice")));
+            }
+            z[k] = h;
+        }
+        let mut f = HeightField::new(xs, ys, z).map_err(|m| err(None, "", m))?;
+        f.file = file.to_path_buf();
+        Ok(f)
+    }
+
+    fn clamp_xy(&self, x: f64, y: f64) -> (f64, f64) {
+        let (nx, ny) = (self.xs.len(), self.ys.len());
+        (
+            x.clamp(self.xs[0], self.xs[nx - 1]),
+            y.clamp(self.ys[0], self.ys[ny - 1]),
+        )
+    }
+
+    /// Vertical ray cast onto the mesh: height and upward normal.
+    fn cast(&self, x: f64, y: f64) -> (f64, Vector<f64>) {
+        let (x, y) = self.clamp_xy(x, y);
+        let start = self.z_top + 1.0;
+        let ray = Ray::new(Point::new(x, y, start), Vector::new(0.0, 0.0, -1.0));
+        match self
+            .mesh
+            .cast_local_ray_and_get_normal(&ray, f64::MAX, false)
+        {
+            Some(hit) => {
+                let n = if hit.normal.z < 0.0 {
+                    -hit.normal
+                } else {
+                    hit.normal
+                };
+                (start - hit.time_of_impact, n)
+            }
+            // Only on the very border can floating point miss the mesh: use the bilinear
+            // value of the cell instead.
+            None => (self.bilinear(x, y), Vector::new(0.0, 0.0, 1.0)),
+        }
+    }
+
+    fn cell(&self, x: f64, y: f64) -> (usize, usize) {
+        let i = self
+            .xs
+            .partition_point(|&v| v <= x)
+            .clamp(1, self.xs.len() - 1)
+            - 1;
+        let j = self
+            .ys
+            .partition_point(|&v| v <= y)
+            .clamp(1, self.ys.len() - 1)
+            - 1;
+        (i, j)
+    }
+
+    fn bilinear(&self, x: f64, y: f64) -> f64 {
+        let (i, j) = self.cell(x, y);
+        let nx = self.xs.len();
+        let u = (x - self.xs[i]) / (self.xs[i + 1] - self.xs[i]);
+        let v = (y - self.ys[j]) / (self.ys[j + 1] - self.ys[j]);
+        let z = |a: usize, b: usize| self.z[(j + b) * nx + i + a];
+        (1.0 - u) * (1.0 - v) * z(0, 0)
+            + u * (1.0 - v) * z(1, 0)
+            + (1.0 - u) * v * z(0, 1)
+            + u * v * z(1, 1)
+    }
+
+    pub fn height(&self, x: f64, y: f64) -> f64 {
+        self.cast(x, y).0
+    }
+
+    pub fn slope(&self, x: f64, y: f64) -> (f64, f64) {
+        let inside = x > self.xs[0]
+            && x < self.xs[self.xs.len() - 1]
+            && y > self.ys[0]
+            && y < self.ys[self.ys.len() - 1];
+        if !inside {
+            // The border extension is constant along the outward direction; keep it simple.
+            return (0.0, 0.0);
+        }
+        let (_, n) = self.cast(x, y);
+        (-n.x / n.z, -n.y / n.z)
+    }
+
+    pub fn flat_height(&self, x0: f64, x1: f64, y0: f64, y1: f64) -> Option<f64> {
+        let (i0, j0) = self.cell(x0, y0);
+        let (i1, j1) = self.cell(x1, y1);
+        let nxc = self.xs.len() - 1;
+        let mut z = None;
+        for j in j0..=j1 {
+            for i in i0..=i1 {
+                let c = self.cell_flat[j * nxc + i]?;
+                match z {
+                    None => z = Some(c),
+                    Some(h) if h != c => return None,
+                    _ => {}
+                }
+            }
+        }
+        z
+    }
+
+    pub fn kinks_along(&self, p: [f64; 2], d: [f64; 2], s0: f64, s1: f64, out: &mut Vec<f64>) {
+        let from = out.len();
+        for &x in &self.xs {
+            push_x_crossing(p, d, x, s0, s1, out);
+        }
+        for &y in &self.ys {
+            push_y_crossing(p, d, y, s0, s1, out);
+        }
+        // Diagonal crossings, one per cell the line passes through.
+        let mut grid: Vec<f64> = out[from..].to_vec();
+        grid.push(s0);
+        grid.push(s1);
+        grid.sort_by(f64::total_cmp);
+        for w in grid.windows(2) {
+            if w[1] - w[0] < 1e-12 {
+                continue;
+            }
+            let sm = 0.5 * (w[0] + w[1]);
+            let (xm, ym) = (p[0] + sm * d[0], p[1] + sm * d[1]);
+            let inside = xm > self.xs[0]
+                && xm < self.xs[self.xs.len() - 1]
+                && ym > self.ys[0]
+                && ym < self.ys[self.ys.len() - 1];
+            if !inside {
+                continue;
+            }
+            let (i, j) = self.cell(xm, ym);
+            let (dx, dy) = (self.xs[i + 1] - self.xs[i], self.ys[j + 1] - self.ys[j]);
+            // p + s d = (x_i, y_j) + u (dx, dy): solve for s and u.
+            let det = d[0] * (-dy) - d[1] * (-dx);
+            if det.abs() < 1e-15 {
+                continue;
+            }
+            let rx = self.xs[i] - p[0];
+            let ry = self.ys[j] - p[1];
+            let s = (rx * (-dy) - ry * (-dx)) / det;
+            if s > w[0] && s < w[1] {
+                out.push(s);
+            }
+        }
+    }
+
+    pub fn describe(&self) -> String {
+        format!(
+            "height field {} ({} x {} nodes, x {:.2}..{:.2} m, y {:.2}..{:.2} m)",
+            self.file.display(),
+            self.xs.len(),
+            self.ys.len(),
+            self.xs[0],
+            self.xs[self.xs.len() - 1],
+            self.ys[0],
+            self.ys[self.ys.len() - 1]
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A plane z = 0.1 x + 0.05 y is reproduced exactly by any triangulation.
+    #[test]
+    fn plane_is_exact() {
+        let xs: Vec<f64> = (0..6).map(|i| i as f64 * 0.5).collect();
+        let ys: Vec<f64> = (0..4).map(|j| -1.0 + j as f64 * 0.7).collect();
+        let mut z = Vec::new();
+        for &y in &ys {
+            for &x in &xs {
+                z.push(0.1 * x + 0.05 * y);
+            }
+        }
+        let f = HeightField::new(xs, ys, z).unwrap();
+        for &(x, y) in &[(0.3, -0.2), (1.77, 0.9), (2.2, -0.95)] {
+            assert!((f.height(x, y) - (0.1 * x + 0.05 * y)).abs() < 1e-12);
+            let (sx, sy) = f.slope(x, y);
+            assert!((sx - 0.1).abs() < 1e-12 && (sy - 0.05).abs() < 1e-12);
+        }
+        assert_eq!(f.flat_height(0.1, 0.2, 0.0, 0.1), None);
+    }
+}

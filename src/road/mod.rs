@@ -1,0 +1,332 @@
+//! Roads and obstacles: the surface z = h(x, y) a tyre rolls on.
+//!
+//! World axes: x along the road (direction of travel), y to the left, z up; x = 0 is where
+//! the front wheels touch the road at the start of a scene. A [`Road`] is one of
+//!
+//! - a flat road at a given height, optionally carrying obstacles: trapezoidal ramps,
+//!   circular-segment bumps and steps (`[[obstacle]]` in the TOML file, see
+//!   [`obstacle`]);
+//! - a longitudinal profile per track (left and right) read from CSV (see [`profile`]);
+//! - a 3D road: a height field on a regular grid, triangulated and queried through
+//!   `parry3d-f64` (see [`mesh`]).
+//!
+//! Queries: [`Road::height`], [`Road::slope`], [`Road::flat_height`] / [`Road::is_flat`]
+//! (a cheap "is there anything here" test so a scene can skip contact work), and
+//! [`Road::kinks_along`], the places along a line where the surface is not smooth (edges of
+//! obstacles, nodes of a profile, grid lines of a mesh). The tyre's enveloping model
+//! maximises a smooth function piece by piece between those places, which makes its
+//! result continuous in the wheel position (see `crate::tyre::envelope`).
+//!
+//! Heights are right-continuous in x: at a vertical face (a step, a 90 deg ramp flank) the
+//! height at the face is the value just after it. The file format and the ramp convention
+//! are documented in `docs/road_tyre.md`.
+
+pub mod mesh;
+pub mod obstacle;
+pub mod profile;
+
+use std::path::{Path, PathBuf};
+
+use serde::Deserialize;
+
+use crate::input::{InputError, Source};
+use crate::path;
+
+pub use mesh::HeightField;
+pub use obstacle::Obstacle;
+pub use profile::TrackProfile;
+
+/// A road surface.
+#[derive(Clone, Debug)]
+pub struct Road {
+    kind: Kind,
+    /// The file it came from (for messages), if any.
+    pub source: Option<PathBuf>,
+}
+
+#[derive(Clone, Debug)]
+enum Kind {
+    Flat {
+        height: f64,
+        obstacles: Vec<Obstacle>,
+    },
+    Profile(TrackProfile),
+    Mesh(Box<HeightField>),
+}
+
+/// The TOML file: `[road]` plus, for a flat road, any number of `[[obstacle]]`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RoadFile {
+    road: RoadSection,
+    #[serde(default)]
+    obstacle: Vec<obstacle::ObstacleToml>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields, tag = "kind", rename_all = "snake_case")]
+enum RoadSection {
+    Flat {
+        height_m: f64,
+    },
+    Profile {
+        /// CSV with columns x_m, z_left_m, z_right_m (path relative to the TOML file).
+        file: String,
+        /// Lateral distance between the left and the right track.
+        track_width_m: f64,
+        /// Height before the first and after the last profile point.
+        #[serde(default)]
+        outside_height_m: Option<f64>,
+    },
+    HeightField {
+        /// CSV with columns x_m, y_m, z_m on a regular grid (path relative to the TOML).
+        file: String,
+    },
+}
+
+impl Road {
+    /// A flat road at height `height` [m].
+    pub fn flat(height: f64) -> Road {
+        Road {
+            kind: Kind::Flat {
+                height,
+                obstacles: Vec::new(),
+            },
+            source: None,
+        }
+    }
+
+    /// A flat road at `height` carrying `obstacles` (their `base` should be `height`);
+    /// refuses overlapping obstacles.
+    pub fn with_obstacles(height: f64, obstacles: Vec<Obstacle>) -> Result<Road, String> {
+        for i in 0..obstacles.len() {
+            for j in 0..i {
+                if obstacle::overlap(&obstacles[i], &obstacles[j]) {
+                    return Err(format!("obstacle {i} overlaps obstacle {j}"));
+                }
+            }
+        }
+        Ok(Road {
+            kind: Kind::Flat { height, obstacles },
+            source: None,
+        })
+    }
+
+    /// A two-track profile road.
+    pub fn from_profile(p: TrackProfile) -> Road {
+        Road {
+            kind: Kind::Profile(p),
+            source: None,
+        }
+    }
+
+    /// A height-field road.
+    pub fn from_height_field(h: HeightField) -> Road {
+        Road {
+            kind: Kind::Mesh(Box::new(h)),
+            source: None,
+        }
+    }
+
+    /// Reads a road TOML file (see `docs/road_tyre.md`).
+    pub fn from_file(path: &Path) -> Result<Road, InputError> {
+        let src = Source::read(path)?;
+        Road::from_source(&src)
+    }
+
+    /// Builds the road from an already read TOML source.
+    pub fn from_source(src: &Source) -> Result<Road, InputError> {
+        let f: RoadFile = src.parse()?;
+        let dir = src.path.parent().unwrap_or(Path::new("."));
+        let kind = match f.road {
+            RoadSection::Flat { height_m } => {
+                src.finite(&path!["road", "height_m"], height_m)?;
+                let mut obstacles = Vec::with_capacity(f.obstacle.len());
+                for (i, o) in f.obstacle.iter().enumerate() {
+                    obstacles.push(o.build(src, i, height_m)?);
+                }
+                obstacle::check_overlaps(src, &obstacles)?;
+                Kind::Flat {
+                    height: height_m,
+                    obstacles,
+                }
+            }
+            RoadSection::Profile {
+                file,
+                track_width_m,
+                outside_height_m,
+            } => {
+                if !f.obstacle.is_empty() {
+                    return Err(src.error(
+                        &path!["obstacle"],
+                        "obstacles are only allowed on a flat road",
+                    ));
+                }
+                src.positive(&path!["road", "track_width_m"], track_width_m)?;
+                if let Some(h) = outside_height_m {
+                    src.finite(&path!["road", "outside_height_m"], h)?;
+                }
+                let csv = dir.join(&file);
+                Kind::Profile(TrackProfile::from_csv(
+                    &csv,
+                    track_width_m,
+                    outside_height_m,
+                )?)
+            }
+            RoadSection::HeightField { file } => {
+                if !f.obstacle.is_empty() {
+                    return Err(src.error(
+                        &path!["obstacle"],
+                        "obstacles are only allowed on a flat road",
+                    ));
+                }
+                Kind::Mesh(Box::new(HeightField::from_csv(&dir.join(&file))?))
+            }
+        };
+        Ok(Road {
+            kind,
+            source: Some(src.path.clone()),
+        })
+    }
+
+    /// Road height z [m] at (x, y).
+    pub fn height(&self, x: f64, y: f64) -> f64 {
+        match &self.kind {
+            Kind::Flat { height, obstacles } => {
+                // Obstacles do not overlap (checked on reading): the one covering (x, y)
+                // decides.
+                obstacles
+                    .iter()
+                    .find_map(|o| o.height(x, y))
+                    .unwrap_or(*height)
+            }
+            Kind::Profile(p) => p.height(x, y),
+            Kind::Mesh(m) => m.height(x, y),
+        }
+    }
+
+    /// Surface gradient (dz/dx, dz/dy) at (x, y); one-sided (from the right in x) at
+    /// edges.
+    pub fn slope(&self, x: f64, y: f64) -> (f64, f64) {
+        match &self.kind {
+            Kind::Flat { height, obstacles } => {
+                let _ = height;
+                obstacles
+                    .iter()
+                    .find(|o| o.height(x, y).is_some())
+                    .map_or((0.0, 0.0), |o| o.slope(x, y))
+            }
+            Kind::Profile(p) => p.slope(x, y),
+            Kind::Mesh(m) => m.slope(x, y),
+        }
+    }
+
+    /// `Some(z)` when the road is flat at height z over the rectangle
+    /// [x0, x1] x [y0, y1], else `None`. Cheap: a scene calls it to skip contact work.
+    pub fn flat_height(&self, x0: f64, x1: f64, y0: f64, y1: f64) -> Option<f64> {
+        let (x0, x1) = (x0.min(x1), x0.max(x1));
+        let (y0, y1) = (y0.min(y1), y0.max(y1));
+        match &self.kind {
+            Kind::Flat { height, obstacles } => {
+                if obstacles.iter().all(|o| !o.overlaps(x0, x1, y0, y1)) {
+                    Some(*height)
+                } else {
+                    None
+                }
+            }
+            Kind::Profile(p) => p.flat_height(x0, x1, y0, y1),
+            Kind::Mesh(m) => m.flat_height(x0, x1, y0, y1),
+        }
+    }
+
+    /// True when the road along the line y = const is flat over [x0, x1].
+    pub fn is_flat(&self, x0: f64, x1: f64, y: f64) -> bool {
+        self.flat_height(x0, x1, y, y).is_some()
+    }
+
+    /// Appends to `out` the parameters s in [s0, s1] at which the surface along the
+    /// horizontal line (x, y) = p + s d (d a unit vector) has a kink or a jump. Between
+    /// two such places the height along the line is smooth and concave or linear for every
+    /// road type here (flat pieces, flanks, circular caps, linear profile and mesh pieces),
+    /// which the enveloping model relies on.
+    pub fn kinks_along(&self, p: [f64; 2], d: [f64; 2], s0: f64, s1: f64, out: &mut Vec<f64>) {
+        let from = out.len();
+        match &self.kind {
+            Kind::Flat { obstacles, .. } => {
+                for o in obstacles {
+                    o.kinks_along(p, d, s0, s1, out);
+                }
+            }
+            Kind::Profile(pr) => pr.kinks_along(p, d, s0, s1, out),
+            Kind::Mesh(m) => m.kinks_along(p, d, s0, s1, out),
+        }
+        out[from..].sort_by(f64::total_cmp);
+    }
+
+    /// A short description for logs and reports.
+    pub fn describe(&self) -> String {
+        match &self.kind {
+            Kind::Flat { height, obstacles } => {
+                if obstacles.is_empty() {
+                    format!("flat road at z = {height} m")
+                } else {
+                    let list: Vec<String> = obstacles.iter().map(|o| o.describe()).collect();
+                    format!("flat road at z = {height} m with {}", list.join(", "))
+                }
+            }
+            Kind::Profile(p) => p.describe(),
+            Kind::Mesh(m) => m.describe(),
+        }
+    }
+}
+
+/// Appends s where the line p + s d crosses x = xk, for s in [s0, s1].
+pub(crate) fn push_x_crossing(
+    p: [f64; 2],
+    d: [f64; 2],
+    xk: f64,
+    s0: f64,
+    s1: f64,
+    out: &mut Vec<f64>,
+) {
+    if d[0].abs() < 1e-12 {
+        return;
+    }
+    let s = (xk - p[0]) / d[0];
+    if s >= s0 && s <= s1 {
+        out.push(s);
+    }
+}
+
+/// Appends s where the line p + s d crosses y = yk, for s in [s0, s1].
+pub(crate) fn push_y_crossing(
+    p: [f64; 2],
+    d: [f64; 2],
+    yk: f64,
+    s0: f64,
+    s1: f64,
+    out: &mut Vec<f64>,
+) {
+    if d[1].abs() < 1e-12 {
+        return;
+    }
+    let s = (yk - p[1]) / d[1];
+    if s >= s0 && s <= s1 {
+        out.push(s);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn flat_road_is_flat_everywhere() {
+        let r = Road::flat(0.1);
+        assert_eq!(r.height(3.0, -2.0), 0.1);
+        assert_eq!(r.flat_height(-1.0, 5.0, -1.0, 1.0), Some(0.1));
+        let mut k = Vec::new();
+        r.kinks_along([0.0, 0.0], [1.0, 0.0], -1.0, 1.0, &mut k);
+        assert!(k.is_empty());
+    }
+}

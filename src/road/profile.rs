@@ -1,0 +1,246 @@
+//! A longitudinal road profile per track, read from CSV.
+//!
+//! The CSV has a header `x_m,z_left_m,z_right_m` and one row per point, x strictly
+//! increasing. The left track runs at y = +track_width/2, the right one at
+//! y = -track_width/2; between them the height is blended linearly in y, outside them it is
+//! the nearer track's. Between points the profile is linear; before the first and after the
+//! last point it is `outside_height_m` if given, else the end value.
+
+use std::path::{Path, PathBuf};
+
+use crate::input::InputError;
+
+use super::{push_x_crossing, push_y_crossing};
+
+/// Two measured tracks.
+#[derive(Clone, Debug)]
+pub struct TrackProfile {
+    pub file: PathBuf,
+    x: Vec<f64>,
+    left: Vec<f64>,
+    right: Vec<f64>,
+    half_track: f64,
+    outside: Option<f64>,
+}
+
+impl TrackProfile {
+    /// Builds a profile from points; x must be strictly increasing.
+    pub fn new(
+        x: Vec<f64>,
+        left: Vec<f64>,
+        right: Vec<f64>,
+        track_width: f64,
+        outside: Option<f64>,
+    ) -> Result<TrackProfile, String> {
+        if x.len() < 2 || left.len() != x.len() || right.len() != x.len() {
+            return Err("a profile needs at least two points with both tracks".into());
+        }
+        if let Some(i) = (1..x.len()).find(|&i| x[i].is_nan() || x[i] <= x[i - 1]) {
+            return Err(format!("x must increase strictly (point {i})"));
+        }
+        if track_width.is_nan() || track_width <= 0.0 {
+            return Err(format!("track width must be positive, got {track_width}"));
+        }
+        Ok(TrackProfile {
+            file: PathBuf::new(),
+            x,
+            left,
+            right,
+            half_track: track_width / 2.0,
+            outside,
+        })
+    }
+
+    /// Reads `file` (see the module docs); errors name the file and line.
+    pub fn from_csv(
+        file: &Path,
+        track_width: f64,
+        outside: Option<f64>,
+    ) -> Result<TrackProfile, InputError> {
+        let err = |line: Option<usize>, field: &str, msg: String| InputError {
+            file: file.to_path_buf(),
+            line,
+            column: None,
+            field: field.to_string(),
+            message: msg,
+        };
+        let mut rdr = csv::ReaderBuilder::new()
+            .trim(csv::Trim::All)
+            .comment(Some(b'#'))
+            .from_path(file)
+            .map_err(|e| err(None, "", format!("cannot read: {e}")))?;
+        let headers = rdr
+            .headers()
+            .map_err(|e| err(Some(1), "", format!("bad header: {e}")))?
+            .clone();
+        let col = |name: &str| -> Result<usize, InputError> {
+            headers.iter().position(|h| h == name).ok_or_else(|| {
+                err(
+                    Some(1),
+                    name,
+                    format!("missing column (header must name x_m, z_left_m, z_right_m; found {headers:?})"),
+                )
+            })
+        };
+        let (cx, cl, cr) = (col("x_m")?, col("z_left_m")?, col("z_right_m")?);
+        let (mut x, mut l, mut r) = (Vec::new(), Vec::new(), Vec::new());
+        for rec in rdr.records() {
+            let rec =
+                rec.map_err(|e| err(e.position().map(|p| p.line() as usize), "", e.to_string()))?;
+            let line = rec.position().map(|p| p.line() as usize);
+            let num = |c: usize, name: &str| -> Result<f64, InputError> {
+                let v: f64 = rec
+                    .get(c)
+                    .unwrap_or("")
+                    .parse()
+                    .map_err(|e| err(line, name, format!("not a number: {e}")))?;
+                if v.is_finite() {
+                    Ok(v)
+                } else {
+                    Err(err(line, name, format!("must be finite, got {v}")))
+                }
+            };
+            let xi = num(cx, "x_m")?;
+            if let Some(&prev) = x.last() {
+                if xi <= prev {
+                    return Err(err(
+                        line,
+                        "x_m",
+                        format!("must increase strictly ({xi} after {prev})"),
+                    ));
+                }
+            }
+            x.push(xi);
+            l.push(num(cl, "z_left_m")?);
+            r.push(num(cr, "z_right_m")?);
+        }
+        let mut p =
+            TrackProfile::new(x, l, r, track_width, outside).map_err(|m| err(None, "", m))?;
+        p.file = file.to_path_buf();
+        Ok(p)
+    }
+
+    /// Height of one track (`v` = left or right values) at x, and its slope.
+    fn track(&self, v: &[f64], x: f64) -> (f64, f64) {
+        let n = self.x.len();
+        if x < self.x[0] {
+            return (self.outside.unwrap_or(v[0]), 0.0);
+        }
+        if x >= self.x[n - 1] {
+            return (self.outside.unwrap_or(v[n - 1]), 0.0);
+        }
+        // Right-continuous: the interval [x_i, x_i+1) holding x.
+        let i = self.x.partition_point(|&xi| xi <= x) - 1;
+        let s = (v[i + 1] - v[i]) / (self.x[i + 1] - self.x[i]);
+        (v[i] + s * (x - self.x[i]), s)
+    }
+
+    /// Blend weight of the left track at lateral position y, and its y-derivative.
+    fn weight(&self, y: f64) -> (f64, f64) {
+        let t = (y + self.half_track) / (2.0 * self.half_track);
+        if t <= 0.0 {
+            (0.0, 0.0)
+        } else if t >= 1.0 {
+            (1.0, 0.0)
+        } else {
+            (t, 1.0 / (2.0 * self.half_track))
+        }
+    }
+
+    pub fn height(&self, x: f64, y: f64) -> f64 {
+        let (t, _) = self.weight(y);
+        let (zl, _) = self.track(&self.left, x);
+        let (zr, _) = self.track(&self.right, x);
+        t * zl + (1.0 - t) * zr
+    }
+
+    pub fn slope(&self, x: f64, y: f64) -> (f64, f64) {
+        let (t, dt) = self.weight(y);
+        let (zl, sl) = self.track(&self.left, x);
+        let (zr, sr) = self.track(&self.right, x);
+        (t * sl + (1.0 - t) * sr, dt * (zl - zr))
+    }
+
+    pub fn flat_height(&self, x0: f64, x1: f64, y0: f64, y1: f64) -> Option<f64> {
+        let (t0, _) = self.weight(y0);
+        let (t1, _) = self.weight(y1);
+        let mut tracks: Vec<&[f64]> = Vec::new();
+        if t1 > 0.0 {
+            tracks.push(&self.left);
+        }
+        if t0 < 1.0 {
+            tracks.push(&self.right);
+        }
+        let z0 = self.height(x0, y0);
+        // Every node in [x0, x1] and both ends must sit at z0 on every track in use.
+        let i0 = self.x.partition_point(|&xi| xi < x0);
+        let i1 = self.x.partition_point(|&xi| xi <= x1);
+        for v in tracks {
+            let (a, sa) = self.track(v, x0);
+            let (b, _) = self.track(v, x1);
+            if a != z0 || b != z0 || sa != 0.0 {
+                return None;
+            }
+            if v[i0.min(v.len())..i1.min(v.len())].iter().any(|&z| z != z0) {
+                return None;
+            }
+            // Ends beyond the data use the outside height; the data ends must match too.
+            if x0 < self.x[0] && x1 >= self.x[0] && v[0] != z0 {
+                return None;
+            }
+            let n = self.x.len();
+            if x1 >= self.x[n - 1] && x0 < self.x[n - 1] && v[n - 1] != z0 {
+                return None;
+            }
+        }
+        Some(z0)
+    }
+
+    pub fn kinks_along(&self, p: [f64; 2], d: [f64; 2], s0: f64, s1: f64, out: &mut Vec<f64>) {
+        // Only the nodes inside the line's x-range matter.
+        let xa = p[0] + s0 * d[0];
+        let xb = p[0] + s1 * d[0];
+        let (lo, hi) = (xa.min(xb), xa.max(xb));
+        let i0 = self.x.partition_point(|&xi| xi < lo);
+        let i1 = self.x.partition_point(|&xi| xi <= hi);
+        for &xk in &self.x[i0..i1] {
+            push_x_crossing(p, d, xk, s0, s1, out);
+        }
+        push_y_crossing(p, d, self.half_track, s0, s1, out);
+        push_y_crossing(p, d, -self.half_track, s0, s1, out);
+    }
+
+    pub fn describe(&self) -> String {
+        format!(
+            "two-track profile {} ({} points, x {:.2}..{:.2} m, track {:.3} m)",
+            self.file.display(),
+            self.x.len(),
+            self.x[0],
+            self.x[self.x.len() - 1],
+            2.0 * self.half_track
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tracks_blend_and_flatness() {
+        let p = TrackProfile::new(
+            vec![0.0, 1.0, 2.0, 3.0],
+            vec![0.0, 0.0, 0.02, 0.0],
+            vec![0.0, 0.0, 0.0, 0.0],
+            1.4,
+            None,
+        )
+        .unwrap();
+        assert!((p.height(2.0, 0.7) - 0.02).abs() < 1e-15);
+        assert!((p.height(2.0, 0.0) - 0.01).abs() < 1e-15);
+        assert_eq!(p.height(2.0, -0.7), 0.0);
+        assert_eq!(p.flat_height(0.0, 0.9, -1.0, 1.0), Some(0.0));
+        assert_eq!(p.flat_height(0.0, 1.5, 0.5, 1.0), None);
+        assert_eq!(p.flat_height(0.0, 2.5, -1.0, -0.8), Some(0.0));
+    }
+}

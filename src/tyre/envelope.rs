@@ -1,0 +1,219 @@
+//! Tandem-cam enveloping: the effective road a tyre feels on short obstacles.
+//!
+//! After Schmeitz (PhD thesis, TU Delft 2004) and Pacejka, "Tire and Vehicle Dynamics"
+//! (3rd ed. 2012) sec. 10.2: two cams with a super-ellipse contour
+//! (x/a_e)^c_e + (z/b_e)^c_e = 1 stand l_s apart along the wheel's heading and slide
+//! vertically over the road, each resting on it at its highest contact. The lowest point of
+//! a cam then lies at w = max over xi of [h(s + xi) + b_e (1 - |xi/a_e|^c_e)^(1/c_e)] - b_e.
+//! The effective height is the mean of the front and rear cam, the effective forward slope
+//! tan(beta) = (w_front - w_rear) / l_s. Several tandems side by side across the tread
+//! width (ELLIPS_NWIDTH) are averaged. The effective curvature is the rate of change of the
+//! effective slope along the road, d tan(beta)/ds / (1 + tan^2 beta)^(3/2).
+//!
+//! The maximisation is exact: the road reports where it has kinks or jumps along the line
+//! ([`Road::kinks_along`]); between them the road is linear or concave and the cam contour
+//! is concave (c_e >= 1), so the sum is concave and a golden-section search finds its
+//! maximum, while kinks are evaluated directly (with the higher of the two one-sided road
+//! heights at a jump). The result is therefore continuous in the wheel position, without
+//! the stair-steps of a sampled road. Derivatives come from the envelope theorem,
+//! dw/ds = -z_c'(xi*) at the maximiser xi*, so the slope rate needs no differencing.
+//! Only the part of the cam within ELLIPS_MAX_STEP of its lowest point is searched (higher
+//! parts cannot touch an obstacle lower than that).
+
+use crate::road::Road;
+
+use super::params::TyreParams;
+
+/// The effective road plane under a tyre.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EffectiveRoad {
+    /// Effective height w [m].
+    pub height: f64,
+    /// Effective forward slope tan(beta) (positive uphill along the heading).
+    pub tan_slope: f64,
+    /// dw/ds and d tan(beta)/ds along the heading [1], [1/m].
+    pub dheight_ds: f64,
+    pub dtan_ds: f64,
+    /// Effective curvature [1/m].
+    pub curvature: f64,
+    /// True when every cam rested on a flat road (no enveloping work was done).
+    pub flat: bool,
+}
+
+/// The cam geometry of one tyre.
+#[derive(Clone, Debug)]
+pub struct TandemCams {
+    pub a: f64,
+    pub b: f64,
+    pub c: f64,
+    pub l_s: f64,
+    /// Half length of the searched part of the cam [m].
+    pub xi_max: f64,
+    /// Lateral offsets of the tandems from the wheel centre plane [m].
+    pub offsets: Vec<f64>,
+}
+
+/// Tolerance of the golden-section search on the cam position [m].
+const XI_TOL: f64 = 1e-10;
+
+impl TandemCams {
+    pub fn new(p: &TyreParams) -> TandemCams {
+        let (a, b, c) = (p.d.a_e, p.d.b_e, p.d.c_e);
+        let step = p.ellips_max_step.min(b);
+        // Solve b - z_c(xi) = step for |xi|.
+        let u = (1.0 - (1.0 - step / b).powf(c)).max(0.0).powf(1.0 / c);
+        let n = p.ellips_nwidth;
+        let offsets = (0..n)
+            .map(|i| p.width * ((i as f64 + 0.5) / n as f64 - 0.5))
+            .collect();
+        TandemCams {
+            a,
+            b,
+            c,
+            l_s: p.d.l_s,
+            xi_max: a * u,
+            offsets,
+        }
+    }
+
+    /// Height of the cam contour above the cam centre's lowest point plus b: z_c(xi).
+    pub fn contour(&self, xi: f64) -> f64 {
+        let u = (xi.abs() / self.a).min(1.0);
+        self.b * (1.0 - u.powf(self.c)).max(0.0).powf(1.0 / self.c)
+    }
+
+    /// dz_c/dxi.
+    pub fn contour_slope(&self, xi: f64) -> f64 {
+        let u = (xi.abs() / self.a).min(1.0 - 1e-12);
+        if u == 0.0 {
+            return if self.c > 1.0 {
+                0.0
+            } else {
+                -self.b / self.a * xi.signum()
+            };
+        }
+        -(self.b / self.a)
+            * xi.signum()
+            * u.powf(self.c - 1.0)
+            * (1.0 - u.powf(self.c)).powf(1.0 / self.c - 1.0)
+    }
+
+    /// Lowest point w of one cam centred at p + s d, and dw/ds.
+    pub fn cam(
+        &self,
+        road: &Road,
+        p: [f64; 2],
+        d: [f64; 2],
+        s: f64,
+        kinks: &mut Vec<f64>,
+    ) -> (f64, f64, bool) {
+        let (s0, s1) = (s - self.xi_max, s + self.xi_max);
+        let (xa, xb) = (p[0] + s0 * d[0], p[0] + s1 * d[0]);
+        let (ya, yb) = (p[1] + s0 * d[1], p[1] + s1 * d[1]);
+        if let Some(h) = road.flat_height(xa.min(xb), xa.max(xb), ya.min(yb), ya.max(yb)) {
+            return (h, 0.0, true);
+        }
+        let h_at = |eta: f64| road.height(p[0] + eta * d[0], p[1] + eta * d[1]);
+        let g = |eta: f64| h_at(eta) + self.contour(eta - s);
+        kinks.clear();
+        road.kinks_along(p, d, s0, s1, kinks);
+        // Candidates: window ends and kinks (upper one-sided limit at a jump).
+        let mut best_eta = s0;
+        let mut best = g(s0);
+        let consider = |eta: f64, v: f64, best: &mut f64, best_eta: &mut f64| {
+            if v > *best {
+                *best = v;
+                *best_eta = eta;
+            }
+        };
+        let v1 = g(s1);
+        consider(s1, v1, &mut best, &mut best_eta);
+        for &k in kinks.iter() {
+            let left = h_at(k - 1e-9).max(h_at(k));
+            consider(k, left + self.contour(k - s), &mut best, &mut best_eta);
+        }
+        // Golden-section search on each smooth piece.
+        let mut lo = s0;
+        let mut pieces: Vec<f64> = kinks.clone();
+        pieces.push(s1);
+        for &hi in &pieces {
+            if hi - lo > 2.0 * XI_TOL {
+                let (eta, v) = golden_max(&g, lo, hi);
+                consider(eta, v, &mut best, &mut best_eta);
+            }
+            lo = hi;
+        }
+        let w = best - self.b;
+        let xi = best_eta - s;
+        let dw = if (best_eta - s0).abs() < XI_TOL || (best_eta - s1).abs() < XI_TOL {
+            // The maximum sits on the window's edge, which moves with the cam.
+            let (gx, gy) = road.slope(p[0] + best_eta * d[0], p[1] + best_eta * d[1]);
+            gx * d[0] + gy * d[1]
+        } else {
+            -self.contour_slope(xi)
+        };
+        (w, dw, false)
+    }
+
+    /// The effective road under a wheel whose centre projects to `centre` (x, y), heading
+    /// along the unit vector `heading` and with the lateral unit vector `lateral`.
+    pub fn effective(
+        &self,
+        road: &Road,
+        centre: [f64; 2],
+        heading: [f64; 2],
+        lateral: [f64; 2],
+    ) -> EffectiveRoad {
+        let mut kinks = Vec::new();
+        let (mut w, mut tan, mut dw, mut dtan) = (0.0, 0.0, 0.0, 0.0);
+        let mut flat = true;
+        let n = self.offsets.len() as f64;
+        for &y in &self.offsets {
+            let p = [centre[0] + y * lateral[0], centre[1] + y * lateral[1]];
+            let (wf, dwf, ff) = self.cam(road, p, heading, 0.5 * self.l_s, &mut kinks);
+            let (wr, dwr, fr) = self.cam(road, p, heading, -0.5 * self.l_s, &mut kinks);
+            flat &= ff && fr;
+            w += 0.5 * (wf + wr) / n;
+            tan += (wf - wr) / self.l_s / n;
+            dw += 0.5 * (dwf + dwr) / n;
+            dtan += (dwf - dwr) / self.l_s / n;
+        }
+        EffectiveRoad {
+            height: w,
+            tan_slope: tan,
+            dheight_ds: dw,
+            dtan_ds: dtan,
+            curvature: dtan / (1.0 + tan * tan).powf(1.5),
+            flat,
+        }
+    }
+}
+
+/// Maximum of a concave (unimodal) function on [lo, hi] by golden-section search.
+fn golden_max(f: &impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> (f64, f64) {
+    const R: f64 = 0.618_033_988_749_895;
+    let mut x1 = hi - R * (hi - lo);
+    let mut x2 = lo + R * (hi - lo);
+    let mut f1 = f(x1);
+    let mut f2 = f(x2);
+    while hi - lo > XI_TOL {
+        if f1 < f2 {
+            lo = x1;
+            x1 = x2;
+            f1 = f2;
+            x2 = lo + R * (hi - lo);
+            f2 = f(x2);
+        } else {
+            hi = x2;
+            x2 = x1;
+            f2 = f1;
+            x1 = hi - R * (hi - lo);
+            f1 = f(x1);
+        }
+    }
+    if f1 > f2 {
+        (x1, f1)
+    } else {
+        (x2, f2)
+    }
+}

@@ -1,0 +1,57 @@
+//! Helpers shared by the tyre tests.
+
+#![allow(dead_code)]
+
+use std::path::Path;
+
+/// A number from a .tir file read by a plain line scan (independent of the crate's
+/// reader): the first `KEY = value` line with that key inside `[section]`.
+pub fn tir_value(file: &str, section: &str, key: &str) -> f64 {
+    let text = std::fs::read_to_string(Path::new(file)).unwrap();
+    let mut in_section = false;
+    for line in text.lines() {
+        let l = line.trim();
+        if l.starts_with('[') {
+            in_section = l == format!("[{section}]");
+            continue;
+        }
+        if in_section {
+            if let Some((k, v)) = l.split_once('=') {
+                if k.trim() == key {
+                    let v = v.split('$').next().unwrap().trim();
+                    return v.parse().unwrap();
+                }
+            }
+        }
+    }
+    panic!("{key} not in [{section}] of {file}");
+}
+
+/// Frequency [Hz] of the largest peak of the Hann-windowed spectrum of `y` (sampled every
+/// `dt`) between `f_lo` and `f_hi`, by a direct DFT scan in 0.1 Hz steps.
+pub fn dominant_frequency(y: &[f64], dt: f64, f_lo: f64, f_hi: f64) -> f64 {
+    let n = y.len();
+    let mean = y.iter().sum::<f64>() / n as f64;
+    let w: Vec<f64> = (0..n)
+        .map(|i| {
+            let hann = 0.5 - 0.5 * (2.0 * std::f64::consts::PI * i as f64 / (n - 1) as f64).cos();
+            (y[i] - mean) * hann
+        })
+        .collect();
+    let mut best = (0.0, f_lo);
+    let mut f = f_lo;
+    while f <= f_hi {
+        let (mut re, mut im) = (0.0, 0.0);
+        for (i, v) in w.iter().enumerate() {
+            let ph = 2.0 * std::f64::consts::PI * f * i as f64 * dt;
+            re += v * ph.cos();
+            im += v * ph.sin();
+        }
+        let mag = re * re + im * im;
+        if mag > best.0 {
+            best = (mag, f);
+        }
+        f += 0.1;
+    }
+    best.1
+}
