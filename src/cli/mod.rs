@@ -5,7 +5,6 @@ mod bench;
 pub mod lineplot;
 mod modes;
 pub mod plot;
-pub mod plot;
 mod run;
 mod tyre_rig;
 mod verify;
