@@ -5,6 +5,8 @@
 //! checks that follow (a negative mass, a joint naming a missing body, NaN) are reported
 //! as `file:line:column: field `path`: message`, the line found from the TOML spans.
 
+pub mod csv_table;
+
 use std::fmt;
 use std::ops::Range;
 use std::path::{Path, PathBuf};

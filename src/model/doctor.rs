@@ -235,9 +235,9 @@ fn bushing_frequencies(sys: &System) -> Vec<BushingFrequency> {
     let m = &sys.model;
     let mut out = Vec::new();
     let axes = ["x", "y", "z", "rx", "ry", "rz"];
+    let (q, _) = sys.initial_q_v();
     for f in &m.forces {
         let Force::Bushing(b) = f else { continue };
-        let (q, _) = sys.initial_q_v();
         let fj = sys.marker_frame(&q, b.j);
         for a in 0..6 {
             let k = b.stiffness[a].stiffness();

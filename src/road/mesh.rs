@@ -104,51 +104,14 @@ impl HeightField {
 
     /// Reads the grid CSV (see the module docs); errors name the file and line.
     pub fn from_csv(file: &Path) -> Result<HeightField, InputError> {
-        let err = |line: Option<usize>, field: &str, msg: String| InputError {
-            file: file.to_path_buf(),
-            line,
-            column: None,
-            field: field.to_string(),
-            message: msg,
+        let err = |line: Option<usize>, field: &str, msg: String| {
+            crate::input::csv_table::error(file, line, field, msg)
         };
-        let mut rdr = csv::ReaderBuilder::new()
-            .trim(csv::Trim::All)
-            .comment(Some(b'#'))
-            .from_path(file)
-            .map_err(|e| err(None, "", format!("cannot read: {e}")))?;
-        let headers = rdr
-            .headers()
-            .map_err(|e| err(Some(1), "", format!("bad header: {e}")))?
-            .clone();
-        let col = |name: &str| -> Result<usize, InputError> {
-            headers.iter().position(|h| h == name).ok_or_else(|| {
-                err(
-                    Some(1),
-                    name,
-                    format!("missing column (need x_m, y_m, z_m; found {headers:?})"),
-                )
-            })
-        };
-        let (cx, cy, cz) = (col("x_m")?, col("y_m")?, col("z_m")?);
-        let mut pts = Vec::new();
-        for rec in rdr.records() {
-            let rec =
-                rec.map_err(|e| err(e.position().map(|p| p.line() as usize), "", e.to_string()))?;
-            let line = rec.position().map(|p| p.line() as usize);
-            let num = |c: usize, name: &str| -> Result<f64, InputError> {
-                let v: f64 = rec
-                    .get(c)
-                    .unwrap_or("")
-                    .parse()
-                    .map_err(|e| err(line, name, format!("not a number: {e}")))?;
-                if v.is_finite() {
-                    Ok(v)
-                } else {
-                    Err(err(line, name, format!("must be finite, got {v}")))
-                }
-            };
-            pts.push((num(cx, "x_m")?, num(cy, "y_m")?, num(cz, "z_m")?, line));
-        }
+        let pts: Vec<(f64, f64, f64, Option<usize>)> =
+            crate::input::csv_table::read_columns(file, &["x_m", "y_m", "z_m"])?
+                .into_iter()
+                .map(|r| (r.values[0], r.values[1], r.values[2], r.line))
+                .collect();
         let uniq = |mut v: Vec<f64>| {
             v.sort_by(f64::total_cmp);
             v.dedup();

@@ -57,50 +57,13 @@ impl TrackProfile {
         track_width: f64,
         outside: Option<f64>,
     ) -> Result<TrackProfile, InputError> {
-        let err = |line: Option<usize>, field: &str, msg: String| InputError {
-            file: file.to_path_buf(),
-            line,
-            column: None,
-            field: field.to_string(),
-            message: msg,
+        let err = |line: Option<usize>, field: &str, msg: String| {
+            crate::input::csv_table::error(file, line, field, msg)
         };
-        let mut rdr = csv::ReaderBuilder::new()
-            .trim(csv::Trim::All)
-            .comment(Some(b'#'))
-            .from_path(file)
-            .map_err(|e| err(None, "", format!("cannot read: {e}")))?;
-        let headers = rdr
-            .headers()
-            .map_err(|e| err(Some(1), "", format!("bad header: {e}")))?
-            .clone();
-        let col = |name: &str| -> Result<usize, InputError> {
-            headers.iter().position(|h| h == name).ok_or_else(|| {
-                err(
-                    Some(1),
-                    name,
-                    format!("missing column (header must name x_m, z_left_m, z_right_m; found {headers:?})"),
-                )
-            })
-        };
-        let (cx, cl, cr) = (col("x_m")?, col("z_left_m")?, col("z_right_m")?);
         let (mut x, mut l, mut r) = (Vec::new(), Vec::new(), Vec::new());
-        for rec in rdr.records() {
-            let rec =
-                rec.map_err(|e| err(e.position().map(|p| p.line() as usize), "", e.to_string()))?;
-            let line = rec.position().map(|p| p.line() as usize);
-            let num = |c: usize, name: &str| -> Result<f64, InputError> {
-                let v: f64 = rec
-                    .get(c)
-                    .unwrap_or("")
-                    .parse()
-                    .map_err(|e| err(line, name, format!("not a number: {e}")))?;
-                if v.is_finite() {
-                    Ok(v)
-                } else {
-                    Err(err(line, name, format!("must be finite, got {v}")))
-                }
-            };
-            let xi = num(cx, "x_m")?;
+        for row in crate::input::csv_table::read_columns(file, &["x_m", "z_left_m", "z_right_m"])? {
+            let line = row.line;
+            let xi = row.values[0];
             if let Some(&prev) = x.last() {
                 if xi <= prev {
                     return Err(err(
@@ -111,8 +74,8 @@ impl TrackProfile {
                 }
             }
             x.push(xi);
-            l.push(num(cl, "z_left_m")?);
-            r.push(num(cr, "z_right_m")?);
+            l.push(row.values[1]);
+            r.push(row.values[2]);
         }
         let mut p =
             TrackProfile::new(x, l, r, track_width, outside).map_err(|m| err(None, "", m))?;

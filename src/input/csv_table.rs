@@ -1,0 +1,73 @@
+//! Numeric CSV tables with named columns: each row's values in the order asked for, with
+//! its line number, and errors that name the file, the line and the column.
+
+use std::path::Path;
+
+use super::InputError;
+
+/// One data row: the 1-based line and the requested columns' values.
+pub struct Row {
+    pub line: Option<usize>,
+    pub values: Vec<f64>,
+}
+
+/// Reads `file` (`#` comments, trimmed fields) and returns the columns `names` of every
+/// row as finite numbers.
+pub fn read_columns(file: &Path, names: &[&str]) -> Result<Vec<Row>, InputError> {
+    let err = |line: Option<usize>, field: &str, msg: String| error(file, line, field, msg);
+    let mut rdr = csv::ReaderBuilder::new()
+        .trim(csv::Trim::All)
+        .comment(Some(b'#'))
+        .from_path(file)
+        .map_err(|e| err(None, "", format!("cannot read: {e}")))?;
+    let headers = rdr
+        .headers()
+        .map_err(|e| err(Some(1), "", format!("bad header: {e}")))?
+        .clone();
+    let cols = names
+        .iter()
+        .map(|name| {
+            headers.iter().position(|h| h == *name).ok_or_else(|| {
+                err(
+                    Some(1),
+                    name,
+                    format!(
+                        "missing column (header must name {}; found {headers:?})",
+                        names.join(", ")
+                    ),
+                )
+            })
+        })
+        .collect::<Result<Vec<usize>, InputError>>()?;
+    let mut rows = Vec::new();
+    for rec in rdr.records() {
+        let rec =
+            rec.map_err(|e| err(e.position().map(|p| p.line() as usize), "", e.to_string()))?;
+        let line = rec.position().map(|p| p.line() as usize);
+        let mut values = Vec::with_capacity(cols.len());
+        for (&c, name) in cols.iter().zip(names) {
+            let v: f64 = rec
+                .get(c)
+                .unwrap_or("")
+                .parse()
+                .map_err(|e| err(line, name, format!("not a number: {e}")))?;
+            if !v.is_finite() {
+                return Err(err(line, name, format!("must be finite, got {v}")));
+            }
+            values.push(v);
+        }
+        rows.push(Row { line, values });
+    }
+    Ok(rows)
+}
+
+/// An error about a CSV file at a line and column.
+pub fn error(file: &Path, line: Option<usize>, field: &str, message: String) -> InputError {
+    InputError {
+        file: file.to_path_buf(),
+        line,
+        column: None,
+        field: field.to_string(),
+        message,
+    }
+}
