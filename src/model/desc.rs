@@ -25,6 +25,44 @@ pub struct Body {
     pub velocity: [f64; 3],
     /// Initial angular velocity, world axes [rad/s].
     pub angular_velocity: [f64; 3],
+    /// The elastic part of a modal (floating-frame) body; `None` for a rigid body.
+    /// For a modal body `mass`, `inertia` and `position` are the undeformed body's (CM)
+    /// and the body axes are the FE file's axes.
+    pub modal: Option<Box<Modal>>,
+}
+
+/// How much of the inertia coupling between a modal body's frame motion and its modal
+/// coordinates is kept (see `docs/flex.md`, "Coupling levels").
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Coupling {
+    /// Block-diagonal mass matrix: undeformed rigid inertia plus the identity modal mass.
+    /// Exact at eta = 0 because the kept modes are mass-orthogonal to the rigid modes.
+    #[default]
+    Constant,
+    /// Constant mass matrix plus the centrifugal and Euler loads of the frame's rotation
+    /// on the modes.
+    Partial,
+    /// The full deformation-dependent mass matrix and quadratic velocity terms.
+    Full,
+}
+
+impl Coupling {
+    pub fn parse(s: &str) -> Option<Coupling> {
+        Some(match s {
+            "constant" => Coupling::Constant,
+            "partial" => Coupling::Partial,
+            "full" => Coupling::Full,
+            _ => return None,
+        })
+    }
+}
+
+/// The elastic part of a modal body: the selected modes of a Craig-Bampton reduction.
+#[derive(Clone, Debug)]
+pub struct Modal {
+    /// Selected modes only (`ModalData::selected`); body frame = FE frame.
+    pub data: crate::flex::ModalData,
+    pub coupling: Coupling,
 }
 
 /// A frame fixed on a body: origin and axes in body coordinates.
@@ -36,6 +74,10 @@ pub struct Marker {
     pub position: [f64; 3],
     /// Axes as columns, in body coordinates.
     pub axes: [[f64; 3]; 3],
+    /// On a modal body: the index of the modal node (`Modal::data.nodes`) the marker is
+    /// attached to; it then translates and rotates with that node's mode shapes. The
+    /// marker's `position` must be the node's undeformed position relative to the CM.
+    pub node: Option<usize>,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -311,6 +353,36 @@ pub struct Output {
     pub request: Request,
 }
 
+/// A tyre on a wheel: the wheel centre marker sits on the rim body, its y axis is the
+/// spin axis (pointing left on a car). The tyre reads the model's road.
+#[derive(Clone, Debug)]
+pub struct TyreElem {
+    pub name: String,
+    pub marker: usize,
+    pub tyre: crate::tyre::Tyre,
+}
+
+/// A speed-holding driveline: a PI controller on the drive torque, split equally over
+/// the driven wheels (an open differential), like the thesis's engine.
+#[derive(Clone, Debug)]
+pub struct SpeedControl {
+    pub name: String,
+    /// Marker whose velocity along its own x axis is held (the car body, x forward).
+    pub sensor: usize,
+    /// Set speed of time [m/s].
+    pub target: TimeFunction,
+    /// Proportional gain [N m / (m/s)] on the total drive torque.
+    pub kp: f64,
+    /// Integral gain [N m / m].
+    pub ki: f64,
+    /// Limit of the total drive torque magnitude [N m].
+    pub max_torque: f64,
+    /// Driven wheels: (wheel-centre marker on the wheel, y axis = spin axis; marker on the
+    /// carrier that takes the reaction, e.g. the knuckle). Torque +T/n about the wheel
+    /// marker's y axis on the wheel, -T/n on the carrier.
+    pub wheels: Vec<(usize, usize)>,
+}
+
 /// A complete mechanism.
 #[derive(Clone, Debug, Default)]
 pub struct Model {
@@ -323,6 +395,10 @@ pub struct Model {
     pub forces: Vec<Force>,
     pub motions: Vec<Motion>,
     pub outputs: Vec<Output>,
+    pub tyres: Vec<TyreElem>,
+    pub controls: Vec<SpeedControl>,
+    /// The road the tyres roll on (required when there are tyres).
+    pub road: Option<crate::road::Road>,
 }
 
 impl Model {
@@ -360,6 +436,7 @@ impl Model {
             body,
             position,
             axes,
+            node: None,
         });
         self.markers.len() - 1
     }

@@ -342,6 +342,7 @@ pub fn build(src: &Source, f: File) -> Result<Mechanism, InputError> {
             orientation: quat_from_matrix(&axes),
             velocity: b.velocity_m_s,
             angular_velocity: b.angular_velocity_rad_s,
+            modal: None,
         });
     }
     let body_ref = |m: &Model, pth: &[Seg], name: &str| -> Result<BodyId, InputError> {
