@@ -351,6 +351,24 @@ pub enum Request {
 pub struct Output {
     pub name: String,
     pub request: Request,
+    /// Channel names replacing the default `<name>.x`, `<name>.y`, ... (one per component
+    /// the request produces, in order); an empty name drops that component. Fixed
+    /// channel names such as `hitch_fx` or `acc_fl_wheel_z` come from here.
+    pub components: Option<Vec<String>>,
+    /// Factor on every component (-1 reports an element's load on its J body).
+    pub scale: f64,
+}
+
+impl Output {
+    /// An output with the default channel names and no scaling.
+    pub fn new(name: impl Into<String>, request: Request) -> Output {
+        Output {
+            name: name.into(),
+            request,
+            components: None,
+            scale: 1.0,
+        }
+    }
 }
 
 /// A tyre on a wheel: the wheel centre marker sits on the rim body, its y axis is the

@@ -2,7 +2,7 @@
 //! from a solver state (y, y') and laid out as named channels with units.
 
 use super::desc::{
-    Axes, ElementQuantity, Force, JointQuantity, MarkerQuantity, MotionDof, Request,
+    Axes, ElementQuantity, Force, JointQuantity, MarkerQuantity, Model, MotionDof, Output, Request,
 };
 use super::joint::joint_coordinate;
 use super::math::{add, cross, mtv, mv, rot, sub};
@@ -31,83 +31,118 @@ fn vec_channels(base: &str, unit: &'static str) -> Vec<ChannelInfo> {
 
 /// The channels of every requested output, in order.
 pub fn channels(sys: &System) -> Vec<ChannelInfo> {
-    let m = &sys.model;
+    channels_of(&sys.model)
+}
+
+/// The channels of every requested output of a model (no assembly needed).
+pub fn channels_of(m: &Model) -> Vec<ChannelInfo> {
     let mut out = Vec::new();
     for o in &m.outputs {
-        match &o.request {
-            Request::Marker { quantity, .. } => {
-                let unit = match quantity {
-                    MarkerQuantity::Position => "m",
-                    MarkerQuantity::Velocity => "m/s",
-                    MarkerQuantity::Acceleration => "m/s^2",
-                    MarkerQuantity::AngularVelocity => "rad/s",
-                    MarkerQuantity::AngularAcceleration => "rad/s^2",
-                };
-                out.extend(vec_channels(&o.name, unit));
-            }
-            Request::Joint {
-                joint, quantity, ..
-            } => match quantity {
-                JointQuantity::Force => out.extend(vec_channels(&o.name, "N")),
-                JointQuantity::Torque => out.extend(vec_channels(&o.name, "N m")),
-                JointQuantity::Displacement => {
-                    let rotational = matches!(
-                        sys.model.joints[*joint].kind,
-                        super::desc::JointKind::Revolute
-                    );
-                    out.push(ChannelInfo {
-                        name: o.name.clone(),
-                        unit: if rotational { "rad" } else { "m" },
-                        angle: rotational,
-                    });
-                }
-            },
-            Request::Element { element, quantity } => {
-                let f = &m.forces[*element];
-                let names: Vec<(String, &'static str, bool)> = match f {
-                    Force::Spring(_) => vec![(
-                        o.name.clone(),
-                        match quantity {
-                            ElementQuantity::Force => "N",
-                            ElementQuantity::Deflection => "m",
-                            ElementQuantity::Velocity => "m/s",
-                        },
-                        false,
-                    )],
-                    Force::Rot(_) => vec![(
-                        o.name.clone(),
-                        match quantity {
-                            ElementQuantity::Force => "N m",
-                            ElementQuantity::Deflection => "rad",
-                            ElementQuantity::Velocity => "rad/s",
-                        },
-                        *quantity == ElementQuantity::Deflection,
-                    )],
-                    Force::Bushing(_) | Force::Applied(_) => ["x", "y", "z", "rx", "ry", "rz"]
-                        .iter()
-                        .enumerate()
-                        .map(|(a, c)| {
-                            let unit = match (quantity, a < 3) {
-                                (ElementQuantity::Force, true) => "N",
-                                (ElementQuantity::Force, false) => "N m",
-                                (ElementQuantity::Deflection, true) => "m",
-                                (ElementQuantity::Deflection, false) => "rad",
-                                (ElementQuantity::Velocity, true) => "m/s",
-                                (ElementQuantity::Velocity, false) => "rad/s",
-                            };
-                            (format!("{}.{c}", o.name), unit, false)
-                        })
-                        .collect(),
-                };
-                out.extend(names.into_iter().map(|(name, unit, angle)| ChannelInfo {
-                    name,
-                    unit,
-                    angle,
-                }));
-            }
+        let raw = raw_channels(m, o);
+        match &o.components {
+            None => out.extend(raw),
+            Some(names) => out.extend(raw.into_iter().zip(names).filter_map(|(c, n)| {
+                (!n.is_empty()).then(|| ChannelInfo {
+                    name: n.clone(),
+                    ..c
+                })
+            })),
         }
     }
     out
+}
+
+/// How many components `request` produces (the length `Output::components` must have).
+pub fn component_count(m: &Model, request: &Request) -> usize {
+    raw_channels(m, &Output::new(String::new(), request.clone())).len()
+}
+
+/// The default channels of one output.
+fn raw_channels(m: &Model, o: &Output) -> Vec<ChannelInfo> {
+    let mut out = Vec::new();
+    match &o.request {
+        Request::Marker { quantity, .. } => {
+            let unit = match quantity {
+                MarkerQuantity::Position => "m",
+                MarkerQuantity::Velocity => "m/s",
+                MarkerQuantity::Acceleration => "m/s^2",
+                MarkerQuantity::AngularVelocity => "rad/s",
+                MarkerQuantity::AngularAcceleration => "rad/s^2",
+            };
+            out.extend(vec_channels(&o.name, unit));
+        }
+        Request::Joint {
+            joint, quantity, ..
+        } => match quantity {
+            JointQuantity::Force => out.extend(vec_channels(&o.name, "N")),
+            JointQuantity::Torque => out.extend(vec_channels(&o.name, "N m")),
+            JointQuantity::Displacement => {
+                let rotational = matches!(m.joints[*joint].kind, super::desc::JointKind::Revolute);
+                out.push(ChannelInfo {
+                    name: o.name.clone(),
+                    unit: if rotational { "rad" } else { "m" },
+                    angle: rotational,
+                });
+            }
+        },
+        Request::Element { element, quantity } => {
+            let f = &m.forces[*element];
+            let names: Vec<(String, &'static str, bool)> = match f {
+                Force::Spring(_) => vec![(
+                    o.name.clone(),
+                    match quantity {
+                        ElementQuantity::Force => "N",
+                        ElementQuantity::Deflection => "m",
+                        ElementQuantity::Velocity => "m/s",
+                    },
+                    false,
+                )],
+                Force::Rot(_) => vec![(
+                    o.name.clone(),
+                    match quantity {
+                        ElementQuantity::Force => "N m",
+                        ElementQuantity::Deflection => "rad",
+                        ElementQuantity::Velocity => "rad/s",
+                    },
+                    *quantity == ElementQuantity::Deflection,
+                )],
+                Force::Bushing(_) | Force::Applied(_) => ["x", "y", "z", "rx", "ry", "rz"]
+                    .iter()
+                    .enumerate()
+                    .map(|(a, c)| {
+                        let unit = match (quantity, a < 3) {
+                            (ElementQuantity::Force, true) => "N",
+                            (ElementQuantity::Force, false) => "N m",
+                            (ElementQuantity::Deflection, true) => "m",
+                            (ElementQuantity::Deflection, false) => "rad",
+                            (ElementQuantity::Velocity, true) => "m/s",
+                            (ElementQuantity::Velocity, false) => "rad/s",
+                        };
+                        (format!("{}.{c}", o.name), unit, false)
+                    })
+                    .collect(),
+            };
+            out.extend(names.into_iter().map(|(name, unit, angle)| ChannelInfo {
+                name,
+                unit,
+                angle,
+            }));
+        }
+    }
+    out
+}
+
+/// Applies an output's scale and drops its unnamed components, in place from `start`.
+fn finish(o: &Output, out: &mut Vec<f64>, start: usize) {
+    let vals: Vec<f64> = out.drain(start..).map(|v| o.scale * v).collect();
+    match &o.components {
+        None => out.extend(vals),
+        Some(names) => out.extend(
+            vals.into_iter()
+                .zip(names)
+                .filter_map(|(v, n)| (!n.is_empty()).then_some(v)),
+        ),
+    }
 }
 
 /// Values of every channel at (t, y, y').
@@ -150,6 +185,7 @@ pub fn evaluate(sys: &System, t: f64, y: &[f64], yp: &[f64]) -> Vec<f64> {
         }
     };
     for o in &m.outputs {
+        let start = out.len();
         match &o.request {
             Request::Marker {
                 marker,
@@ -227,6 +263,7 @@ pub fn evaluate(sys: &System, t: f64, y: &[f64], yp: &[f64]) -> Vec<f64> {
                 }
             }
         }
+        finish(o, &mut out, start);
     }
     out
 }

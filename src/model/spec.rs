@@ -852,11 +852,10 @@ fn output_of(
             ))
         }
     };
-    Ok(Output {
-        name: o
-            .name
+    Ok(Output::new(
+        o.name
             .clone()
             .unwrap_or(format!("{default_name}.{}", o.quantity)),
         request,
-    })
+    ))
 }

@@ -1,0 +1,371 @@
+//! The assembly file: which templates and property files make a vehicle, its sensors,
+//! and [`load`], which builds it.
+//!
+//! ```toml
+//! [vehicle]
+//! name = "Fabia 1.4 MPI with a box trailer"
+//! gravity_m_s2 = [0.0, 0.0, -9.81]
+//! tyre_model = "rigid-ring"                  # or "point-follower"
+//!
+//! [car]
+//! body = { template = "lumped_body", file = "fabia/body.toml" }
+//! front = { template = "mcpherson", file = "fabia/front_mcpherson.toml", tyre = "tyres/car_185_60r14.tir" }
+//! rear = { template = "twist_beam", file = "fabia/rear_twist_beam.toml", tyre = "tyres/car_185_60r14.tir" }
+//! driveline = { template = "speed_control", file = "fabia/driveline.toml" }
+//! hitch = { template = "modal_hitch", file = "fabia/hitch.toml" }          # optional
+//!
+//! [trailer]                                                                # optional
+//! template = "box_trailer"
+//! file = "trailer/box_trailer.toml"
+//! tyre = "tyres/trailer_155_80r13.tir"
+//! load_case = "empty"
+//!
+//! [[sensor]]
+//! name = "fl_wheel"
+//! body = "knuckle_fl"
+//! position_m = [0.0, 0.7175, 0.273]
+//! axes = ["z"]
+//! ```
+//!
+//! Paths are relative to the assembly file.
+
+use std::path::{Path, PathBuf};
+
+use serde::Deserialize;
+
+use super::build::Builder;
+use super::design::{self, centre_of_mass};
+use super::geom::{Placement, IDENTITY, V};
+use super::sensors::{self, SensorSpec};
+use super::{
+    body, driveline, hitch, mcpherson, trailer, twist_beam, wheel, Design, Handles, Options,
+    TrailerDesign, Vehicle,
+};
+use crate::input::{InputError, Seg, Source};
+use crate::model::math::sub;
+use crate::model::Model;
+use crate::path;
+use crate::tyre::{Tyre, TyreKind};
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct File {
+    vehicle: VehicleSec,
+    car: Car,
+    trailer: Option<Part>,
+    #[serde(default)]
+    sensor: Vec<SensorSpec>,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct VehicleSec {
+    name: String,
+    gravity_m_s2: [f64; 3],
+    #[serde(default)]
+    tyre_model: TyreKind,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct Car {
+    body: Part,
+    front: Part,
+    rear: Part,
+    driveline: Part,
+    hitch: Option<Part>,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct Part {
+    template: String,
+    file: String,
+    tyre: Option<String>,
+    /// Trailer only.
+    load_case: Option<String>,
+}
+
+/// Rear axle and hitch FE origin may differ by this much [m] (the hitch file is drawn
+/// from the rear axle).
+const HITCH_ORIGIN_TOLERANCE_M: f64 = 0.01;
+
+/// A part's file, checked: template name, existence.
+fn part(
+    src: &Source,
+    dir: &Path,
+    p: &[Seg],
+    part: &Part,
+    template: &str,
+) -> Result<PathBuf, InputError> {
+    let at = |k: &str| {
+        let mut v = p.to_vec();
+        v.push(Seg::from(k));
+        v
+    };
+    if part.template != template {
+        return Err(src.error(
+            &at("template"),
+            format!(
+                "'{}': this slot takes the template '{template}'",
+                part.template
+            ),
+        ));
+    }
+    let f = dir.join(&part.file);
+    if !f.is_file() {
+        return Err(src.error(&at("file"), format!("no file {}", f.display())));
+    }
+    Ok(f)
+}
+
+fn tyre(
+    src: &Source,
+    dir: &Path,
+    p: &[Seg],
+    part: &Part,
+    kind: TyreKind,
+) -> Result<Tyre, InputError> {
+    let mut at = p.to_vec();
+    at.push(Seg::from("tyre"));
+    let t = part
+        .tyre
+        .as_ref()
+        .ok_or_else(|| src.error(&at, "name the tyre's .tir file"))?;
+    let f = dir.join(t);
+    if !f.is_file() {
+        return Err(src.error(&at, format!("no file {}", f.display())));
+    }
+    Tyre::from_file(&f, kind)
+}
+
+/// Reads the assembly file `path` and builds the vehicle.
+pub fn load(path: &Path, opts: &Options) -> Result<Vehicle, InputError> {
+    let src = Source::read(path)?;
+    let f: File = src.parse()?;
+    let dir = path.parent().unwrap_or(Path::new("."));
+    for (c, g) in f.vehicle.gravity_m_s2.iter().enumerate() {
+        src.finite(&path!["vehicle", "gravity_m_s2", c], *g)?;
+    }
+    if super::geom::norm(&f.vehicle.gravity_m_s2) == 0.0 {
+        return Err(src.error(
+            &path!["vehicle", "gravity_m_s2"],
+            "gravity must not be zero (it sets the design loads)",
+        ));
+    }
+    let kind = opts.tyre_kind.unwrap_or(f.vehicle.tyre_model);
+    let mut model = Model {
+        name: f.vehicle.name.clone(),
+        gravity: f.vehicle.gravity_m_s2,
+        ..Default::default()
+    };
+    let car_place = Placement::translate([opts.x_offset, 0.0, 0.0]);
+    let mut b = Builder::new(&mut model, opts.joints_as_bushings.clone());
+    b.place = car_place;
+    let c = &f.car;
+    let car_body = body::build(
+        &mut b,
+        &part(&src, dir, &path!["car", "body"], &c.body, "lumped_body")?,
+    )?;
+    let car_ref = b.model.marker_index("car_body.cm").expect("body marker");
+    let tf = tyre(&src, dir, &path!["car", "front"], &c.front, kind)?;
+    let front = mcpherson::build(
+        &mut b,
+        &part(&src, dir, &path!["car", "front"], &c.front, "mcpherson")?,
+        car_body,
+        &tf,
+    )?;
+    let tr = tyre(&src, dir, &path!["car", "rear"], &c.rear, kind)?;
+    let rear = twist_beam::build(
+        &mut b,
+        &part(&src, dir, &path!["car", "rear"], &c.rear, "twist_beam")?,
+        car_body,
+        &tr,
+    )?;
+    let hitch = match &c.hitch {
+        Some(h) => {
+            let file = part(&src, dir, &path!["car", "hitch"], h, "modal_hitch")?;
+            let hh = hitch::build(
+                &mut b,
+                &file,
+                car_body,
+                opts.hitch_variant,
+                opts.ball.clone(),
+            )?;
+            let rear_x = rear.wheels[0].design_centre[0];
+            if (hh.fe_origin[0] - rear_x).abs() > HITCH_ORIGIN_TOLERANCE_M {
+                let mut e = hh.origin_complaint.clone();
+                e.message = format!(
+                    "the FE model is drawn from the rear axle, which is at x = {rear_x} m here"
+                );
+                return Err(e);
+            }
+            Some(hh)
+        }
+        None => None,
+    };
+    // Design statics of the car alone: its weight shared by the axles (lever rule), then
+    // across each axle.
+    let parts = masses(b.model, &car_place, &[&front.wheels, &rear.wheels]);
+    let (car_mass, car_cm) = centre_of_mass(&parts);
+    let w = car_mass * super::geom::norm(&b.model.gravity);
+    let (xf, xr) = (
+        front.wheels[0].design_centre[0],
+        rear.wheels[0].design_centre[0],
+    );
+    let (ff, fr) = design::lever(w, car_cm[0], xf, xr);
+    let mut car_corners = Vec::new();
+    for (axle_load, corners, wheels) in [
+        (ff, front.corners, &front.wheels),
+        (fr, rear.corners, &rear.wheels),
+    ] {
+        let (yl, yr) = (wheels[0].design_centre[1], wheels[1].design_centre[1]);
+        let (fl, fr) = design::lever(axle_load, car_cm[1], yl, yr);
+        for (corner, load) in corners.into_iter().zip([fl, fr]) {
+            car_corners.push(design::finish(&mut b, corner, load)?);
+        }
+    }
+    let mut ride = Vec::new();
+    for (w, p) in front
+        .wheels
+        .iter()
+        .zip(&front.top_mounts)
+        .chain(rear.wheels.iter().zip(&rear.spring_tops))
+    {
+        ride.push((
+            w.name.clone(),
+            b.marker(&format!("ride_{}", w.name), Some(car_body), *p, &IDENTITY),
+        ));
+    }
+    let mut wheels: Vec<_> = front.wheels.iter().chain(&rear.wheels).cloned().collect();
+    let dl = part(
+        &src,
+        dir,
+        &path!["car", "driveline"],
+        &c.driveline,
+        "speed_control",
+    )?;
+    let control = driveline::build(&dl, car_ref, opts.speed, &wheels)?;
+    b.model.controls.push(control);
+
+    let mut handles = Handles {
+        car_body,
+        car_ref,
+        wheels: Vec::new(),
+        hitch: hitch.clone(),
+        ball: None,
+        trailer_body: None,
+        trailer_ref: None,
+        ride,
+        sensors: Vec::new(),
+        bodies: Default::default(),
+        car_place,
+        trailer_place: None,
+    };
+    let mut trailer_design = None;
+    if let Some(t) = &f.trailer {
+        let tp = path!["trailer"];
+        let file = part(&src, dir, &tp, t, "box_trailer")?;
+        let h = hitch
+            .as_ref()
+            .ok_or_else(|| src.error(&tp, "a trailer needs a hitch ([car] hitch = ...)"))?;
+        let tt = tyre(&src, dir, &tp, t, kind)?;
+        let case = opts.load_case.as_deref().or(t.load_case.as_deref());
+        let tf = trailer::read(&file, case)?;
+        let (place, pitch) = place_trailer(&src, &tf, car_place.point(h.ball))?;
+        b.place = place;
+        let built = trailer::build(&mut b, &tf, &tt)?;
+        b.place = car_place;
+        handles.ball = Some(hitch::couple(&mut b, h, built.body));
+        handles.trailer_body = Some(built.body);
+        handles.trailer_ref = b.model.marker_index("trailer_box.cm");
+        handles.trailer_place = Some(place);
+        wheels.extend(built.wheels.iter().cloned());
+        trailer_design = Some(TrailerDesign {
+            load_case: tf.load_case.clone(),
+            mass_kg: built.mass,
+            cm_m: built.cm,
+            empty_ball_load_n: built.design_ball_load_n,
+            corners: built.corners,
+            pitch_rad: pitch,
+        });
+    }
+    handles.bodies = b
+        .model
+        .bodies
+        .iter()
+        .enumerate()
+        .map(|(k, x)| (x.name.clone(), k))
+        .collect();
+    handles.sensors = sensors::add(&mut b, &handles, &src, &path!["sensor"], &f.sensor)?;
+    set_speed(&mut b, &wheels, opts.speed);
+    handles.wheels = wheels;
+    let total: f64 = model.bodies.iter().map(|x| x.mass).sum::<f64>()
+        + handles
+            .wheels
+            .iter()
+            .map(|w| wheel::tyre_own_mass(&model.tyres[w.tyre].tyre))
+            .sum::<f64>();
+    Ok(Vehicle {
+        model,
+        handles,
+        design: Design {
+            car_mass_kg: car_mass,
+            car_cm_m: car_cm,
+            car_corners,
+            trailer: trailer_design,
+            total_mass_kg: total,
+        },
+    })
+}
+
+/// Point masses of the bodies built so far and of the tyres' belts, vehicle coordinates.
+fn masses(m: &Model, place: &Placement, axles: &[&Vec<wheel::WheelHandle>]) -> Vec<(f64, V)> {
+    let mut parts: Vec<(f64, V)> = m
+        .bodies
+        .iter()
+        .map(|b| (b.mass, sub(&b.position, &place.translation)))
+        .collect();
+    for w in axles.iter().flat_map(|a| a.iter()) {
+        parts.push((wheel::tyre_own_mass(&m.tyres[w.tyre].tyre), w.design_centre));
+    }
+    parts
+}
+
+/// The trailer's placement: its coupling on the ball `ball` (world), pitched about the
+/// axle's ground line so its wheels stay on the ground. Returns it and the pitch [rad].
+fn place_trailer(
+    src: &Source,
+    t: &trailer::TrailerFile,
+    ball: V,
+) -> Result<(Placement, f64), InputError> {
+    let (xa, c) = (t.wheel_centre[0], t.coupling);
+    let (a, h) = (c[0] - xa, c[2]);
+    let rho = a.hypot(h);
+    let pitch = (ball[2] / rho).clamp(-1.0, 1.0).acos() - a.atan2(h);
+    // More than about 6 deg means the files disagree on the ball height.
+    if pitch.is_nan() || pitch.abs() > 0.1 || c[1] != 0.0 {
+        return Err(src.error(&path!["trailer", "file"], format!("{}: the coupling at height {h} m (y {}) cannot sit on a ball {} m high on the centreline without pitching the trailer by {pitch:.3} rad", t.src_path.display(), c[1], ball[2])));
+    }
+    let x_rot = xa + pitch.cos() * a + pitch.sin() * h;
+    let place = Placement::pitched([xa, 0.0, 0.0], pitch, [ball[0] - x_rot, ball[1], 0.0]);
+    Ok((place, pitch))
+}
+
+/// Every body moves forward at `speed`; wheels spin at the free-rolling rate of their
+/// tyre at the design deflection.
+fn set_speed(b: &mut Builder, wheels: &[wheel::WheelHandle], speed: f64) {
+    for body in &mut b.model.bodies {
+        body.velocity = [speed, 0.0, 0.0];
+        body.angular_velocity = [0.0; 3];
+    }
+    for w in wheels {
+        let p = b.model.tyres[w.tyre].tyre.params().clone();
+        let rho = p.r0 - w.design_centre[2];
+        let mut omega = speed / p.r0;
+        for _ in 0..50 {
+            omega = speed / p.rolling_radius(rho, omega);
+        }
+        b.model.bodies[w.body].angular_velocity = [0.0, omega, 0.0];
+    }
+}

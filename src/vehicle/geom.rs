@@ -1,0 +1,123 @@
+//! Geometry shared by the templates: where a subsystem's coordinates lie in the world,
+//! left-right mirroring, and rigid-body velocity fields for the design statics.
+//!
+//! Vehicle coordinates: x forward, y left, z up; origin on the ground under the centre of
+//! the front axle with the car at its design ride height. Trailer coordinates: the same
+//! axes, origin on the ground under the coupling's ball centre.
+
+use crate::model::math::{add, cross, dot, mv, scale, sub};
+
+pub type V = [f64; 3];
+/// A frame's axes as columns.
+pub type Axes = [[f64; 3]; 3];
+
+pub const IDENTITY: Axes = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+
+/// A rigid placement of subsystem coordinates in the world: p_world = R p + t.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Placement {
+    pub rotation: Axes,
+    pub translation: V,
+}
+
+impl Placement {
+    pub fn translate(t: V) -> Placement {
+        Placement {
+            rotation: IDENTITY,
+            translation: t,
+        }
+    }
+
+    /// Rotation by `angle` [rad] about the y axis through `pivot` (subsystem
+    /// coordinates), then the translation `t`.
+    pub fn pitched(pivot: V, angle: f64, t: V) -> Placement {
+        let (s, c) = angle.sin_cos();
+        let r = [[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]];
+        let shift = sub(&pivot, &mv(&r, &pivot));
+        Placement {
+            rotation: r,
+            translation: add(&shift, &t),
+        }
+    }
+
+    pub fn point(&self, p: V) -> V {
+        add(&mv(&self.rotation, &p), &self.translation)
+    }
+
+    pub fn vector(&self, v: V) -> V {
+        mv(&self.rotation, &v)
+    }
+
+    /// A vector given in world axes, in subsystem axes.
+    pub fn vector_local(&self, v: V) -> V {
+        crate::model::math::mtv(&self.rotation, &v)
+    }
+
+    pub fn axes(&self, a: &Axes) -> Axes {
+        crate::model::math::mm(&self.rotation, a)
+    }
+}
+
+/// The right-side image of a left-side point.
+pub fn mirror(p: V) -> V {
+    [p[0], -p[1], p[2]]
+}
+
+/// The mirror image of a frame, made right-handed again (x and z mirrored, y = z x x).
+pub fn mirror_axes(a: &Axes) -> Axes {
+    let c = |k: usize| mirror([a[0][k], a[1][k], a[2][k]]);
+    let (x, z) = (c(0), c(2));
+    let y = cross(&z, &x);
+    [[x[0], y[0], z[0]], [x[1], y[1], z[1]], [x[2], y[2], z[2]]]
+}
+
+pub fn norm(v: &V) -> f64 {
+    dot(v, v).sqrt()
+}
+
+pub fn unit(v: &V) -> V {
+    scale(v, 1.0 / norm(v))
+}
+
+pub fn distance(a: &V, b: &V) -> f64 {
+    norm(&sub(a, b))
+}
+
+/// A right-handed frame with z along `z` (x from `x` or chosen), as columns.
+pub fn frame(z: V, x: Option<V>) -> Option<Axes> {
+    crate::model::math::frame_from_axes(z, x)
+}
+
+/// Velocity of point `p` of a body turning at unit rate about the axis through `on`
+/// along the unit vector `axis`.
+pub fn turning(on: &V, axis: &V, p: &V) -> V {
+    cross(axis, &sub(p, on))
+}
+
+/// Rate of the distance between point `p` (moving with velocity `v`) and the fixed point
+/// `q`.
+pub fn length_rate(p: &V, v: &V, q: &V) -> f64 {
+    dot(&unit(&sub(p, q)), v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mirrored_frame_is_right_handed_and_mirrors_z() {
+        let a = frame([0.1, 0.3, 0.9], Some([1.0, 0.2, 0.0])).unwrap();
+        let m = mirror_axes(&a);
+        let col = |a: &Axes, k: usize| [a[0][k], a[1][k], a[2][k]];
+        assert!((norm(&sub(&col(&m, 2), &mirror(col(&a, 2))))) < 1e-12);
+        let det = dot(&cross(&col(&m, 0), &col(&m, 1)), &col(&m, 2));
+        assert!((det - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn pitched_placement_keeps_the_pivot() {
+        let p = Placement::pitched([2.0, 0.0, 0.0], 0.1, [1.0, 0.0, 0.0]);
+        let q = p.point([2.0, 0.0, 0.0]);
+        assert!(norm(&sub(&q, &[3.0, 0.0, 0.0])) < 1e-12);
+    }
+}

@@ -1,0 +1,250 @@
+//! The towing hitch: the crossbeam with brackets and hook as one modal body (the
+//! Craig-Bampton data of `flex/hitch_crossbeam.toml`, variant 1..10, modes selected by
+//! the file's rule), held on the car body by bushings at its two bracket interface nodes
+//! (the thesis: bushings, not fixed joints, so the few kept modes do not over-constrain
+//! it), and the ball coupling to the trailer drawbar at the ball interface node:
+//! a spherical joint or a stiff bushing.
+
+use std::path::Path;
+
+use serde::Deserialize;
+
+use super::build::{Builder, Link};
+use super::geom::{IDENTITY, V};
+use super::props::{joint_bushing, point, BushingProps, Mass};
+use crate::flex::FlexError;
+use crate::input::{InputError, Source};
+use crate::model::desc::{Coupling, Force, JointKind, Modal};
+use crate::model::math::add;
+use crate::model::spec::JointBushing;
+use crate::path;
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct File {
+    hitch: Hitch,
+    bracket_bushing: BushingProps,
+    ball_coupling: BallCoupling,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct Hitch {
+    /// The FE model (relative to this file).
+    fe_file: String,
+    /// Crossbeam variant 1..10.
+    variant: u32,
+    /// Where the FE file's origin lies in vehicle coordinates [m] (its axes are the
+    /// vehicle's).
+    fe_origin_m: [f64; 3],
+    /// Inertia coupling of the modal body: constant, partial or full.
+    inertia_coupling: String,
+    bracket_nodes: [String; 2],
+    ball_node: String,
+    sensor_node: String,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct BallCoupling {
+    /// "spherical" (ideal joint) or "bushing".
+    kind: String,
+    /// The bushing used for kind = "bushing" (translations only: a ball passes no
+    /// moments).
+    bushing: Option<JointBushing>,
+}
+
+/// How the drawbar is coupled to the ball.
+#[derive(Clone, Debug)]
+pub enum BallKind {
+    Spherical,
+    Bushing(JointBushing),
+}
+
+/// What the rest of the vehicle needs of the hitch.
+#[derive(Clone, Debug)]
+pub struct HitchHandle {
+    pub body: usize,
+    /// Ball centre, vehicle coordinates [m].
+    pub ball: V,
+    /// Index of the ball interface node in the modal data.
+    pub ball_node: usize,
+    /// Index of the crossbeam sensor node.
+    pub sensor_node: usize,
+    /// Sensor node position, vehicle coordinates [m].
+    pub sensor: V,
+    pub ball_kind: BallKind,
+    /// FE origin in vehicle coordinates (checked against the rear axle).
+    pub fe_origin: V,
+    pub variant: u32,
+    /// Number of selected modes.
+    pub modes: usize,
+    /// Where to complain about `fe_origin_m`.
+    pub origin_complaint: InputError,
+}
+
+/// Reads `file` and adds the hitch to the car body `body`; `variant` overrides the file.
+pub fn build(
+    b: &mut Builder,
+    file: &Path,
+    body: usize,
+    variant: Option<u32>,
+    ball: Option<BallKind>,
+) -> Result<HitchHandle, InputError> {
+    let src = Source::read(file)?;
+    let f: File = src.parse()?;
+    let h = &f.hitch;
+    let origin = point(&src, &path!["hitch", "fe_origin_m"], &h.fe_origin_m)?;
+    let variant = variant.unwrap_or(h.variant);
+    let coupling = Coupling::parse(&h.inertia_coupling).ok_or_else(|| {
+        src.error(
+            &path!["hitch", "inertia_coupling"],
+            format!("'{}': use constant, partial or full", h.inertia_coupling),
+        )
+    })?;
+    let fe = file.parent().unwrap_or(Path::new(".")).join(&h.fe_file);
+    let data = crate::flex::modal_data(&fe, Some(variant))
+        .map_err(|e| match e {
+            FlexError::Input(e) => e,
+            FlexError::Model { file, message } => {
+                src.error(&path!["hitch", "fe_file"], format!("{file}: {message}"))
+            }
+        })?
+        .selected();
+    let node = |k: &str, name: &str| -> Result<usize, InputError> {
+        data.nodes
+            .iter()
+            .position(|n| n.name == name)
+            .ok_or_else(|| {
+                let names: Vec<&str> = data.nodes.iter().map(|n| n.name.as_str()).collect();
+                src.error(
+                    &path!["hitch", k],
+                    format!(
+                        "no node '{name}' in {} (nodes: {})",
+                        fe.display(),
+                        names.join(", ")
+                    ),
+                )
+            })
+    };
+    let brackets = [
+        node("bracket_nodes", &h.bracket_nodes[0])?,
+        node("bracket_nodes", &h.bracket_nodes[1])?,
+    ];
+    let ball_node = node("ball_node", &h.ball_node)?;
+    let sensor_node = node("sensor_node", &h.sensor_node)?;
+    let bushing = f
+        .bracket_bushing
+        .check(&src, &path!["bracket_bushing"], [0.0, 1.0, 0.0])?;
+    let ball_kind = match (ball, f.ball_coupling.kind.as_str()) {
+        (Some(k), _) => k,
+        (None, "spherical") => BallKind::Spherical,
+        (None, "bushing") => {
+            let jb = joint_bushing(
+                &src,
+                &path!["ball_coupling", "bushing"],
+                &f.ball_coupling.bushing,
+            )?;
+            BallKind::Bushing(jb.ok_or_else(|| {
+                src.error(
+                    &path!["ball_coupling"],
+                    "kind = \"bushing\" needs a bushing table",
+                )
+            })?)
+        }
+        (None, other) => {
+            return Err(src.error(
+                &path!["ball_coupling", "kind"],
+                format!("'{other}': use spherical or bushing"),
+            ))
+        }
+    };
+    let at = |p: &[f64; 3]| add(&origin, p);
+    let mass = Mass {
+        mass: data.mass_kg,
+        cm: at(&data.com_m),
+        inertia: data.inertia_com_kg_m2,
+    };
+    let hb = b.body("hitch", &mass);
+    for (k, &n) in brackets.iter().enumerate() {
+        let p = at(&data.nodes[n].position_m);
+        let name = format!("hitch_bracket_{}", ["left", "right"][k]);
+        let f = b.bushing(
+            &name,
+            Some(hb),
+            Some(body),
+            p,
+            &bushing.axes,
+            &bushing,
+            [0.0; 6],
+        );
+        if let Force::Bushing(bu) = &b.model.forces[f] {
+            let i = bu.i;
+            b.model.markers[i].node = Some(n);
+        }
+    }
+    let handle = HitchHandle {
+        body: hb,
+        ball: at(&data.nodes[ball_node].position_m),
+        ball_node,
+        sensor_node,
+        sensor: at(&data.nodes[sensor_node].position_m),
+        ball_kind,
+        fe_origin: origin,
+        variant,
+        modes: data.modes.len(),
+        origin_complaint: src.error(&path!["hitch", "fe_origin_m"], ""),
+    };
+    b.model.bodies[hb].modal = Some(Box::new(Modal { data, coupling }));
+    Ok(handle)
+}
+
+/// The ball coupling between the hitch ball node and the trailer body `drawbar` (the
+/// builder placed in the car's coordinates). Joint: I = hitch ball, so its reaction is
+/// the drawbar's force on the car. Bushing: I = drawbar, J = hitch ball, so its force in
+/// J's axes is minus the force on the car in (nearly) car axes.
+/// A model-wide switch of joints to bushings turns the ball joint into that bushing.
+pub fn couple(b: &mut Builder, h: &HitchHandle, drawbar: usize) -> (Link, BallKind) {
+    let name = "ball_coupling";
+    let kind = match (&h.ball_kind, &b.joints_as_bushings) {
+        (BallKind::Spherical, Some(g)) => BallKind::Bushing(g.clone()),
+        (k, _) => k.clone(),
+    };
+    let link = match &kind {
+        BallKind::Spherical => {
+            let link = b.joint(
+                name,
+                JointKind::Spherical,
+                Some(h.body),
+                Some(drawbar),
+                h.ball,
+                &IDENTITY,
+                None,
+            );
+            if let Link::Joint(j) = link {
+                let i = b.model.joints[j].i;
+                b.model.markers[i].node = Some(h.ball_node);
+            }
+            link
+        }
+        BallKind::Bushing(jb) => {
+            let link = b.joint(
+                name,
+                JointKind::Spherical,
+                Some(drawbar),
+                Some(h.body),
+                h.ball,
+                &IDENTITY,
+                Some(jb),
+            );
+            if let Link::Bushing(f) = link {
+                if let Force::Bushing(bu) = &b.model.forces[f] {
+                    let j = bu.j;
+                    b.model.markers[j].node = Some(h.ball_node);
+                }
+            }
+            link
+        }
+    };
+    (link, kind)
+}

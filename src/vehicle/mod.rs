@@ -1,0 +1,131 @@
+//! Vehicle templates: property files (TOML in `vehicles/`) turned into bodies, markers,
+//! joints or bushings and force elements of a [`Model`], knowing nothing about the
+//! solver. `docs/vehicle.md` documents the templates, coordinates and every field.
+//!
+//! An assembly file (`vehicles/*.toml`, see [`assembly`]) names the templates and
+//! property files that make a vehicle; [`load`] reads it and returns the [`Vehicle`]: the
+//! model (bodies, tyres, the speed controller; no road and no outputs yet, a scene adds
+//! those) plus named [`Handles`] and what the design statics found ([`Design`]).
+//!
+//! Coordinates: x forward, y left, z up. The car's origin is on the ground under the
+//! centre of the front axle at the design ride height (car with driver, no trailer);
+//! the trailer's is on the ground under its coupling's ball centre. Hardpoints are given
+//! at the design position; left-side values are mirrored for the right side.
+//!
+//! Templates: [`body`] (lumped body), [`mcpherson`] (front), [`twist_beam`] (rear),
+//! [`driveline`] (speed control), [`hitch`] (modal crossbeam and ball coupling),
+//! [`trailer`] (box trailer with rubber torsion axle); shared pieces in [`wheel`],
+//! [`swing`], [`design`] (spring preloads by virtual work), [`build`], [`props`],
+//! [`geom`], [`sensors`].
+
+pub mod assembly;
+pub mod body;
+pub mod build;
+pub mod design;
+pub mod driveline;
+pub mod geom;
+pub mod hitch;
+pub mod mcpherson;
+pub mod props;
+pub mod sensors;
+pub mod swing;
+pub mod trailer;
+pub mod twist_beam;
+pub mod wheel;
+
+use std::collections::BTreeMap;
+
+use serde::Serialize;
+
+pub use assembly::load;
+pub use build::Link;
+pub use design::CornerDesign;
+pub use geom::Placement;
+pub use hitch::{BallKind, HitchHandle};
+pub use sensors::Sensor;
+pub use wheel::WheelHandle;
+
+use crate::model::spec::JointBushing;
+use crate::model::Model;
+use crate::tyre::TyreKind;
+
+/// Choices that override the files'.
+#[derive(Clone, Debug, Default)]
+pub struct Options {
+    /// Set speed of the driveline and initial forward speed of every body [m/s]; the
+    /// wheels spin at the free-rolling rate.
+    pub speed: f64,
+    /// World x of the car's origin [m] (the road's x = 0 is where the front wheels
+    /// touch it at the start).
+    pub x_offset: f64,
+    /// Trailer load case (assembly file: `trailer.load_case`).
+    pub load_case: Option<String>,
+    /// Hitch crossbeam variant 1..10 (hitch file: `hitch.variant`).
+    pub hitch_variant: Option<u32>,
+    /// Tyre model (assembly file: `vehicle.tyre_model`).
+    pub tyre_kind: Option<TyreKind>,
+    /// Every ideal joint becomes a bushing of these properties.
+    pub joints_as_bushings: Option<JointBushing>,
+    /// Ball coupling (hitch file: `ball_coupling`).
+    pub ball: Option<BallKind>,
+}
+
+/// A vehicle ready for a scene.
+#[derive(Clone, Debug)]
+pub struct Vehicle {
+    pub model: Model,
+    pub handles: Handles,
+    pub design: Design,
+}
+
+/// Named parts a scene needs.
+#[derive(Clone, Debug)]
+pub struct Handles {
+    pub car_body: usize,
+    /// Marker at the car body's centre of mass with the vehicle's axes (speed sensor,
+    /// axes of the hitch force).
+    pub car_ref: usize,
+    /// Wheels fl, fr, rl, rr, then the trailer's tl, tr.
+    pub wheels: Vec<WheelHandle>,
+    pub hitch: Option<HitchHandle>,
+    /// The ball coupling (joint or bushing) and what it became.
+    pub ball: Option<(Link, BallKind)>,
+    pub trailer_body: Option<usize>,
+    /// Marker at the trailer box's centre of mass with its axes.
+    pub trailer_ref: Option<usize>,
+    /// Markers on the car body above each car wheel (top mounts, upper spring seats),
+    /// by wheel name: ride heights are measured between them and the wheel centres.
+    pub ride: Vec<(String, usize)>,
+    pub sensors: Vec<Sensor>,
+    /// Every body by name.
+    pub bodies: BTreeMap<String, usize>,
+    pub car_place: Placement,
+    pub trailer_place: Option<Placement>,
+}
+
+/// What the design statics found (no solver involved).
+#[derive(Clone, Debug, Serialize)]
+pub struct Design {
+    /// Car with driver, hitch and the tyres' belts [kg], centre of mass in vehicle
+    /// coordinates [m].
+    pub car_mass_kg: f64,
+    pub car_cm_m: [f64; 3],
+    /// Car corners fl, fr, rl, rr at the design position.
+    pub car_corners: Vec<CornerDesign>,
+    pub trailer: Option<TrailerDesign>,
+    /// Everything, belts included [kg].
+    pub total_mass_kg: f64,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct TrailerDesign {
+    pub load_case: String,
+    /// With the payload [kg]; centre of mass in trailer coordinates [m].
+    pub mass_kg: f64,
+    pub cm_m: [f64; 3],
+    /// Empty trailer: ball load [N] and corners (the rubber's preload).
+    pub empty_ball_load_n: f64,
+    pub corners: Vec<CornerDesign>,
+    /// Pitch of the trailer placed on the ball [rad] (positive: nose down).
+    pub pitch_rad: f64,
+}

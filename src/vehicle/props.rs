@@ -1,0 +1,240 @@
+//! Property-file pieces the templates share (mass properties, bushings, dampers, stops)
+//! and their checks, every error located at its file, line and field.
+
+use serde::Deserialize;
+
+use super::geom::{frame, Axes, V};
+use crate::input::{InputError, Seg, Source};
+use crate::model::desc::{Law, Stop};
+use crate::model::function::Spline;
+use crate::model::spec::{JointBushing, LawSpec, StopSpec};
+
+/// `p` extended by one key or index.
+pub fn at(p: &[Seg], k: impl Into<Seg>) -> Vec<Seg> {
+    let mut v = p.to_vec();
+    v.push(k.into());
+    v
+}
+
+/// A point or vector of finite numbers.
+pub fn point(src: &Source, p: &[Seg], v: &[f64; 3]) -> Result<V, InputError> {
+    for (c, x) in v.iter().enumerate() {
+        src.finite(&at(p, c), *x)?;
+    }
+    Ok(*v)
+}
+
+/// Mass, centre of mass and inertia of a rigid part.
+#[derive(Deserialize, Debug, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct MassProps {
+    pub mass_kg: f64,
+    /// Centre of mass in the subsystem's coordinates [m].
+    pub cm_m: [f64; 3],
+    /// [Ixx, Iyy, Izz] or [Ixx, Iyy, Izz, Ixy, Ixz, Iyz] about the centre of mass, in the
+    /// subsystem's axes [kg m^2].
+    pub inertia_kg_m2: Vec<f64>,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mass {
+    pub mass: f64,
+    pub cm: V,
+    pub inertia: [[f64; 3]; 3],
+}
+
+impl MassProps {
+    pub fn check(&self, src: &Source, p: &[Seg]) -> Result<Mass, InputError> {
+        let mass = src.positive(&at(p, "mass_kg"), self.mass_kg)?;
+        let cm = point(src, &at(p, "cm_m"), &self.cm_m)?;
+        let inertia = inertia(src, &at(p, "inertia_kg_m2"), &self.inertia_kg_m2)?;
+        Ok(Mass { mass, cm, inertia })
+    }
+}
+
+/// A physical inertia tensor: positive principal moments obeying the triangle inequality.
+pub fn inertia(src: &Source, p: &[Seg], v: &[f64]) -> Result<[[f64; 3]; 3], InputError> {
+    for (c, x) in v.iter().enumerate() {
+        src.finite(&at(p, c), *x)?;
+    }
+    let (ixx, iyy, izz, ixy, ixz, iyz) = match v.len() {
+        3 => (v[0], v[1], v[2], 0.0, 0.0, 0.0),
+        6 => (v[0], v[1], v[2], v[3], v[4], v[5]),
+        n => {
+            return Err(src.error(
+                p,
+                format!("give 3 (Ixx, Iyy, Izz) or 6 (plus Ixy, Ixz, Iyz) values, not {n}"),
+            ))
+        }
+    };
+    let t = [[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]];
+    let e = nalgebra::Matrix3::from_fn(|r, c| t[r][c]).symmetric_eigenvalues();
+    let (a, b, c) = (e[0], e[1], e[2]);
+    let tol = 1e-9 * (a + b + c).abs();
+    if a <= 0.0 || b <= 0.0 || c <= 0.0 || a + b < c - tol || a + c < b - tol || b + c < a - tol {
+        return Err(src.error(p, format!("not a physical inertia tensor (principal moments {a:.4e}, {b:.4e}, {c:.4e} must be positive and satisfy the triangle inequality)")));
+    }
+    Ok(t)
+}
+
+/// A linear coefficient (non-negative) or a table (natural cubic spline).
+pub fn law(src: &Source, p: &[Seg], l: &LawSpec) -> Result<Law, InputError> {
+    match l {
+        LawSpec::Linear(k) => Ok(Law::Linear(src.non_negative(p, *k)?)),
+        LawSpec::Table { x, y } => Spline::new(x, y)
+            .map(Law::Curve)
+            .map_err(|e| src.error(p, e)),
+    }
+}
+
+/// A 6-DOF rubber bushing: axes (z along `z_axis`), and per axis stiffness and damping.
+#[derive(Deserialize, Debug, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct BushingProps {
+    /// Bushing z axis in subsystem coordinates (left side); the template gives a default.
+    pub z_axis: Option<[f64; 3]>,
+    pub x_axis: Option<[f64; 3]>,
+    /// Along the bushing's x, y, z [N/m] (numbers or tables deflection -> force).
+    pub stiffness_n_m: [LawSpec; 3],
+    pub damping_n_s_m: [LawSpec; 3],
+    /// About x, y, z [N m/rad].
+    pub stiffness_n_m_rad: [LawSpec; 3],
+    pub damping_n_m_s_rad: [LawSpec; 3],
+}
+
+#[derive(Clone, Debug)]
+pub struct BushingLaws {
+    /// The bushing's axes in subsystem coordinates (left side).
+    pub axes: Axes,
+    pub stiffness: [Law; 6],
+    pub damping: [Law; 6],
+}
+
+impl BushingProps {
+    /// Checks the laws; the axes default to z along `default_z`.
+    pub fn check(&self, src: &Source, p: &[Seg], default_z: V) -> Result<BushingLaws, InputError> {
+        if let Some(z) = &self.z_axis {
+            point(src, &at(p, "z_axis"), z)?;
+        }
+        if let Some(x) = &self.x_axis {
+            point(src, &at(p, "x_axis"), x)?;
+        }
+        let axes = frame(self.z_axis.unwrap_or(default_z), self.x_axis).ok_or_else(|| {
+            src.error(
+                &at(p, "z_axis"),
+                "axes must be non-zero and x_axis not parallel to z_axis",
+            )
+        })?;
+        let laws = |key: &str, list: &[LawSpec; 3]| -> Result<Vec<Law>, InputError> {
+            (0..3)
+                .map(|a| law(src, &at(&at(p, key), a), &list[a]))
+                .collect()
+        };
+        let mut stiffness = laws("stiffness_n_m", &self.stiffness_n_m)?;
+        stiffness.extend(laws("stiffness_n_m_rad", &self.stiffness_n_m_rad)?);
+        let mut damping = laws("damping_n_s_m", &self.damping_n_s_m)?;
+        damping.extend(laws("damping_n_m_s_rad", &self.damping_n_m_s_rad)?);
+        Ok(BushingLaws {
+            axes,
+            stiffness: stiffness.try_into().expect("six laws"),
+            damping: damping.try_into().expect("six laws"),
+        })
+    }
+}
+
+/// A damper's force-velocity curve: velocity of extension [m/s] -> force resisting it
+/// [N] (negative in compression). Bump and rebound may differ.
+#[derive(Deserialize, Debug, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct DamperProps {
+    pub velocity_m_s: Vec<f64>,
+    pub force_n: Vec<f64>,
+}
+
+impl DamperProps {
+    pub fn check(&self, src: &Source, p: &[Seg]) -> Result<Law, InputError> {
+        for (k, (v, f)) in self.velocity_m_s.iter().zip(&self.force_n).enumerate() {
+            // A passive damper never feeds energy in: the force opposes the motion.
+            if v * f < 0.0 || (*v == 0.0 && *f != 0.0) {
+                return Err(src.error(
+                    &at(&at(p, "force_n"), k),
+                    format!("{f} N at {v} m/s: a damper's force has the sign of the velocity (extension positive) and is zero at rest"),
+                ));
+            }
+        }
+        Spline::new(&self.velocity_m_s, &self.force_n)
+            .map(Law::Curve)
+            .map_err(|e| src.error(&at(p, "velocity_m_s"), e))
+    }
+}
+
+/// A bump or rebound stop, checked.
+pub fn stop(src: &Source, p: &[Seg], s: &Option<StopSpec>) -> Result<Option<Stop>, InputError> {
+    let Some(s) = s else { return Ok(None) };
+    let exponent = src.finite(&at(p, "exponent"), s.exponent)?;
+    if exponent < 1.0 {
+        return Err(src.error(
+            &at(p, "exponent"),
+            "must be at least 1 (a force that starts from zero)",
+        ));
+    }
+    Ok(Some(Stop {
+        clearance: src.positive(&at(p, "clearance_m"), s.clearance_m)?,
+        stiffness: src.positive(&at(p, "stiffness_n_m"), s.stiffness_n_m)?,
+        exponent,
+        damping: src.non_negative(&at(p, "damping_n_s_m"), s.damping_n_s_m)?,
+        damping_depth: src.non_negative(&at(p, "damping_depth_m"), s.damping_depth_m)?,
+    }))
+}
+
+/// A template's ideal joints: kept, or all replaced by one bushing (thesis 6b: stiff,
+/// small but non-zero damping, only in the directions the joint locks).
+#[derive(Deserialize, Debug, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct JointsProps {
+    pub as_bushings: bool,
+    pub bushing: JointBushing,
+}
+
+/// The bushing that replaces the template's joints, if they are switched.
+pub fn joints(
+    src: &Source,
+    p: &[Seg],
+    j: &JointsProps,
+) -> Result<Option<JointBushing>, InputError> {
+    let jb = joint_bushing(src, &at(p, "bushing"), &Some(j.bushing.clone()))?;
+    Ok(if j.as_bushings { jb } else { None })
+}
+
+/// Bushing properties standing in for ideal joints, checked.
+pub fn joint_bushing(
+    src: &Source,
+    p: &[Seg],
+    jb: &Option<JointBushing>,
+) -> Result<Option<JointBushing>, InputError> {
+    let Some(jb) = jb else { return Ok(None) };
+    src.positive(&at(p, "stiffness_n_m"), jb.stiffness_n_m)?;
+    src.positive(&at(p, "stiffness_n_m_rad"), jb.stiffness_n_m_rad)?;
+    src.non_negative(&at(p, "damping_n_s_m"), jb.damping_n_s_m)?;
+    src.non_negative(&at(p, "damping_n_m_s_rad"), jb.damping_n_m_s_rad)?;
+    Ok(Some(jb.clone()))
+}
+
+/// A rigid wheel (rim, brake disc or drum, hub: everything that spins except the tyre).
+#[derive(Deserialize, Debug, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct WheelProps {
+    pub mass_kg: f64,
+    /// About the spin axis [kg m^2].
+    pub spin_inertia_kg_m2: f64,
+    /// About a diameter [kg m^2].
+    pub tilt_inertia_kg_m2: f64,
+}
+
+/// A torsion element between two parts about a common axis.
+#[derive(Deserialize, Debug, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct TorsionProps {
+    pub stiffness_n_m_rad: LawSpec,
+    pub damping_n_m_s_rad: LawSpec,
+}

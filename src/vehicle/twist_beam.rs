@@ -1,0 +1,178 @@
+//! Twist-beam rear axle, rigid variant (the thesis's rigid model): two trailing-arm
+//! halves on body bushings joined by a torsion element about the pivot axis, coil
+//! springs and dampers between arms and body, wheels and tyres. One property set
+//! describes the left side; the right side is mirrored.
+
+use serde::Deserialize;
+
+use super::build::{Builder, Line};
+use super::design::{Corner, Preloaded};
+use super::geom::{distance, length_rate, mirror, turning, V};
+use super::props::{
+    at, joints, law, point, stop, BushingProps, DamperProps, JointsProps, MassProps, TorsionProps,
+    WheelProps,
+};
+use super::swing::{self, Spec};
+use super::wheel::{self, WheelHandle};
+use crate::input::{InputError, Source};
+use crate::model::desc::Law;
+use crate::model::spec::StopSpec;
+use crate::path;
+use crate::tyre::Tyre;
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct File {
+    hardpoints: Hardpoints,
+    half: MassProps,
+    wheel: WheelProps,
+    spring: Spring,
+    damper: DamperProps,
+    bump_stop: Option<StopSpec>,
+    rebound_stop: Option<StopSpec>,
+    pivot_bushing: BushingProps,
+    torsion: TorsionProps,
+    joints: JointsProps,
+}
+
+/// Left-side hardpoints, vehicle coordinates at the design position [m].
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct Hardpoints {
+    wheel_centre_m: [f64; 3],
+    pivot_m: [f64; 3],
+    spring_lower_m: [f64; 3],
+    spring_upper_m: [f64; 3],
+    damper_lower_m: [f64; 3],
+    damper_upper_m: [f64; 3],
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct Spring {
+    stiffness_n_m: f64,
+}
+
+pub struct Rear {
+    pub wheels: Vec<WheelHandle>,
+    pub corners: Vec<Corner>,
+    /// Upper spring seats (left, right), vehicle coordinates: where the body sensors sit.
+    pub spring_tops: Vec<V>,
+}
+
+/// Reads `file` and adds the axle to the car body `body`.
+pub fn build(
+    b: &mut Builder,
+    file: &std::path::Path,
+    body: usize,
+    tyre: &Tyre,
+) -> Result<Rear, InputError> {
+    let src = Source::read(file)?;
+    let f: File = src.parse()?;
+    let h = &f.hardpoints;
+    let hp = |k: &str, v: &[f64; 3]| point(&src, &path!["hardpoints", k], v);
+    let w = hp("wheel_centre_m", &h.wheel_centre_m)?;
+    let pivot = hp("pivot_m", &h.pivot_m)?;
+    let sl = hp("spring_lower_m", &h.spring_lower_m)?;
+    let su = hp("spring_upper_m", &h.spring_upper_m)?;
+    let dl = hp("damper_lower_m", &h.damper_lower_m)?;
+    let du = hp("damper_upper_m", &h.damper_upper_m)?;
+    for (k, v) in [("wheel_centre_m", w), ("pivot_m", pivot)] {
+        if v[1] <= 0.0 {
+            return Err(src.error(
+                &path!["hardpoints", k, 1],
+                "give the left side (y > 0); the right side is mirrored",
+            ));
+        }
+    }
+    let half = f.half.check(&src, &path!["half"])?;
+    let rim = wheel::rim_mass(&src, &path!["wheel"], &f.wheel, tyre, w)?;
+    let k_spring = src.positive(&path!["spring", "stiffness_n_m"], f.spring.stiffness_n_m)?;
+    let damper = f.damper.check(&src, &path!["damper"])?;
+    let bump = stop(&src, &path!["bump_stop"], &f.bump_stop)?;
+    let rebound = stop(&src, &path!["rebound_stop"], &f.rebound_stop)?;
+    let bushing = f
+        .pivot_bushing
+        .check(&src, &path!["pivot_bushing"], [0.0, 1.0, 0.0])?;
+    let tp = path!["torsion"];
+    let torsion = (
+        law(
+            &src,
+            &at(&tp, "stiffness_n_m_rad"),
+            &f.torsion.stiffness_n_m_rad,
+        )?,
+        law(
+            &src,
+            &at(&tp, "damping_n_m_s_rad"),
+            &f.torsion.damping_n_m_s_rad,
+        )?,
+    );
+    let jb = joints(&src, &path!["joints"], &f.joints)?;
+    let built = swing::build(
+        b,
+        &Spec {
+            prefix: "arm",
+            wheels: ["rl", "rr"],
+            centre: "twist_beam",
+            carrier: body,
+            pivot,
+            half,
+            rim,
+            bushing,
+            torsion,
+            joints_as_bushings: jb,
+        },
+        tyre,
+    );
+    let y = [0.0, 1.0, 0.0];
+    let mut corners = Vec::new();
+    let mut spring_tops = Vec::new();
+    for (k, side) in [false, true].into_iter().enumerate() {
+        let m = |p: V| if side { mirror(p) } else { p };
+        let name = built.wheels[k].name.clone();
+        let arm = Some(built.halves[k]);
+        let piv = m(pivot);
+        b.line(Line {
+            name: format!("damper_{name}"),
+            body_i: arm,
+            point_i: m(dl),
+            body_j: Some(body),
+            point_j: m(du),
+            free_length: distance(&dl, &du),
+            preload: 0.0,
+            spring: Law::Linear(0.0),
+            damper: damper.clone(),
+            bump_stop: bump.clone(),
+            rebound_stop: rebound.clone(),
+        });
+        let mut rates = built.rates[k].clone();
+        rates.element_rate = length_rate(&m(sl), &turning(&piv, &y, &m(sl)), &m(su));
+        corners.push(Corner {
+            wheel: name.clone(),
+            rates,
+            element: Preloaded::Coil {
+                line: Line {
+                    name: format!("spring_{name}"),
+                    body_i: arm,
+                    point_i: m(sl),
+                    body_j: Some(body),
+                    point_j: m(su),
+                    free_length: 0.0,
+                    preload: 0.0,
+                    spring: Law::Linear(k_spring),
+                    damper: Law::Linear(0.0),
+                    bump_stop: None,
+                    rebound_stop: None,
+                },
+                rate: k_spring,
+            },
+            complaint: src.error(&path!["spring", "stiffness_n_m"], ""),
+        });
+        spring_tops.push(m(su));
+    }
+    Ok(Rear {
+        wheels: built.wheels,
+        corners,
+        spring_tops,
+    })
+}

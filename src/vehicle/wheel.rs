@@ -1,0 +1,132 @@
+//! A wheel: the rim body on a revolute bearing to its carrier (knuckle, trailing arm or
+//! swing arm), the wheel-centre markers and the tyre.
+//!
+//! The rim body carries the wheel's own mass plus the part of the tyre that turns with
+//! the rim: for the rigid-ring tyre everything but the belt (which the tyre integrates
+//! itself, `TyreParams::rim_share`), for the point follower (massless) the whole tyre. So
+//! the vehicle's mass does not depend on the tyre model.
+
+use nalgebra::Vector3;
+
+use super::build::{Builder, Link};
+use super::geom::{Axes, IDENTITY, V};
+use super::props::{at, Mass, WheelProps};
+use crate::input::{InputError, Seg, Source};
+use crate::model::desc::{JointKind, TyreElem};
+use crate::model::spec::JointBushing;
+use crate::tyre::Tyre;
+
+/// What the scene and the outputs need of a wheel.
+#[derive(Clone, Debug)]
+pub struct WheelHandle {
+    /// Short name: fl, fr, rl, rr, tl, tr.
+    pub name: String,
+    /// The rim body.
+    pub body: usize,
+    /// The body the bearing sits on.
+    pub carrier: usize,
+    /// Marker on the rim at the wheel centre, axes of the subsystem (y = spin axis, left).
+    pub centre: usize,
+    /// Marker on the carrier at the wheel centre, same axes (takes the drive reaction).
+    pub carrier_centre: usize,
+    pub bearing: Link,
+    /// Index in `Model::tyres`.
+    pub tyre: usize,
+    /// Wheel centre at the design position, subsystem coordinates [m].
+    pub design_centre: V,
+}
+
+/// Rim mass properties (wheel plus the tyre's share that turns with it).
+pub fn rim_mass(
+    src: &Source,
+    p: &[Seg],
+    w: &WheelProps,
+    tyre: &Tyre,
+    centre: V,
+) -> Result<Mass, InputError> {
+    let m = src.positive(&at(p, "mass_kg"), w.mass_kg)?;
+    let spin = src.positive(&at(p, "spin_inertia_kg_m2"), w.spin_inertia_kg_m2)?;
+    let tilt = src.positive(&at(p, "tilt_inertia_kg_m2"), w.tilt_inertia_kg_m2)?;
+    if 2.0 * tilt < spin {
+        return Err(src.error(
+            &at(p, "tilt_inertia_kg_m2"),
+            format!("must be at least half the spin inertia ({spin} kg m^2): a wheel is a disc or a ring at most"),
+        ));
+    }
+    let (tm, ti) = tyre_on_rim(tyre);
+    // A tyre is close to a thin ring: its inertia about a diameter is half the spin one.
+    Ok(Mass {
+        mass: m + tm,
+        cm: centre,
+        inertia: [
+            [tilt + 0.5 * ti, 0.0, 0.0],
+            [0.0, spin + ti, 0.0],
+            [0.0, 0.0, tilt + 0.5 * ti],
+        ],
+    })
+}
+
+/// Mass [kg] and spin inertia [kg m^2] of the tyre that move with the rim.
+pub fn tyre_on_rim(tyre: &Tyre) -> (f64, f64) {
+    match tyre {
+        Tyre::RigidRing(r) => r.p.rim_share(),
+        Tyre::PointFollower(r) => (r.p.mass, r.p.iyy),
+    }
+}
+
+/// Mass the tyre integrates itself (the rigid ring's belt) [kg].
+pub fn tyre_own_mass(tyre: &Tyre) -> f64 {
+    match tyre {
+        Tyre::RigidRing(r) => r.p.belt_mass,
+        Tyre::PointFollower(_) => 0.0,
+    }
+}
+
+/// Adds the rim body `wheel_<name>`, its bearing on `carrier` and the tyre `tyre_<name>`.
+pub fn add(
+    b: &mut Builder,
+    name: &str,
+    carrier: usize,
+    rim: &Mass,
+    tyre: &Tyre,
+    bearing: Option<&JointBushing>,
+) -> WheelHandle {
+    let centre = rim.cm;
+    let body = b.body(&format!("wheel_{name}"), rim);
+    // The bearing turns about the spin axis (y): its z axis along y.
+    let spin_axes: Axes = [[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    let link = b.joint(
+        &format!("bearing_{name}"),
+        JointKind::Revolute,
+        Some(body),
+        Some(carrier),
+        centre,
+        &spin_axes,
+        bearing,
+    );
+    let centre_marker = b.marker(
+        &format!("wheel_{name}.centre"),
+        Some(body),
+        centre,
+        &IDENTITY,
+    );
+    let carrier_centre = b.marker(&format!("hub_{name}"), Some(carrier), centre, &IDENTITY);
+    let mut tyre = tyre.clone();
+    let g = b.model.gravity;
+    tyre.set_gravity(Vector3::new(g[0], g[1], g[2]));
+    b.model.tyres.push(TyreElem {
+        name: format!("tyre_{name}"),
+        marker: centre_marker,
+        tyre,
+    });
+    WheelHandle {
+        name: name.to_string(),
+        body,
+        carrier,
+        centre: centre_marker,
+        carrier_centre,
+        bearing: link,
+        tyre: b.model.tyres.len() - 1,
+        design_centre: centre,
+    }
+}
