@@ -53,7 +53,8 @@ pub fn simulate(
         Some(s) => s,
         None => {
             let (mut q, mut v) = sys.initial_q_v();
-            match initial_state(sys, t0, &mut q, &mut v) {
+            let x = sys.ext_initial(&q, &v, 0.0);
+            match initial_state(sys, t0, &mut q, &mut v, &x) {
                 Ok((y, yp, rep)) => {
                     res.assembly = rep;
                     (y, yp)
