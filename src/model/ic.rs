@@ -4,6 +4,7 @@
 use nalgebra::{DMatrix, DVector};
 
 use super::system::System;
+use crate::solver::linear::NewtonMatrix;
 
 /// What the initial-state analysis did.
 #[derive(Clone, Debug, Default, serde::Serialize)]
@@ -96,14 +97,23 @@ pub fn accelerations(
     x: &[f64],
 ) -> Result<(Vec<f64>, Vec<f64>), String> {
     let (n, m) = (sys.nv, sys.m);
-    let mut a = DMatrix::zeros(n + m, n + m);
-    let mut rhs = DVector::zeros(n + m);
-    let f = sys.loads(t, q, v, x, None);
-    for (r, c, val) in sys.mass_entries() {
-        a[(r, c)] += val;
+    let mut cache = sys.accel.borrow_mut();
+    if cache.is_none() {
+        *cache = Some(NewtonMatrix::new(
+            n + m,
+            Some(accel_pattern(sys)),
+            n + m <= 60,
+        )?);
     }
-    for i in 0..n {
-        rhs[i] = f[i];
+    let a = cache.as_mut().expect("built above");
+    a.clear();
+    let put = |a: &mut NewtonMatrix, r: usize, c: usize, v: f64| {
+        a.add(r, c, v).expect("entry in the acceleration pattern");
+    };
+    let mut rhs = sys.loads(t, q, v, x, None);
+    rhs.resize(n + m, 0.0);
+    for (r, c, val) in sys.mass_entries() {
+        put(a, r, c, val);
     }
     for e in &sys.cons {
         if e.slot.iter().all(|s| s.is_none()) {
@@ -118,19 +128,42 @@ pub fn accelerations(
                 if let Some(b) = body {
                     for c in 0..ev.w[side] {
                         let val = ev.at(r, side, c);
-                        a[(n + row, sys.vo[*b] + c)] += val;
-                        a[(sys.vo[*b] + c, n + row)] += val;
+                        put(a, n + row, sys.vo[*b] + c, val);
+                        put(a, sys.vo[*b] + c, n + row, val);
                     }
                 }
             }
             rhs[n + row] = -gamma[r];
         }
     }
-    let sol = a.lu().solve(&rhs).ok_or("the augmented mass matrix is singular (a body without mass or inertia, or a redundant constraint left in)")?;
-    Ok((
-        sol.rows(0, n).iter().copied().collect(),
-        sol.rows(n, m).iter().copied().collect(),
-    ))
+    let singular = |e: crate::solver::linear::Singular| {
+        format!(
+            "the augmented mass matrix is singular (a body without mass or inertia, or a redundant constraint left in): {}",
+            e.detail
+        )
+    };
+    a.factor(&vec![1.0; n + m], true).map_err(singular)?;
+    a.solve(&mut rhs).map_err(singular)?;
+    let lam = rhs.split_off(n);
+    Ok((rhs, lam))
+}
+
+/// Structure of [M B^T; B 0]: the mass blocks and every kept row against its bodies.
+fn accel_pattern(sys: &System) -> Vec<(usize, usize)> {
+    let n = sys.nv;
+    let mut p: Vec<(usize, usize)> = sys.mass_entries().iter().map(|&(r, c, _)| (r, c)).collect();
+    for e in &sys.cons {
+        let bodies = sys.bodies_of(e.mi, e.mj);
+        for row in e.slot.iter().flatten() {
+            for b in bodies.iter().flatten() {
+                for c in sys.vo[*b]..sys.vo[*b] + 6 + sys.nm[*b] {
+                    p.push((n + row, c));
+                    p.push((c, n + row));
+                }
+            }
+        }
+    }
+    p
 }
 
 /// Rates of the extension states at (q, v, x): the extension residuals are affine in the

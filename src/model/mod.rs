@@ -19,6 +19,7 @@ pub mod output;
 pub mod redundancy;
 pub mod run;
 pub mod spec;
+pub mod start;
 pub mod statics;
 pub mod system;
 

@@ -99,6 +99,9 @@ pub struct System {
     pub ne: usize,
     /// Speed controllers act (false during statics: a car at rest is not driven).
     pub controls_active: std::cell::Cell<bool>,
+    /// The sparse matrix [M B^T; B 0] of the acceleration-level solve, structure built
+    /// once (outputs solve it at every sample).
+    pub(crate) accel: std::cell::RefCell<Option<crate::solver::linear::NewtonMatrix>>,
     /// Marker axes as quaternions (body frame), for bushings.
     mquat: Vec<[f64; 4]>,
     /// Force elements: (index in model.forces, marker i, marker j or None).
@@ -171,6 +174,7 @@ impl System {
             ext,
             ne,
             controls_active: std::cell::Cell::new(true),
+            accel: std::cell::RefCell::new(None),
             mquat,
             felems,
         };
@@ -344,6 +348,28 @@ impl System {
     /// The bodies (or ground) of an element's two markers.
     pub fn bodies_of(&self, mi: usize, mj: usize) -> [Option<usize>; 2] {
         [self.model.markers[mi].body, self.model.markers[mj].body]
+    }
+
+    /// Absolute tolerances per unknown for a run: 1e-6 m / 1e-6 (quaternions) / 1e-7 on
+    /// modal coordinates (unit modal mass: about 0.5 micrometre on a few-kg crossbeam),
+    /// 1e-4 m/s on velocities, 1e-2 on multipliers (N, N m; their error is scaled by the
+    /// step), the extension elements' own hints. All times `scale`.
+    pub fn atol(&self, scale: f64) -> Vec<f64> {
+        let mut out = vec![1e-6 * scale; self.nq];
+        for b in 0..self.nb() {
+            for j in 0..self.nm[b] {
+                out[self.qo[b] + 7 + j] = 1e-7 * scale;
+            }
+        }
+        out.extend(std::iter::repeat_n(1e-4 * scale, self.nv));
+        for b in 0..self.nb() {
+            for j in 0..self.nm[b] {
+                out[self.nq + self.vo[b] + 6 + j] = 1e-4 * scale;
+            }
+        }
+        out.extend(std::iter::repeat_n(1e-2 * scale, 2 * self.m));
+        out.extend(self.ext_atol(scale));
+        out
     }
 
     /// Number of velocity unknowns of a body (6 for ground).
