@@ -246,4 +246,26 @@ impl System {
         }
         out
     }
+
+    /// Step limit from the road: where a tyre has an obstacle within its reach or within
+    /// `look_s` seconds of travel ahead, a tenth of the tyre's ring period (so no step
+    /// jumps over an edge unseen); on flat road `look_s` itself, so the next check comes
+    /// before the wheel can reach anything.
+    pub fn road_step_limit(&self, q: &[f64], v: &[f64], look_s: f64) -> Option<f64> {
+        let road = self.model.road.as_ref()?;
+        let mut lim: Option<f64> = None;
+        for te in &self.model.tyres {
+            let kin = self.wheel_kinematics(q, v, te.marker);
+            let (x, y) = (kin.position.x, kin.position.y);
+            let travel = kin.velocity.x.abs() * look_s;
+            let (a, b) = te.tyre.reach(x);
+            let near = 0.1 / te.tyre.params().freq_long;
+            let h = match road.flat_height(a - travel, b + travel, y - 0.2, y + 0.2) {
+                Some(_) => look_s.max(near),
+                None => near,
+            };
+            lim = Some(lim.map_or(h, |l: f64| l.min(h)));
+        }
+        lim
+    }
 }

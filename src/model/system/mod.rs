@@ -76,6 +76,10 @@ pub struct Redundant {
     pub depends_on: Vec<(usize, usize, f64)>,
 }
 
+/// How far ahead (in travel time) the road is checked for obstacles before a step [s]:
+/// also the largest step taken on flat road, below a tenth of the body modes' periods.
+const ROAD_LOOK_AHEAD_S: f64 = 0.02;
+
 /// Kept constraint rows: g, g_t and B as (row, velocity column, value) triplets.
 pub type ConstraintSet = (Vec<f64>, Vec<f64>, Vec<(usize, usize, f64)>);
 
@@ -431,6 +435,11 @@ impl DaeProblem for System {
         }
         res[ol..om].copy_from_slice(&g);
         res[om..oe].copy_from_slice(&bv);
+    }
+
+    fn max_step(&self, _t: f64, y: &[f64]) -> Option<f64> {
+        let (_, ov, ol, _) = self.offsets();
+        self.road_step_limit(&y[..ov], &y[ov..ol], ROAD_LOOK_AHEAD_S)
     }
 
     fn var_kinds(&self) -> Vec<VarKind> {
