@@ -9,6 +9,7 @@
 pub mod desc;
 pub mod doctor;
 pub mod dual;
+pub mod energy;
 pub mod force;
 pub mod function;
 pub mod ic;
