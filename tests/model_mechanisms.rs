@@ -281,7 +281,8 @@ fn analytic_jacobian_matches_finite_differences() {
         let m = load(file);
         let sys = System::new(m.model.clone());
         let (mut q, mut v) = sys.initial_q_v();
-        let (mut y, yp, _) = towride::model::ic::initial_state(&sys, 0.0, &mut q, &mut v).unwrap();
+        let (mut y, yp, _) =
+            towride::model::ic::initial_state(&sys, 0.0, &mut q, &mut v, &[]).unwrap();
         // a generic state: velocities and multipliers perturbed, mu = 0 (GGL solution)
         let (_, ov, ol, om) = sys.offsets();
         for (i, x) in y[ov..om].iter_mut().enumerate() {

@@ -45,7 +45,10 @@ pub fn linear(a: &LinearArgs) -> Result<i32, String> {
         }
         Some(_) => {
             let (mut q, mut v) = sys.initial_q_v();
-            let (y, _, _) = model::ic::initial_state(&sys, 0.0, &mut q, &mut v)?;
+            let (y, _, _) = {
+                let x = sys.ext_initial(&q, &v, 0.0);
+                model::ic::initial_state(&sys, 0.0, &mut q, &mut v, &x)?
+            };
             (0.0, y, "initial state".to_string())
         }
     };

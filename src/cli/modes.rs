@@ -135,15 +135,16 @@ fn rule_from_args(a: &ModesArgs, file_rule: &Rule) -> Result<Option<Rule>, Strin
                 _ => DEFAULT_MIN_ENERGY_SHARE,
             },
         };
-        let (load_interfaces, load_moments) = match file_rule {
-            Rule::LoadPath(l) => (l.load_interfaces.clone(), l.load_moments),
-            _ => (vec![], true),
+        let (load_interfaces, load_moments, load_n) = match file_rule {
+            Rule::LoadPath(l) => (l.load_interfaces.clone(), l.load_moments, l.load_n),
+            _ => (vec![], true, None),
         };
         return Ok(Some(Rule::LoadPath(LoadPath {
             band_hz: band,
             min_energy_share: share,
             load_interfaces,
             load_moments,
+            load_n,
         })));
     }
     Ok(None)

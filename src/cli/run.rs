@@ -6,7 +6,6 @@ use clap::Args;
 use serde_json::json;
 
 use crate::model::{self, spec};
-use crate::solver::DaeProblem;
 
 #[derive(Args, Debug)]
 pub struct RunArgs {

@@ -222,6 +222,9 @@ pub struct SelectionIn {
     pub load_interfaces: Option<Vec<String>>,
     /// Load the interfaces with moments too (default true; false for ball joints).
     pub load_moments: Option<bool>,
+    /// The scene's expected load at the loaded interfaces, body axes [N]: one combined
+    /// load case in this direction mix instead of one per direction.
+    pub load_n: Option<[f64; 3]>,
 }
 
 #[derive(Clone, Debug, Deserialize)]

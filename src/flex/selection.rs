@@ -56,6 +56,8 @@ pub struct LoadPath {
     pub load_interfaces: Vec<String>,
     /// Unit moments as well as unit forces (false: forces only, as through a ball joint).
     pub load_moments: bool,
+    /// Expected load mix at the loaded interfaces (body axes) [N]: one combined case.
+    pub load_n: Option<[f64; 3]>,
 }
 
 impl Rule {
@@ -122,11 +124,20 @@ impl Rule {
                         ));
                     }
                 }
+                if let Some(l) = s.load_n {
+                    for (c, x) in l.iter().enumerate() {
+                        src.finite(&path!["selection", "load_n", c], *x)?;
+                    }
+                    if l.iter().all(|x| *x == 0.0) {
+                        return Err(src.error(&path!["selection", "load_n"], "is all zero"));
+                    }
+                }
                 Ok(Rule::LoadPath(LoadPath {
                     band_hz: band,
                     min_energy_share: share,
                     load_interfaces,
                     load_moments: s.load_moments.unwrap_or(true),
+                    load_n: s.load_n,
                 }))
             }
         }
@@ -161,7 +172,7 @@ impl Rule {
 #[derive(Clone, Debug)]
 pub struct LoadCase {
     pub interface: String,
-    /// 0..3 forces along x, y, z; 3..6 moments about x, y, z.
+    /// 0..3 forces along x, y, z; 3..6 moments about x, y, z; 6 the combined `load_n`.
     pub direction: usize,
     pub shares: Vec<f64>,
 }
@@ -264,9 +275,16 @@ pub fn load_path_cases(body: &ModalData, rule: &LoadPath) -> Result<Vec<LoadCase
             }
             Some(a.lu())
         };
-        let directions = if rule.load_moments { 6 } else { 3 };
-        for d in 0..directions {
-            let g: DVector<f64> = gi.row(d).transpose();
+        let directions: Vec<usize> = match rule.load_n {
+            Some(_) => vec![6],
+            None if rule.load_moments => (0..6).collect(),
+            None => (0..3).collect(),
+        };
+        for d in directions {
+            let g: DVector<f64> = match rule.load_n {
+                Some(w) => (0..3).map(|c| gi.row(c).transpose() * w[c]).sum(),
+                None => gi.row(d).transpose(),
+            };
             let p: Vec<f64> = match &lu {
                 None => (0..nm).map(|k| g[6 + k]).collect(),
                 Some(lu) => {

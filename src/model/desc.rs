@@ -39,11 +39,10 @@ pub enum Coupling {
     /// Exact at eta = 0 because the kept modes are mass-orthogonal to the rigid modes.
     #[default]
     Constant,
-    /// Constant mass matrix plus the centrifugal and Euler loads of the frame's rotation
-    /// on the modes.
+    /// Constant mass matrix plus the centrifugal load of the frame's rotation on the
+    /// modes (omega^T I8_j omega), the one zero-order coupling term that survives
+    /// mass-orthogonality.
     Partial,
-    /// The full deformation-dependent mass matrix and quadratic velocity terms.
-    Full,
 }
 
 impl Coupling {
@@ -51,7 +50,6 @@ impl Coupling {
         Some(match s {
             "constant" => Coupling::Constant,
             "partial" => Coupling::Partial,
-            "full" => Coupling::Full,
             _ => return None,
         })
     }

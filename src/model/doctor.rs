@@ -9,7 +9,7 @@ use serde::Serialize;
 use super::desc::Force;
 use super::linear::{linearise, Linearisation};
 use super::system::System;
-use crate::solver::problem::{DaeProblem, JacobianSink};
+use crate::solver::problem::JacobianSink;
 use crate::solver::SolverOptions;
 
 #[derive(Clone, Debug, Serialize)]
@@ -107,9 +107,12 @@ pub fn examine(sys: &System, opts: &SolverOptions, step: f64) -> Report {
         Err(_) => {
             let (mut q, mut v) = sys.initial_q_v();
             (
-                super::ic::initial_state(sys, 0.0, &mut q, &mut v)
-                    .ok()
-                    .map(|s| s.0),
+                {
+                    let x = sys.ext_initial(&q, &v, 0.0);
+                    super::ic::initial_state(sys, 0.0, &mut q, &mut v, &x)
+                }
+                .ok()
+                .map(|s| s.0),
                 "initial state",
             )
         }

@@ -3,8 +3,8 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use super::math::{qmat, qmul};
 use super::system::System;
+use crate::solver::linear::NewtonMatrix;
 
 /// What the initial-state analysis did.
 #[derive(Clone, Debug, Default, serde::Serialize)]
@@ -17,33 +17,8 @@ pub struct AssemblyReport {
     pub velocity_correction: f64,
 }
 
-/// Applies a velocity-space increment dx (6 per body) to positions: r += dr,
-/// p <- p (x) exp(dtheta / 2), renormalised.
-pub fn apply_increment(q: &mut [f64], dx: &[f64]) {
-    let nb = q.len() / 7;
-    for k in 0..nb {
-        for c in 0..3 {
-            q[7 * k + c] += dx[6 * k + c];
-        }
-        let th = [dx[6 * k + 3], dx[6 * k + 4], dx[6 * k + 5]];
-        let a = (th[0] * th[0] + th[1] * th[1] + th[2] * th[2]).sqrt();
-        let (s, c) = if a > 1e-12 {
-            ((0.5 * a).sin() / a, (0.5 * a).cos())
-        } else {
-            (0.5, 1.0)
-        };
-        let e = [c, s * th[0], s * th[1], s * th[2]];
-        let p = [q[7 * k + 3], q[7 * k + 4], q[7 * k + 5], q[7 * k + 6]];
-        let np = qmul(&p, &e);
-        let n = np.iter().map(|x| x * x).sum::<f64>().sqrt();
-        for c in 0..4 {
-            q[7 * k + 3 + c] = np[c] / n;
-        }
-    }
-}
-
 fn dense_b(sys: &System, b: &[(usize, usize, f64)]) -> DMatrix<f64> {
-    let mut m = DMatrix::zeros(sys.m, 6 * sys.nb());
+    let mut m = DMatrix::zeros(sys.m, sys.nv);
     for &(r, c, v) in b {
         m[(r, c)] += v;
     }
@@ -97,7 +72,7 @@ pub fn assemble(
         let bm = dense_b(sys, &b);
         let dx = min_norm(&bm, &DVector::from_vec(g.iter().map(|x| -x).collect()))
             .ok_or("constraint Jacobian is rank-deficient during assembly")?;
-        apply_increment(q, dx.as_slice());
+        sys.apply_increment(q, dx.as_slice());
         rep.iterations = it + 1;
     }
     let (_, gt, b) = sys.constraints(t, q);
@@ -112,20 +87,6 @@ pub fn assemble(
     Ok(rep)
 }
 
-/// q' from v (r' = u, p' = Q(p) omega / 2).
-pub fn qdot_of(q: &[f64], v: &[f64]) -> Vec<f64> {
-    let nb = q.len() / 7;
-    let mut qd = vec![0.0; 7 * nb];
-    for k in 0..nb {
-        qd[7 * k..7 * k + 3].copy_from_slice(&v[6 * k..6 * k + 3]);
-        let qm = qmat(&[q[7 * k + 3], q[7 * k + 4], q[7 * k + 5], q[7 * k + 6]]);
-        for a in 0..4 {
-            qd[7 * k + 3 + a] = 0.5 * (0..3).map(|c| qm[a][c] * v[6 * k + 3 + c]).sum::<f64>();
-        }
-    }
-    qd
-}
-
 /// Accelerations v' and multipliers lambda for consistent q, v:
 /// [M B^T; B 0] [v'; lambda] = [f; gamma], gamma = -d(B v + g_t)/dt at fixed v.
 pub fn accelerations(
@@ -133,85 +94,134 @@ pub fn accelerations(
     t: f64,
     q: &[f64],
     v: &[f64],
+    x: &[f64],
 ) -> Result<(Vec<f64>, Vec<f64>), String> {
-    let nb = sys.nb();
-    let (n, m) = (6 * nb, sys.m);
-    let mut a = DMatrix::zeros(n + m, n + m);
-    let mut rhs = DVector::zeros(n + m);
-    let f = sys.applied(t, q, v);
-    for (k, body) in sys.model.bodies.iter().enumerate() {
-        for c in 0..3 {
-            a[(6 * k + c, 6 * k + c)] = body.mass;
-            for d in 0..3 {
-                a[(6 * k + 3 + c, 6 * k + 3 + d)] = body.inertia[c][d];
-            }
-        }
+    let (n, m) = (sys.nv, sys.m);
+    let mut cache = sys.accel.borrow_mut();
+    if cache.is_none() {
+        *cache = Some(NewtonMatrix::new(
+            n + m,
+            Some(accel_pattern(sys)),
+            n + m <= 60,
+        )?);
     }
-    for i in 0..n {
-        rhs[i] = f[i];
+    let a = cache.as_mut().expect("built above");
+    a.clear();
+    let put = |a: &mut NewtonMatrix, r: usize, c: usize, v: f64| {
+        a.add(r, c, v).expect("entry in the acceleration pattern");
+    };
+    let mut rhs = sys.loads(t, q, v, x, None);
+    rhs.resize(n + m, 0.0);
+    for (r, c, val) in sys.mass_entries() {
+        put(a, r, c, val);
     }
-    let qd = qdot_of(q, v);
     for e in &sys.cons {
         if e.slot.iter().all(|s| s.is_none()) {
             continue;
         }
-        let ev = sys.con_eval2(e, t, q);
+        let ev = sys.con_eval(e, t, q);
+        let gamma = sys.con_gamma(e, t, q, v);
         let bodies = sys.bodies_of(e.mi, e.mj);
         for (r, slot) in e.slot.iter().enumerate() {
             let Some(row) = *slot else { continue };
-            // d(Bv + g_t)/dq . q' + d(Bv + g_t)/dt
-            let mut gamma = 0.0;
-            let dtotal = |l: usize| {
-                let mut s = ev.dbq[r][12][l];
-                for (side, body) in bodies.iter().enumerate() {
-                    if let Some(b) = body {
-                        for c in 0..6 {
-                            s += ev.dbq[r][6 * side + c][l] * v[6 * b + c];
-                        }
-                    }
-                }
-                s
-            };
             for (side, body) in bodies.iter().enumerate() {
                 if let Some(b) = body {
-                    for l in 0..7 {
-                        gamma += dtotal(7 * side + l) * qd[7 * b + l];
-                    }
-                    for c in 0..6 {
-                        let val = ev.first.b[r][6 * side + c];
-                        a[(n + row, 6 * b + c)] += val;
-                        a[(6 * b + c, n + row)] += val;
+                    for c in 0..ev.w[side] {
+                        let val = ev.at(r, side, c);
+                        put(a, n + row, sys.vo[*b] + c, val);
+                        put(a, sys.vo[*b] + c, n + row, val);
                     }
                 }
             }
-            gamma += dtotal(14);
-            rhs[n + row] = -gamma;
+            rhs[n + row] = -gamma[r];
         }
     }
-    let sol = a.lu().solve(&rhs).ok_or("the augmented mass matrix is singular (a body without mass or inertia, or a redundant constraint left in)")?;
-    Ok((
-        sol.rows(0, n).iter().copied().collect(),
-        sol.rows(n, m).iter().copied().collect(),
-    ))
+    let singular = |e: crate::solver::linear::Singular| {
+        format!(
+            "the augmented mass matrix is singular (a body without mass or inertia, or a redundant constraint left in): {}",
+            e.detail
+        )
+    };
+    a.factor(&vec![1.0; n + m], true).map_err(singular)?;
+    a.solve(&mut rhs).map_err(singular)?;
+    let lam = rhs.split_off(n);
+    Ok((rhs, lam))
 }
 
-/// The full consistent solver state (y, y') at t for positions q and velocities v, which
-/// are assembled and projected first.
+/// Structure of [M B^T; B 0]: the mass blocks and every kept row against its bodies.
+fn accel_pattern(sys: &System) -> Vec<(usize, usize)> {
+    let n = sys.nv;
+    let mut p: Vec<(usize, usize)> = sys.mass_entries().iter().map(|&(r, c, _)| (r, c)).collect();
+    for e in &sys.cons {
+        let bodies = sys.bodies_of(e.mi, e.mj);
+        for row in e.slot.iter().flatten() {
+            for b in bodies.iter().flatten() {
+                for c in sys.vo[*b]..sys.vo[*b] + 6 + sys.nm[*b] {
+                    p.push((n + row, c));
+                    p.push((c, n + row));
+                }
+            }
+        }
+    }
+    p
+}
+
+/// Rates of the extension states at (q, v, x): the extension residuals are affine in the
+/// rates, so one solve with their finite-difference Jacobian gives them.
+pub fn ext_rates(
+    sys: &System,
+    t: f64,
+    q: &[f64],
+    v: &[f64],
+    x: &[f64],
+) -> Result<Vec<f64>, String> {
+    let mut xd = vec![0.0; sys.ne];
+    let mut f = vec![0.0; sys.nv];
+    for e in &sys.ext {
+        let r = e.off..e.off + e.n;
+        let mut r0 = vec![0.0; e.n];
+        let zero = vec![0.0; e.n];
+        sys.ext_eval(e, t, q, v, &x[r.clone()], &zero, &mut r0, &mut f);
+        let mut jm = DMatrix::zeros(e.n, e.n);
+        for k in 0..e.n {
+            let mut d = zero.clone();
+            d[k] = 1.0;
+            let mut r1 = vec![0.0; e.n];
+            sys.ext_eval(e, t, q, v, &x[r.clone()], &d, &mut r1, &mut f);
+            for i in 0..e.n {
+                jm[(i, k)] = r1[i] - r0[i];
+            }
+        }
+        let sol = jm
+            .lu()
+            .solve(&DVector::from_iterator(e.n, r0.iter().map(|z| -z)))
+            .ok_or_else(|| format!("{}: singular rate equations", sys.ext_state_name(e, 0)))?;
+        xd[r].copy_from_slice(sol.as_slice());
+    }
+    Ok(xd)
+}
+
+/// The full consistent solver state (y, y') at t for positions q, velocities v and
+/// extension states x; q and v are assembled and projected first.
 pub fn initial_state(
     sys: &System,
     t: f64,
     q: &mut [f64],
     v: &mut [f64],
+    x: &[f64],
 ) -> Result<(Vec<f64>, Vec<f64>, AssemblyReport), String> {
     let rep = assemble(sys, t, q, v)?;
-    let (vd, lam) = accelerations(sys, t, q, v)?;
-    let qd = qdot_of(q, v);
+    let (vd, lam) = accelerations(sys, t, q, v, x)?;
+    let qd = sys.qdot_of(q, v);
+    let xd = ext_rates(sys, t, q, v, x)?;
     let mut y = q.to_vec();
     y.extend_from_slice(v);
     y.extend_from_slice(&lam);
     y.extend(std::iter::repeat_n(0.0, sys.m));
+    y.extend_from_slice(x);
     let mut yp = qd;
     yp.extend_from_slice(&vd);
     yp.extend(std::iter::repeat_n(0.0, 2 * sys.m));
+    yp.extend_from_slice(&xd);
     Ok((y, yp, rep))
 }

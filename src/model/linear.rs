@@ -2,18 +2,18 @@
 //! and damped frequencies, damping ratios, the bodies and elements that dominate each
 //! mode, and the stiffness ratio S = |Re lambda|max / |Re lambda|min of the thesis (3.35).
 //!
-//! In velocity space (translations and body-axes rotations) the linear equations are
-//! M x'' + C x' + K x = 0 on the tangent space B x = 0 of the constraints, with
-//! K = d(-f + B^T lambda)/dx including the geometric terms of the reactions and
-//! C = -df/dv (dampers and gyroscopic terms). With N an orthonormal basis of the null
-//! space of B, x = N z reduces this to an unconstrained system whose first-order form is
-//! solved as a dense non-symmetric eigenproblem (faer).
+//! In velocity space (translations, body-axes rotations, modal coordinates) the linear
+//! equations are M x'' + C x' + K x + D e = 0 on the tangent space B x = 0 of the
+//! constraints, with K = d(-f + B^T lambda)/dx including the geometric terms of the
+//! reactions, C = -df/dv (dampers and gyroscopic terms) and D the load of the extension
+//! states e (tyre rings and treads, controllers), which obey E e' + F_x x + F_v x' + F_e e
+//! = 0. With N an orthonormal basis of the null space of B, x = N z reduces this to an
+//! unconstrained first-order system solved as a dense non-symmetric eigenproblem (faer).
 
 use faer::Mat;
 use nalgebra::{DMatrix, SymmetricEigen};
 use serde::Serialize;
 
-use super::statics::tangent;
 use super::system::System;
 use crate::solver::problem::JacobianSink;
 
@@ -50,34 +50,25 @@ pub struct Linearisation {
     pub stiffness_ratio: Option<f64>,
 }
 
-/// Mass matrix (velocity space) of the rigid bodies.
+/// Velocity-space mass matrix.
 fn mass(sys: &System) -> DMatrix<f64> {
-    let n = 6 * sys.nb();
-    let mut m = DMatrix::zeros(n, n);
-    for (k, b) in sys.model.bodies.iter().enumerate() {
-        for c in 0..3 {
-            m[(6 * k + c, 6 * k + c)] = b.mass;
-            for d in 0..3 {
-                m[(6 * k + 3 + c, 6 * k + 3 + d)] = b.inertia[c][d];
-            }
-        }
+    let mut m = DMatrix::zeros(sys.nv, sys.nv);
+    for (r, c, v) in sys.mass_entries() {
+        m[(r, c)] += v;
     }
     m
 }
 
-/// -df/dv in velocity space.
-fn damping(sys: &System, t: f64, y: &[f64]) -> DMatrix<f64> {
-    let (_, ov, ol, _) = sys.offsets();
-    let n = 6 * sys.nb();
+/// The iteration matrix dF/dy + cj dF/dy' as a dense matrix.
+fn dense_jacobian(sys: &System, t: f64, y: &[f64], cj: f64) -> DMatrix<f64> {
+    let n = sys.size();
     let mut e = Vec::new();
-    sys.jacobian_entries(t, y, 0.0, &mut JacobianSink { entries: &mut e }, false);
-    let mut c = DMatrix::zeros(n, n);
-    for &(r, col, v) in &e {
-        if (ov..ol).contains(&r) && (ov..ol).contains(&col) {
-            c[(r - ov, col - ov)] += v;
-        }
+    sys.jacobian_entries(t, y, cj, &mut JacobianSink::new(&mut e), false);
+    let mut out = DMatrix::zeros(n, n);
+    for (r, c, v) in e {
+        out[(r, c)] += v;
     }
-    c
+    out
 }
 
 /// Orthonormal basis of the null space of B (n x (n - rank)).
@@ -98,26 +89,65 @@ fn null_space(b: &DMatrix<f64>) -> DMatrix<f64> {
 
 /// Linearises about the solver state (t, y) and solves the eigenproblem.
 pub fn linearise(sys: &System, t: f64, y: &[f64]) -> Result<Linearisation, String> {
-    let (k, b) = tangent(sys, t, y);
-    let c = damping(sys, t, y);
+    let (_, ov, ol, om) = sys.offsets();
+    let oe = sys.oe();
+    let (nv, ne) = (sys.nv, sys.ne);
+    let j0 = dense_jacobian(sys, t, y, 0.0);
+    let mut h = DMatrix::zeros(sys.nq, nv);
+    for (r, c, v) in sys.q_map(&y[..ov]) {
+        h[(r, c)] += v;
+    }
+    let blk = |r0: usize, nr: usize, c0: usize, nc: usize| j0.view((r0, c0), (nr, nc)).into_owned();
+    let k = blk(ov, nv, 0, sys.nq) * &h;
+    let c = blk(ov, nv, ov, nv);
+    let d = blk(ov, nv, oe, ne);
+    let b = blk(ol, om - ol, 0, sys.nq) * &h;
+    let fx = blk(oe, ne, 0, sys.nq) * &h;
+    let fv = blk(oe, ne, ov, nv);
+    let fe = blk(oe, ne, oe, ne);
+    let e_rate = dense_jacobian(sys, t, y, 1.0)
+        .view((oe, oe), (ne, ne))
+        .into_owned()
+        - &fe;
     let m = mass(sys);
     let nmat = null_space(&b);
     let nd = nmat.ncols();
     let mr = nmat.transpose() * &m * &nmat;
     let kr = nmat.transpose() * &k * &nmat;
     let cr = nmat.transpose() * &c * &nmat;
+    let dr = nmat.transpose() * &d;
     let mr_inv = mr
         .clone()
         .try_inverse()
         .ok_or("the reduced mass matrix is singular")?;
+    let e_inv = e_rate
+        .try_inverse()
+        .ok_or("the extension states' rate matrix is singular (an algebraic tyre state)")?;
     let a_k = &mr_inv * &kr;
     let a_c = &mr_inv * &cr;
-    let mut a = Mat::<f64>::zeros(2 * nd, 2 * nd);
+    let a_d = &mr_inv * &dr;
+    let e_x = &e_inv * &fx * &nmat;
+    let e_v = &e_inv * &fv * &nmat;
+    let e_e = &e_inv * &fe;
+    let ns = 2 * nd + ne;
+    let mut a = Mat::<f64>::zeros(ns, ns);
     for i in 0..nd {
         a[(i, nd + i)] = 1.0;
         for j in 0..nd {
             a[(nd + i, j)] = -a_k[(i, j)];
             a[(nd + i, nd + j)] = -a_c[(i, j)];
+        }
+        for j in 0..ne {
+            a[(nd + i, 2 * nd + j)] = -a_d[(i, j)];
+        }
+    }
+    for i in 0..ne {
+        for j in 0..nd {
+            a[(2 * nd + i, j)] = -e_x[(i, j)];
+            a[(2 * nd + i, nd + j)] = -e_v[(i, j)];
+        }
+        for j in 0..ne {
+            a[(2 * nd + i, 2 * nd + j)] = -e_e[(i, j)];
         }
     }
     let eig = a
@@ -127,15 +157,15 @@ pub fn linearise(sys: &System, t: f64, y: &[f64]) -> Result<Linearisation, Strin
     let u = eig.U();
     let elements = element_stiffness(sys, t, y);
     let mut modes = Vec::new();
-    for i in 0..2 * nd {
+    for i in 0..ns {
         let l = s[i];
         if l.im < 0.0 {
             continue; // report each conjugate pair once
         }
         // mode shape in velocity space: x = N z
-        let mut xr = vec![0.0; 6 * sys.nb()];
-        let mut xi = vec![0.0; 6 * sys.nb()];
-        for r in 0..6 * sys.nb() {
+        let mut xr = vec![0.0; nv];
+        let mut xi = vec![0.0; nv];
+        for r in 0..nv {
             for j in 0..nd {
                 xr[r] += nmat[(r, j)] * u[(j, i)].re;
                 xi[r] += nmat[(r, j)] * u[(j, i)].im;
@@ -155,11 +185,11 @@ pub fn linearise(sys: &System, t: f64, y: &[f64]) -> Result<Linearisation, Strin
             .iter()
             .enumerate()
             .map(|(bk, body)| {
-                let mut mb = DMatrix::zeros(6 * sys.nb(), 6 * sys.nb());
-                for c1 in 0..3 {
-                    mb[(6 * bk + c1, 6 * bk + c1)] = body.mass;
-                    for c2 in 0..3 {
-                        mb[(6 * bk + 3 + c1, 6 * bk + 3 + c2)] = body.inertia[c1][c2];
+                let mut mb = DMatrix::zeros(nv, nv);
+                let range = sys.vo[bk]..sys.vo[bk] + 6 + sys.nm[bk];
+                for (r, c, v) in sys.mass_entries() {
+                    if range.contains(&r) {
+                        mb[(r, c)] += v;
                     }
                 }
                 Share {
@@ -228,32 +258,42 @@ fn normalise(v: &mut Vec<Share>) {
     v.sort_by(|a, b| b.share.total_cmp(&a.share));
 }
 
-/// Each force element's own tangent stiffness in velocity space (for strain shares).
+/// Each force element's own tangent stiffness in velocity space (for strain shares), by
+/// finite differences of its generalised loads over its bodies' position increments.
 fn element_stiffness(sys: &System, t: f64, y: &[f64]) -> Vec<(String, DMatrix<f64>)> {
-    let nb = sys.nb();
     let (_, ov, ol, _) = sys.offsets();
-    let q = &y[..7 * nb];
+    let q = &y[..ov];
     let v = &y[ov..ol];
+    let nv = sys.nv;
     let mut out = Vec::new();
     for fe in 0..sys.n_forces() {
         let name = sys.force_name(fe);
-        let (bs, gl) = sys.force_eval_dual(fe, t, q, v);
-        let mut ke = DMatrix::zeros(6 * nb, 6 * nb);
-        for s in 0..2 {
-            let Some(b) = bs[s] else { continue };
-            for c in 0..6 {
-                for (side, body) in bs.iter().enumerate() {
-                    let Some(bb) = body else { continue };
-                    let d = &gl[s][c].d;
-                    let p = [q[7 * bb + 3], q[7 * bb + 4], q[7 * bb + 5], q[7 * bb + 6]];
-                    let qm = super::math::qmat(&p);
-                    for l in 0..3 {
-                        ke[(6 * b + c, 6 * bb + l)] -= d[13 * side + l];
-                        for a in 0..4 {
-                            ke[(6 * b + c, 6 * bb + 3 + l)] -=
-                                d[13 * side + 3 + a] * 0.5 * qm[a][l];
-                        }
+        let load = |q: &[f64]| -> Vec<f64> {
+            let (bs, gl, _) = sys.force_eval(fe, t, q, v);
+            let mut f = vec![0.0; nv];
+            for s in 0..2 {
+                if let Some(b) = bs[s] {
+                    for (c, x) in gl[s].iter().enumerate() {
+                        f[sys.vo[b] + c] += x;
                     }
+                }
+            }
+            f
+        };
+        let f0 = load(q);
+        let mut ke = DMatrix::zeros(nv, nv);
+        let mut bodies: Vec<usize> = sys.force_bodies(fe).into_iter().flatten().collect();
+        bodies.dedup();
+        for b in bodies {
+            for col in sys.vo[b]..sys.vo[b] + 6 + sys.nm[b] {
+                let h = 1e-7;
+                let mut dx = vec![0.0; nv];
+                dx[col] = h;
+                let mut qp = q.to_vec();
+                sys.apply_increment(&mut qp, &dx);
+                let f1 = load(&qp);
+                for r in 0..nv {
+                    ke[(r, col)] = -(f1[r] - f0[r]) / h;
                 }
             }
         }

@@ -9,6 +9,7 @@
 pub mod desc;
 pub mod doctor;
 pub mod dual;
+pub mod energy;
 pub mod force;
 pub mod function;
 pub mod ic;
@@ -19,6 +20,7 @@ pub mod output;
 pub mod redundancy;
 pub mod run;
 pub mod spec;
+pub mod start;
 pub mod statics;
 pub mod system;
 

@@ -147,10 +147,10 @@ fn finish(o: &Output, out: &mut Vec<f64>, start: usize) {
 
 /// Values of every channel at (t, y, y').
 pub fn evaluate(sys: &System, t: f64, y: &[f64], yp: &[f64]) -> Vec<f64> {
-    let nb = sys.nb();
     let (_, ov, ol, om) = sys.offsets();
-    let q = &y[..7 * nb];
+    let q = &y[..ov];
     let v = &y[ov..ol];
+    let x = &y[sys.oe()..];
     let m = &sys.model;
     // Accelerations and reactions from the acceleration-level equations at (q, v) rather
     // than from the BDF's derivative of its interpolant (y') and its index-2 multipliers:
@@ -169,7 +169,7 @@ pub fn evaluate(sys: &System, t: f64, y: &[f64], yp: &[f64]) -> Vec<f64> {
         )
     });
     let solved = if needs {
-        super::ic::accelerations(sys, t, q, v).ok()
+        super::ic::accelerations(sys, t, q, v, x).ok()
     } else {
         None
     };
@@ -194,31 +194,9 @@ pub fn evaluate(sys: &System, t: f64, y: &[f64], yp: &[f64]) -> Vec<f64> {
             } => {
                 let mk = &m.markers[*marker];
                 let w = match mk.body {
+                    None if *quantity == MarkerQuantity::Position => mk.position,
                     None => [0.0; 3],
-                    Some(b) => {
-                        let a = rot(&[q[7 * b + 3], q[7 * b + 4], q[7 * b + 5], q[7 * b + 6]]);
-                        let om_b = [v[6 * b + 3], v[6 * b + 4], v[6 * b + 5]];
-                        let al_b = [vd[6 * b + 3], vd[6 * b + 4], vd[6 * b + 5]];
-                        let s = mk.position;
-                        match quantity {
-                            MarkerQuantity::Position => sys.marker_frame(q, *marker).origin,
-                            MarkerQuantity::Velocity => add(
-                                &[v[6 * b], v[6 * b + 1], v[6 * b + 2]],
-                                &mv(&a, &cross(&om_b, &s)),
-                            ),
-                            MarkerQuantity::Acceleration => {
-                                let rel = add(&cross(&al_b, &s), &cross(&om_b, &cross(&om_b, &s)));
-                                add(&[vd[6 * b], vd[6 * b + 1], vd[6 * b + 2]], &mv(&a, &rel))
-                            }
-                            MarkerQuantity::AngularVelocity => mv(&a, &om_b),
-                            MarkerQuantity::AngularAcceleration => mv(&a, &al_b),
-                        }
-                    }
-                };
-                let w = if mk.body.is_none() && *quantity == MarkerQuantity::Position {
-                    mk.position
-                } else {
-                    w
+                    Some(b) => marker_kinematics(sys, *marker, b, *quantity, q, v, vd),
                 };
                 out.extend_from_slice(&resolve(*axes, w));
             }
@@ -287,18 +265,79 @@ pub fn reaction(sys: &System, jk: usize, t: f64, q: &[f64], lam: &[f64]) -> ([f6
         let ev = sys.con_eval(e, t, q);
         for (r, slot) in e.slot.iter().enumerate() {
             if let Some(row) = slot {
-                for c in 0..6 {
-                    gen[c] -= ev.b[r][c] * lam[*row];
+                for (c, g) in gen.iter_mut().enumerate() {
+                    *g -= ev.at(r, 0, c) * lam[*row];
                 }
             }
         }
     }
-    let a = rot(&[q[7 * bi + 3], q[7 * bi + 4], q[7 * bi + 5], q[7 * bi + 6]]);
+    let (r, p) = sys.pose(q, bi);
+    let a = rot(&p);
     let f = [gen[0], gen[1], gen[2]];
     let t_cm = mv(&a, &[gen[3], gen[4], gen[5]]);
-    let r = [q[7 * bi], q[7 * bi + 1], q[7 * bi + 2]];
     let arm = sub(&sys.marker_frame(q, j.i).origin, &r);
     // moment about I = moment about the centre of mass - arm x F
     let t_i = sub(&t_cm, &cross(&arm, &f));
     (f, t_i)
+}
+
+/// Kinematics of marker `mk` on body `b` (world axes). Rigid markers use the rigid-body
+/// formulas; on a modal body the velocity is J(q) v and the acceleration J v' + J' v,
+/// with J' v differentiated numerically along the motion.
+fn marker_kinematics(
+    sys: &System,
+    mk: usize,
+    b: usize,
+    quantity: MarkerQuantity,
+    q: &[f64],
+    v: &[f64],
+    vd: &[f64],
+) -> [f64; 3] {
+    let w0 = sys.vo[b];
+    let nvb = 6 + sys.nm[b];
+    if quantity == MarkerQuantity::Position {
+        return sys.marker_frame(q, mk).origin;
+    }
+    if !sys.is_flex_marker(mk) {
+        let (_, p) = sys.pose(q, b);
+        let a = rot(&p);
+        let om_b = [v[w0 + 3], v[w0 + 4], v[w0 + 5]];
+        let al_b = [vd[w0 + 3], vd[w0 + 4], vd[w0 + 5]];
+        let s = sys.model.markers[mk].position;
+        return match quantity {
+            MarkerQuantity::Velocity => {
+                add(&[v[w0], v[w0 + 1], v[w0 + 2]], &mv(&a, &cross(&om_b, &s)))
+            }
+            MarkerQuantity::Acceleration => {
+                let rel = add(&cross(&al_b, &s), &cross(&om_b, &cross(&om_b, &s)));
+                add(&[vd[w0], vd[w0 + 1], vd[w0 + 2]], &mv(&a, &rel))
+            }
+            MarkerQuantity::AngularVelocity => mv(&a, &om_b),
+            _ => mv(&a, &al_b),
+        };
+    }
+    let ff = sys.flex_frame(q, mk);
+    let vb = &v[w0..w0 + nvb];
+    let (vel, om) = ff.rates(vb);
+    match quantity {
+        MarkerQuantity::Velocity => vel,
+        MarkerQuantity::AngularVelocity => om,
+        _ => {
+            let (a1, al1) = ff.rates(&vd[w0..w0 + nvb]);
+            let qd = sys.qdot_of(q, v);
+            let h = 1e-6;
+            let shift =
+                |s: f64| -> Vec<f64> { q.iter().zip(&qd).map(|(x, d)| x + s * h * d).collect() };
+            let (vp, wp) = sys.flex_frame(&shift(1.0), mk).rates(vb);
+            let (vm, wm) = sys.flex_frame(&shift(-1.0), mk).rates(vb);
+            let d = |a: [f64; 3], b: [f64; 3], c: [f64; 3]| -> [f64; 3] {
+                std::array::from_fn(|k| a[k] + (b[k] - c[k]) / (2.0 * h))
+            };
+            if quantity == MarkerQuantity::Acceleration {
+                d(a1, vp, vm)
+            } else {
+                d(al1, wp, wm)
+            }
+        }
+    }
 }

@@ -16,7 +16,7 @@ const TOL: f64 = 1e-8;
 
 /// Returns the kept rows (element, row) in order and the redundant ones.
 pub fn select_rows(sys: &System, t: f64, q: &[f64]) -> (Vec<(usize, usize)>, Vec<Redundant>) {
-    let n = 6 * sys.nb();
+    let n = sys.nv;
     let mut basis: Vec<Vec<f64>> = Vec::new();
     // r_cols[k][j] = component of kept row k on basis vector j (upper triangular R).
     let mut r_cols: Vec<Vec<f64>> = Vec::new();
@@ -29,8 +29,8 @@ pub fn select_rows(sys: &System, t: f64, q: &[f64]) -> (Vec<(usize, usize)>, Vec
             let mut b = vec![0.0; n];
             for (side, body) in bodies.iter().enumerate() {
                 if let Some(k) = body {
-                    for c in 0..6 {
-                        b[6 * k + c] += ev.b[r][6 * side + c];
+                    for c in 0..ev.w[side] {
+                        b[sys.vo[*k] + c] += ev.at(r, side, c);
                     }
                 }
             }

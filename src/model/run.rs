@@ -24,6 +24,8 @@ pub struct RunResult {
     pub error: Option<(String, f64)>,
     /// Final solver state (t, y, y'), for follow-up analyses.
     pub last: Option<(f64, Vec<f64>, Vec<f64>)>,
+    /// Modal coordinates of every modal body at every sample: (body, rows[k][mode]).
+    pub modal: Vec<(usize, Vec<Vec<f64>>)>,
 }
 
 /// Runs from `t0` (state from the model's initial values, or `start` if given) to
@@ -48,12 +50,17 @@ pub fn simulate(
         assembly: AssemblyReport::default(),
         error: None,
         last: None,
+        modal: (0..sys.nb())
+            .filter(|&b| sys.nm[b] > 0)
+            .map(|b| (b, Vec::new()))
+            .collect(),
     };
     let (y0, yp0) = match start {
         Some(s) => s,
         None => {
             let (mut q, mut v) = sys.initial_q_v();
-            match initial_state(sys, t0, &mut q, &mut v) {
+            let x = sys.ext_initial(&q, &v, 0.0);
+            match initial_state(sys, t0, &mut q, &mut v, &x) {
                 Ok((y, yp, rep)) => {
                     res.assembly = rep;
                     (y, yp)
@@ -67,6 +74,7 @@ pub fn simulate(
     };
     res.times.push(t0);
     res.rows.push(evaluate(sys, t0, &y0, &yp0));
+    record_modal(sys, &mut res, &y0);
     let mut bdf = match Bdf::new(sys, t0, &y0, &yp0, opts.clone()) {
         Ok(b) => b,
         Err(e) => {
@@ -94,6 +102,7 @@ pub fn simulate(
         bdf.interpolate(ts, &mut y, &mut yp);
         res.times.push(ts);
         res.rows.push(evaluate(sys, ts, &y, &yp));
+        record_modal(sys, &mut res, &y);
         if let Some(p) = progress {
             p.set_position(k as u64);
         }
@@ -107,6 +116,13 @@ pub fn simulate(
     }
     res.wall_s = wall.elapsed().as_secs_f64();
     res
+}
+
+fn record_modal(sys: &System, res: &mut RunResult, y: &[f64]) {
+    for (b, rows) in &mut res.modal {
+        let o = sys.qo[*b] + 7;
+        rows.push(y[o..o + sys.nm[*b]].to_vec());
+    }
 }
 
 /// Removes 2 pi jumps from angle channels so a turning crank reads continuously.

@@ -9,8 +9,7 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use super::ic::{apply_increment, assemble};
-use super::math::qmat;
+use super::ic::assemble;
 use super::system::System;
 use crate::solver::problem::{DaeProblem, JacobianSink, VarKind};
 use crate::solver::SolverOptions;
@@ -34,41 +33,57 @@ pub struct Statics {
 }
 
 /// Tangent matrices at a state with zero velocity, in velocity space: the stiffness
-/// K = d(-f + B^T lambda)/dx (6nb x 6nb) and B (m x 6nb), from the system's analytic
-/// iteration matrix at cj = 0.
+/// K = d(-f + B^T lambda)/dx (nv x nv) and B (m x nv), from the system's iteration matrix
+/// at cj = 0, extension states held fixed.
 pub fn tangent(sys: &System, t: f64, y: &[f64]) -> (DMatrix<f64>, DMatrix<f64>) {
-    let nb = sys.nb();
+    let full = state_jacobian(sys, t, y);
+    let (nv, m) = (sys.nv, sys.m);
+    (
+        full.view((0, 0), (nv, nv)).into_owned(),
+        full.view((nv, 0), (m, nv)).into_owned(),
+    )
+}
+
+/// The Jacobian of (force rows, position constraints, extension rows) with respect to
+/// (velocity-space increments, lambda, extension states) at zero velocity and rates:
+/// square, nv + m + ne.
+pub fn state_jacobian(sys: &System, t: f64, y: &[f64]) -> DMatrix<f64> {
     let (_, ov, ol, om) = sys.offsets();
+    let oe = sys.oe();
+    let (nv, m, ne) = (sys.nv, sys.m, sys.ne);
+    let n = nv + m + ne;
     let mut e = Vec::new();
-    sys.jacobian_entries(t, y, 0.0, &mut JacobianSink { entries: &mut e }, false);
-    let mut dq = DMatrix::zeros(6 * nb + sys.m, 7 * nb);
+    sys.jacobian_entries(t, y, 0.0, &mut JacobianSink::new(&mut e), false);
+    let row_of = |r: usize| -> Option<usize> {
+        if (ov..ol).contains(&r) {
+            Some(r - ov)
+        } else if (ol..om).contains(&r) {
+            Some(nv + r - ol)
+        } else if r >= oe {
+            Some(nv + m + r - oe)
+        } else {
+            None
+        }
+    };
+    let mut dq = DMatrix::zeros(n, sys.nq);
+    let mut out = DMatrix::zeros(n, n);
     for &(r, c, v) in &e {
-        if c < 7 * nb {
-            if (ov..ol).contains(&r) {
-                dq[(r - ov, c)] += v;
-            } else if (ol..om).contains(&r) {
-                dq[(6 * nb + r - ol, c)] += v;
-            }
+        let Some(rr) = row_of(r) else { continue };
+        if c < ov {
+            dq[(rr, c)] += v;
+        } else if (ol..om).contains(&c) {
+            out[(rr, nv + c - ol)] += v;
+        } else if c >= oe {
+            out[(rr, nv + m + c - oe)] += v;
         }
     }
-    // chain with dq/dx: r <- dr, p <- Q(p) dtheta / 2
-    let mut h = DMatrix::zeros(7 * nb, 6 * nb);
-    for k in 0..nb {
-        for c in 0..3 {
-            h[(7 * k + c, 6 * k + c)] = 1.0;
-        }
-        let qm = qmat(&[y[7 * k + 3], y[7 * k + 4], y[7 * k + 5], y[7 * k + 6]]);
-        for a in 0..4 {
-            for c in 0..3 {
-                h[(7 * k + 3 + a, 6 * k + 3 + c)] = 0.5 * qm[a][c];
-            }
-        }
+    let mut h = DMatrix::zeros(sys.nq, nv);
+    for (r, c, v) in sys.q_map(&y[..ov]) {
+        h[(r, c)] += v;
     }
     let kx = &dq * &h;
-    (
-        kx.rows(0, 6 * nb).into_owned(),
-        kx.rows(6 * nb, sys.m).into_owned(),
-    )
+    out.view_mut((0, 0), (n, nv)).copy_from(&kx);
+    out
 }
 
 /// Finds the static equilibrium nearest the model's initial positions.
@@ -76,93 +91,130 @@ pub fn equilibrium(sys: &System, t: f64, opts: &SolverOptions) -> Result<Statics
     let wall = std::time::Instant::now();
     let (mut q, mut v) = sys.initial_q_v();
     assemble(sys, t, &mut q, &mut v)?;
+    v.iter_mut().for_each(|x| *x = 0.0);
     let mut lam = vec![0.0; sys.m];
+    let mut x = sys.ext_initial(&q, &v, 0.0);
     let mut rep = StaticsReport::default();
-    let ok = newton(sys, t, &mut q, &mut lam, &mut rep);
+    sys.controls_active.set(false);
+    let ok = newton(sys, t, &mut q, &mut lam, &mut x, &mut rep);
+    let result = finish(sys, t, opts, wall, q, lam, x, rep, ok);
+    sys.controls_active.set(true);
+    result
+}
+
+/// Dynamic relaxation when Newton failed, then the equilibrium as a solver state.
+#[allow(clippy::too_many_arguments)]
+fn finish(
+    sys: &System,
+    t: f64,
+    opts: &SolverOptions,
+    wall: std::time::Instant,
+    mut q: Vec<f64>,
+    mut lam: Vec<f64>,
+    mut x: Vec<f64>,
+    mut rep: StaticsReport,
+    ok: bool,
+) -> Result<Statics, String> {
     if !ok {
         // Dynamic relaxation: settle with heavy damping, then polish with Newton.
         rep.relaxation_used = true;
         let relaxed = Relaxed { sys, rate: 20.0 };
-        let (y0, yp0, _) = super::ic::initial_state(sys, t, &mut q, &mut vec![0.0; 6 * sys.nb()])?;
+        let (y0, yp0, _) = super::ic::initial_state(sys, t, &mut q, &mut vec![0.0; sys.nv], &x)?;
         let mut o = opts.clone();
         o.rtol = o.rtol.max(1e-5);
         let end = crate::solver::solve_to(&relaxed, t, &y0, &yp0, t + 5.0, &o)
             .map_err(|e| format!("dynamic relaxation failed: {e}"))?;
-        q.copy_from_slice(&end.y[..7 * sys.nb()]);
+        q.copy_from_slice(&end.y[..sys.nq]);
         lam.copy_from_slice(&end.y[sys.offsets().2..sys.offsets().3]);
-        if !newton(sys, t, &mut q, &mut lam, &mut rep) {
+        x.copy_from_slice(&end.y[sys.oe()..]);
+        if !newton(sys, t, &mut q, &mut lam, &mut x, &mut rep) {
             return Err(format!(
                 "static equilibrium not found after {} Newton iterations and dynamic relaxation: force imbalance {:.3e}, constraint violation {:.3e}",
                 rep.iterations, rep.residual_force, rep.residual_constraint
             ));
         }
     }
-    let nb = sys.nb();
-    let mut y = q.clone();
-    y.extend(std::iter::repeat_n(0.0, 6 * nb));
-    y.extend_from_slice(&lam);
-    y.extend(std::iter::repeat_n(0.0, sys.m));
+    let y = state(sys, &q, &lam, &x);
     let yp = vec![0.0; y.len()];
     rep.wall_s = wall.elapsed().as_secs_f64();
     Ok(Statics { y, yp, report: rep })
 }
 
-/// Damped Newton; true on convergence.
-fn newton(sys: &System, t: f64, q: &mut [f64], lam: &mut [f64], rep: &mut StaticsReport) -> bool {
-    let nb = sys.nb();
+/// The solver state at rest for positions, multipliers and extension states.
+fn state(sys: &System, q: &[f64], lam: &[f64], x: &[f64]) -> Vec<f64> {
+    let mut y = q.to_vec();
+    y.extend(std::iter::repeat_n(0.0, sys.nv));
+    y.extend_from_slice(lam);
+    y.extend(std::iter::repeat_n(0.0, sys.m));
+    y.extend_from_slice(x);
+    y
+}
+
+/// Damped Newton on (forces, constraints, extension states); true on convergence.
+/// Directions without stiffness (a car free to roll or slide sideways on tyres without
+/// lateral grip at rest) are held by a tiny Tikhonov term: Newton then picks the
+/// equilibrium nearest the start.
+fn newton(
+    sys: &System,
+    t: f64,
+    q: &mut [f64],
+    lam: &mut [f64],
+    x: &mut [f64],
+    rep: &mut StaticsReport,
+) -> bool {
+    let (nv, m, ne) = (sys.nv, sys.m, sys.ne);
     let (_, ov, ol, om) = sys.offsets();
+    let oe = sys.oe();
     let weight: f64 =
         sys.model.bodies.iter().map(|b| b.mass).sum::<f64>() * norm3(&sys.model.gravity);
     let f_ref = weight.max(1.0);
-    let state = |q: &[f64], lam: &[f64]| {
-        let mut y = q.to_vec();
-        y.extend(std::iter::repeat_n(0.0, 6 * nb));
-        y.extend_from_slice(lam);
-        y.extend(std::iter::repeat_n(0.0, sys.m));
-        y
-    };
     let resid = |y: &[f64]| {
         let mut r = vec![0.0; y.len()];
         sys.residual(t, y, &vec![0.0; y.len()], &mut r);
-        (r[ov..ol].to_vec(), r[ol..om].to_vec())
+        let mut rf = r[ov..ol].to_vec();
+        rf.extend_from_slice(&r[oe..]);
+        (rf, r[ol..om].to_vec())
     };
     let merit = |rf: &[f64], rg: &[f64]| inf(rf) / f_ref + inf(rg);
     for _ in 0..100 {
-        let y = state(q, lam);
+        let y = state(sys, q, lam, x);
         let (rf, rg) = resid(&y);
         rep.residual_force = inf(&rf);
         rep.residual_constraint = inf(&rg);
         let phi = merit(&rf, &rg);
-        let (k, b) = tangent(sys, t, &y);
-        let n = 6 * nb + sys.m;
-        let mut a = DMatrix::zeros(n, n);
-        a.view_mut((0, 0), (6 * nb, 6 * nb)).copy_from(&k);
-        a.view_mut((0, 6 * nb), (6 * nb, sys.m))
-            .copy_from(&b.transpose());
-        a.view_mut((6 * nb, 0), (sys.m, 6 * nb)).copy_from(&b);
-        let rhs = DVector::from_iterator(n, rf.iter().chain(&rg).map(|x| -x));
+        let mut a = state_jacobian(sys, t, &y);
+        let n = nv + m + ne;
+        let big = (0..n).fold(0.0f64, |acc, i| acc.max(a[(i, i)].abs()));
+        for i in (0..nv).chain(nv + m..n) {
+            a[(i, i)] += 1e-10 * big;
+        }
+        let rhs =
+            DVector::from_iterator(n, rf[..nv].iter().chain(&rg).chain(&rf[nv..]).map(|x| -x));
         let Some(d) = a.lu().solve(&rhs) else {
             return false;
         };
         rep.iterations += 1;
         // Step limits: 0.1 m and 0.2 rad per iteration.
         let mut scale = 1.0f64;
-        for kb in 0..nb {
-            let tr = norm3(&[d[6 * kb], d[6 * kb + 1], d[6 * kb + 2]]);
-            let ro = norm3(&[d[6 * kb + 3], d[6 * kb + 4], d[6 * kb + 5]]);
+        for kb in 0..sys.nb() {
+            let w = sys.vo[kb];
+            let tr = norm3(&[d[w], d[w + 1], d[w + 2]]);
+            let ro = norm3(&[d[w + 3], d[w + 4], d[w + 5]]);
             scale = scale.min(0.1 / tr.max(1e-300)).min(0.2 / ro.max(1e-300));
         }
-        let dx_max = (0..6 * nb).fold(0.0f64, |m, i| m.max(d[i].abs()));
+        let dx_max = (0..nv).fold(0.0f64, |m, i| m.max(d[i].abs()));
         let mut alpha = scale.min(1.0);
         loop {
             let mut qn = q.to_vec();
-            let dx: Vec<f64> = (0..6 * nb).map(|i| alpha * d[i]).collect();
-            apply_increment(&mut qn, &dx);
-            let ln: Vec<f64> = (0..sys.m).map(|i| lam[i] + alpha * d[6 * nb + i]).collect();
-            let (rf2, rg2) = resid(&state(&qn, &ln));
+            let dx: Vec<f64> = (0..nv).map(|i| alpha * d[i]).collect();
+            sys.apply_increment(&mut qn, &dx);
+            let ln: Vec<f64> = (0..m).map(|i| lam[i] + alpha * d[nv + i]).collect();
+            let xn: Vec<f64> = (0..ne).map(|i| x[i] + alpha * d[nv + m + i]).collect();
+            let (rf2, rg2) = resid(&state(sys, &qn, &ln, &xn));
             if merit(&rf2, &rg2) < phi || alpha < 1e-3 || phi < 1e-12 {
                 q.copy_from_slice(&qn);
                 lam.copy_from_slice(&ln);
+                x.copy_from_slice(&xn);
                 rep.residual_force = inf(&rf2);
                 rep.residual_constraint = inf(&rg2);
                 break;
@@ -195,18 +247,13 @@ struct Relaxed<'a> {
 
 impl DaeProblem for Relaxed<'_> {
     fn size(&self) -> usize {
-        self.sys.size()
+        crate::model::system::System::size(self.sys)
     }
     fn residual(&self, t: f64, y: &[f64], yp: &[f64], res: &mut [f64]) {
         self.sys.residual(t, y, yp, res);
         let ov = self.sys.offsets().1;
-        for (k, b) in self.sys.model.bodies.iter().enumerate() {
-            for c in 0..3 {
-                res[ov + 6 * k + c] += self.rate * b.mass * y[ov + 6 * k + c];
-                for d in 0..3 {
-                    res[ov + 6 * k + 3 + c] += self.rate * b.inertia[c][d] * y[ov + 6 * k + 3 + d];
-                }
-            }
+        for (r, c, m) in self.sys.mass_entries() {
+            res[ov + r] += self.rate * m * y[ov + c];
         }
     }
     fn var_kinds(&self) -> Vec<VarKind> {
@@ -218,17 +265,8 @@ impl DaeProblem for Relaxed<'_> {
     fn jacobian(&self, t: f64, y: &[f64], yp: &[f64], cj: f64, jac: &mut JacobianSink) -> bool {
         self.sys.jacobian(t, y, yp, cj, jac);
         let ov = self.sys.offsets().1;
-        for (k, b) in self.sys.model.bodies.iter().enumerate() {
-            for c in 0..3 {
-                jac.add(ov + 6 * k + c, ov + 6 * k + c, self.rate * b.mass);
-                for d in 0..3 {
-                    jac.add(
-                        ov + 6 * k + 3 + c,
-                        ov + 6 * k + 3 + d,
-                        self.rate * b.inertia[c][d],
-                    );
-                }
-            }
+        for (r, c, m) in self.sys.mass_entries() {
+            jac.add(ov + r, ov + c, self.rate * m);
         }
         true
     }

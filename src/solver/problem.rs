@@ -63,6 +63,13 @@ pub trait DaeProblem {
     /// Evaluates the residual F(t, y, y') into `res`.
     fn residual(&self, t: f64, y: &[f64], yp: &[f64], res: &mut [f64]);
 
+    /// Largest step the problem allows from (t, y), for events the solver cannot see
+    /// coming through the residual (a road obstacle ahead of a tyre). `None`: no limit
+    /// beyond the options' `h_max`.
+    fn max_step(&self, _t: f64, _y: &[f64]) -> Option<f64> {
+        None
+    }
+
     /// The kind of each unknown. Defaults to all differential (an implicit ODE).
     fn var_kinds(&self) -> Vec<VarKind> {
         vec![VarKind::Differential; self.size()]

@@ -1,12 +1,28 @@
-//! The analytic iteration matrix of [`System`] and the names of its unknowns and
-//! equations (for solver messages).
+//! The iteration matrix dF/dy + cj dF/dy' of [`System`]: analytic for bodies, rigid force
+//! elements and constraints, finite differences over the few unknowns they touch for
+//! elements on modal markers and for extension elements (tyres, controllers).
 
-use super::{ConElem, ConRow, Owner, System};
+use super::{ConElem, ConRow, Ext, Owner, System};
 use crate::model::desc::MotionDof;
 use crate::model::math::{cst33, mvc, qmat};
 use crate::solver::problem::JacobianSink;
 
 impl System {
+    /// A generic state for the sparsity pattern: unit quaternions, every other unknown 1
+    /// so no derivative is accidentally zero.
+    pub fn structural_state(&self) -> Vec<f64> {
+        let mut y = vec![1.0; self.size()];
+        let (q0, _) = self.initial_q_v();
+        y[..self.nq].copy_from_slice(&q0);
+        y
+    }
+
+    /// Iteration matrix entries at (t, y, y').
+    pub fn jacobian_full(&self, t: f64, y: &[f64], yp: &[f64], cj: f64, jac: &mut JacobianSink) {
+        self.jacobian_entries(t, y, cj, jac, false);
+        let _ = yp;
+    }
+
     /// Iteration matrix entries; with `structural`, every possible non-zero is emitted
     /// (values meaningless) so the pattern does not depend on the state.
     pub fn jacobian_entries(
@@ -17,36 +33,66 @@ impl System {
         jac: &mut JacobianSink,
         structural: bool,
     ) {
-        let nb = self.nb();
         let (_, ov, ol, om) = self.offsets();
-        let q_owned;
-        let q: &[f64] = if structural {
-            // A generic configuration (unit quaternions) so no derivative is accidentally 0.
-            let (q0, _) = self.initial_q_v();
-            q_owned = q0;
-            &q_owned
-        } else {
-            &y[..7 * nb]
-        };
+        let q = &y[..ov];
         let v = &y[ov..ol];
         let lam = &y[ol..om];
         let pick = |x: f64| if structural { 1.0 } else { x };
-        // Rigid-body blocks.
+        self.body_blocks(q, v, cj, jac, structural);
+        // Force elements: -dQ/d(q, v).
+        for fe in 0..self.n_forces() {
+            if self.force_is_flex(fe) {
+                self.fd_force(fe, t, q, v, jac, structural);
+                continue;
+            }
+            let (bs, gl) = self.force_eval_dual(fe, t, q, v);
+            for s in 0..2 {
+                let Some(b) = bs[s] else { continue };
+                for c in 0..6 {
+                    let d = &gl[s][c].d;
+                    for (side, body) in bs.iter().enumerate() {
+                        let Some(bb) = body else { continue };
+                        for l in 0..13 {
+                            let val = -d[13 * side + l];
+                            if structural || val != 0.0 {
+                                let col = if l < 7 {
+                                    self.qo[*bb] + l
+                                } else {
+                                    ov + self.vo[*bb] + l - 7
+                                };
+                                jac.add(ov + self.vo[b] + c, col, pick(val));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        self.constraint_blocks(t, q, v, lam, jac, structural);
+        let oe = self.oe();
+        for e in &self.ext {
+            self.fd_ext(e, t, y, cj, jac, structural, oe);
+        }
+    }
+
+    fn body_blocks(&self, q: &[f64], v: &[f64], cj: f64, jac: &mut JacobianSink, structural: bool) {
+        let ov = self.nq;
+        let pick = |x: f64| if structural { 1.0 } else { x };
         for (k, body) in self.model.bodies.iter().enumerate() {
-            let (qr, qp, vu, vw) = (7 * k, 7 * k + 3, ov + 6 * k, ov + 6 * k + 3);
+            let (o, w) = (self.qo[k], self.vo[k]);
+            let (qr, qp, vu, vw) = (o, o + 3, ov + w, ov + w + 3);
             for c in 0..3 {
                 jac.add(qr + c, qr + c, cj);
                 jac.add(qr + c, vu + c, -1.0);
                 jac.add(vu + c, vu + c, cj * body.mass);
             }
             let p = [q[qp], q[qp + 1], q[qp + 2], q[qp + 3]];
-            let w = [v[6 * k + 3], v[6 * k + 4], v[6 * k + 5]];
+            let om = [v[w + 3], v[w + 4], v[w + 5]];
             // d(p (x) (0,w))/dp (B^T mu term dropped, mu = 0 on the solution)
             let rw = [
-                [0.0, -w[0], -w[1], -w[2]],
-                [w[0], 0.0, w[2], -w[1]],
-                [w[1], -w[2], 0.0, w[0]],
-                [w[2], w[1], -w[0], 0.0],
+                [0.0, -om[0], -om[1], -om[2]],
+                [om[0], 0.0, om[2], -om[1]],
+                [om[1], -om[2], 0.0, om[0]],
+                [om[2], om[1], -om[0], 0.0],
             ];
             let qm = qmat(&p);
             for a in 0..4 {
@@ -60,12 +106,11 @@ impl System {
                     jac.add(qp + a, vw + c, pick(-0.5 * qm[a][c]));
                 }
             }
-            // J w' + w x J w
+            // J w' + w x J w: d(w x Jw)/dw = [w]x J - [Jw]x
             let jm = body.inertia;
-            let jw = mvc(&cst33::<f64>(&jm), &w);
-            // d(w x Jw)/dw = [w]x J - [Jw]x
+            let jw = mvc(&cst33::<f64>(&jm), &om);
             let skew = |a: [f64; 3]| [[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]];
-            let sw = skew(w);
+            let sw = skew(om);
             let sjw = skew(jw);
             for r in 0..3 {
                 for c in 0..3 {
@@ -76,92 +121,246 @@ impl System {
                     jac.add(vw + r, vw + c, pick(val));
                 }
             }
-        }
-        // Force elements: -dQ/d(q, v).
-        for fe in 0..self.felems.len() {
-            let (bs, gl) = self.force_eval_dual(fe, t, q, v);
-            for s in 0..2 {
-                let Some(b) = bs[s] else { continue };
-                for c in 0..6 {
-                    let d = &gl[s][c].d;
-                    for (side, body) in bs.iter().enumerate() {
-                        let Some(bb) = body else { continue };
-                        for l in 0..13 {
-                            let val = -d[13 * side + l];
-                            if structural || val != 0.0 {
-                                let col = if l < 7 {
-                                    7 * bb + l
-                                } else {
-                                    ov + 6 * bb + l - 7
-                                };
-                                jac.add(ov + 6 * b + c, col, pick(val));
-                            }
-                        }
+            let Some(m) = &body.modal else { continue };
+            for (j, mode) in m.data.modes.iter().enumerate() {
+                let (qe, ve) = (o + 7 + j, ov + w + 6 + j);
+                jac.add(qe, qe, cj);
+                jac.add(qe, ve, -1.0);
+                let wn = mode.stiffness.max(0.0).sqrt();
+                jac.add(ve, ve, pick(cj + 2.0 * mode.damping_ratio * wn));
+                jac.add(ve, qe, pick(mode.stiffness));
+                if m.coupling == crate::model::desc::Coupling::Partial {
+                    let i8 = &m.data.invariants.i8[j];
+                    for a in 0..3 {
+                        let d: f64 = (0..3).map(|b| (i8[a][b] + i8[b][a]) * om[b]).sum();
+                        jac.add(ve, vw + a, pick(-d));
                     }
                 }
             }
         }
-        // Constraint elements.
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn constraint_blocks(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        lam: &[f64],
+        jac: &mut JacobianSink,
+        structural: bool,
+    ) {
+        let (_, ov, ol, om) = self.offsets();
+        let pick = |x: f64| if structural { 1.0 } else { x };
         for e in &self.cons {
             if e.slot.iter().all(|s| s.is_none()) {
                 continue;
             }
             let ev = self.con_eval2(e, t, q);
             let bodies = self.bodies_of(e.mi, e.mj);
+            let wq = [ev.first.w[0] + 1, ev.first.w[1] + 1];
             for (r, slot) in e.slot.iter().enumerate() {
                 let Some(row) = *slot else { continue };
                 for (side, body) in bodies.iter().enumerate() {
                     let Some(b) = body else { continue };
-                    for c in 0..6 {
-                        let bval = ev.first.b[r][6 * side + c];
+                    let (o, w) = (self.qo[*b], self.vo[*b]);
+                    for c in 0..ev.first.w[side] {
+                        let bval = ev.first.at(r, side, c);
                         if !structural && bval == 0.0 {
                             continue;
                         }
                         let bval = pick(bval);
                         // dyn rows: B^T lambda; gv rows: B v
-                        jac.add(ov + 6 * b + c, ol + row, bval);
-                        jac.add(om + row, ov + 6 * b + c, bval);
+                        jac.add(ov + w + c, ol + row, bval);
+                        jac.add(om + row, ov + w + c, bval);
                         // kinematic rows: B^T mu
                         if c < 3 {
-                            jac.add(7 * b + c, om + row, bval);
-                        } else {
-                            let p = [q[7 * b + 3], q[7 * b + 4], q[7 * b + 5], q[7 * b + 6]];
+                            jac.add(o + c, om + row, bval);
+                        } else if c < 6 {
+                            let p = [q[o + 3], q[o + 4], q[o + 5], q[o + 6]];
                             let qm = qmat(&p);
                             for a in 0..4 {
-                                jac.add(7 * b + 3 + a, om + row, pick(0.5 * qm[a][c - 3] * bval));
+                                jac.add(o + 3 + a, om + row, pick(0.5 * qm[a][c - 3] * bval));
                             }
+                        } else {
+                            jac.add(o + 1 + c, om + row, bval);
                         }
                     }
-                    for l in 0..7 {
-                        let gq = ev.gq[r][7 * side + l];
+                    for l in 0..wq[side] {
+                        let gq = ev.gq[r][side * wq[0] + l];
                         if structural || gq != 0.0 {
-                            jac.add(ol + row, 7 * b + l, pick(gq));
+                            jac.add(ol + row, o + l, pick(gq));
                         }
                     }
                 }
                 // Second-derivative terms: d(B^T lambda)/dq and d(B v + g_t)/dq.
+                let Some(dbq) = &ev.dbq else { continue };
                 for (qside, qbody) in bodies.iter().enumerate() {
                     let Some(qb) = qbody else { continue };
                     for l in 0..7 {
                         let lq = 7 * qside + l;
-                        let mut dbv = ev.dbq[r][12][lq];
+                        let mut dbv = dbq[r][12][lq];
                         for (side, body) in bodies.iter().enumerate() {
                             let Some(b) = body else { continue };
                             for c in 0..6 {
-                                let d = ev.dbq[r][6 * side + c][lq];
-                                dbv += d * v[6 * b + c];
+                                let d = dbq[r][6 * side + c][lq];
+                                dbv += d * v[self.vo[*b] + c];
                                 let val = d * lam[row];
                                 if structural || val != 0.0 {
-                                    jac.add(ov + 6 * b + c, 7 * qb + l, pick(val));
+                                    jac.add(ov + self.vo[*b] + c, self.qo[*qb] + l, pick(val));
                                 }
                             }
                         }
                         if structural || dbv != 0.0 {
-                            jac.add(om + row, 7 * qb + l, pick(dbv));
+                            jac.add(om + row, self.qo[*qb] + l, pick(dbv));
                         }
                     }
                 }
             }
+        }
+    }
+
+    /// Finite-difference block of a force element on a modal marker: -d f / d(q, v) of
+    /// its bodies.
+    fn fd_force(
+        &self,
+        fe: usize,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        jac: &mut JacobianSink,
+        structural: bool,
+    ) {
+        let ov = self.nq;
+        let mut bodies: Vec<usize> = self.force_bodies(fe).into_iter().flatten().collect();
+        bodies.dedup();
+        let gather = |q: &[f64], v: &[f64]| -> Vec<(usize, f64)> {
+            let (bs, gl, _) = self.force_eval(fe, t, q, v);
+            let mut out = Vec::new();
+            for s in 0..2 {
+                if let Some(b) = bs[s] {
+                    for (c, x) in gl[s].iter().enumerate() {
+                        out.push((self.vo[b] + c, *x));
+                    }
+                }
+            }
+            out
+        };
+        let base = gather(q, v);
+        let (mut qq, mut vv) = (q.to_vec(), v.to_vec());
+        for &b in &bodies {
+            let cols: Vec<(bool, usize)> = (self.qo[b]..self.qo[b] + 7 + self.nm[b])
+                .map(|i| (true, i))
+                .chain((self.vo[b]..self.vo[b] + 6 + self.nm[b]).map(|i| (false, i)))
+                .collect();
+            for (is_q, i) in cols {
+                let col = if is_q { i } else { ov + i };
+                if structural {
+                    for &(r, _) in &base {
+                        jac.add(ov + r, col, 1.0);
+                    }
+                    continue;
+                }
+                let x0 = if is_q { qq[i] } else { vv[i] };
+                let h = 1e-7 * (1.0 + x0.abs());
+                if is_q {
+                    qq[i] += h;
+                } else {
+                    vv[i] += h;
+                }
+                let pert = gather(&qq, &vv);
+                if is_q {
+                    qq[i] = x0;
+                } else {
+                    vv[i] = x0;
+                }
+                for (&(r, a), &(_, b)) in base.iter().zip(&pert) {
+                    let d = -(b - a) / h;
+                    if d != 0.0 {
+                        jac.add(ov + r, col, d);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Finite-difference block of an extension element: its own rows and the loaded
+    /// bodies' force rows, over the bodies' (q, v), its states and (times cj) their rates.
+    #[allow(clippy::too_many_arguments)]
+    fn fd_ext(
+        &self,
+        e: &Ext,
+        t: f64,
+        y: &[f64],
+        cj: f64,
+        jac: &mut JacobianSink,
+        structural: bool,
+        oe: usize,
+    ) {
+        let (_, ov, ol, _) = self.offsets();
+        let bodies = self.ext_bodies(e);
+        let rows_f: Vec<usize> = bodies
+            .iter()
+            .flat_map(|&b| self.vo[b]..self.vo[b] + 6 + self.nm[b])
+            .collect();
+        let mut cols: Vec<usize> = bodies
+            .iter()
+            .flat_map(|&b| {
+                (self.qo[b]..self.qo[b] + 7 + self.nm[b])
+                    .chain(ov + self.vo[b]..ov + self.vo[b] + 6 + self.nm[b])
+            })
+            .collect();
+        cols.extend(oe + e.off..oe + e.off + e.n);
+        if structural {
+            for &c in &cols {
+                for &r in &rows_f {
+                    jac.add(ov + r, c, 1.0);
+                }
+                for i in 0..e.n {
+                    jac.add(oe + e.off + i, c, 1.0);
+                }
+            }
+            return;
+        }
+        let mut yy = y.to_vec();
+        let mut xd = vec![0.0; e.n];
+        let eval = |yy: &[f64], xd: &[f64]| -> (Vec<f64>, Vec<f64>) {
+            let mut f = vec![0.0; self.nv];
+            let mut res = vec![0.0; e.n];
+            let x = &yy[oe + e.off..oe + e.off + e.n];
+            self.ext_eval(e, t, &yy[..ov], &yy[ov..ol], x, xd, &mut res, &mut f);
+            (rows_f.iter().map(|&r| f[r]).collect(), res)
+        };
+        let (f0, r0) = eval(&yy, &xd);
+        let mut put = |col: usize, f1: &[f64], r1: &[f64], h: f64, scale: f64| {
+            for (k, &r) in rows_f.iter().enumerate() {
+                let d = -(f1[k] - f0[k]) / h * scale;
+                if d != 0.0 {
+                    jac.add(ov + r, col, d);
+                }
+            }
+            for i in 0..e.n {
+                let d = (r1[i] - r0[i]) / h * scale;
+                if d != 0.0 {
+                    jac.add(oe + e.off + i, col, d);
+                }
+            }
+        };
+        for &c in &cols {
+            let x0 = yy[c];
+            let h = 1e-7 * (1.0 + x0.abs());
+            yy[c] += h;
+            let (f1, r1) = eval(&yy, &xd);
+            yy[c] = x0;
+            put(c, &f1, &r1, h, 1.0);
+        }
+        // Rates of the element's own states enter its residual only.
+        for i in 0..e.n {
+            let h = 1e-7;
+            xd[i] += h;
+            let (f1, r1) = eval(&yy, &xd);
+            xd[i] = 0.0;
+            put(oe + e.off + i, &f1, &r1, h, cj);
         }
     }
 
@@ -202,8 +401,8 @@ impl System {
     }
 
     pub fn unknown_name(&self, i: usize) -> String {
-        let nb = self.nb();
         let (_, ov, ol, om) = self.offsets();
+        let oe = self.oe();
         const Q: [&str; 7] = ["x [m]", "y [m]", "z [m]", "q0", "q1", "q2", "q3"];
         const V: [&str; 6] = [
             "vx [m/s]",
@@ -213,31 +412,67 @@ impl System {
             "wy [rad/s]",
             "wz [rad/s]",
         ];
-        if i < 7 * nb {
-            format!("body '{}' {}", self.model.bodies[i / 7].name, Q[i % 7])
+        if i < ov {
+            let (b, l) = self.body_at(&self.qo, i);
+            match Q.get(l) {
+                Some(n) => format!("body '{}' {n}", self.model.bodies[b].name),
+                None => format!(
+                    "body '{}' modal coordinate {}",
+                    self.model.bodies[b].name,
+                    l - 6
+                ),
+            }
         } else if i < ol {
-            let k = i - ov;
-            format!("body '{}' {}", self.model.bodies[k / 6].name, V[k % 6])
+            let (b, l) = self.body_at(&self.vo, i - ov);
+            match V.get(l) {
+                Some(n) => format!("body '{}' {n}", self.model.bodies[b].name),
+                None => format!(
+                    "body '{}' modal velocity {}",
+                    self.model.bodies[b].name,
+                    l - 5
+                ),
+            }
         } else if i < om {
             format!("multiplier of {}", self.kept_row(i - ol))
-        } else {
+        } else if i < oe {
             format!("GGL multiplier of {}", self.kept_row(i - om))
+        } else {
+            match self.ext_of(i - oe) {
+                Some((e, k)) => self.ext_state_name(e, k),
+                None => format!("unknown {i}"),
+            }
         }
     }
 
     pub fn equation_name(&self, i: usize) -> String {
-        let nb = self.nb();
         let (_, ov, ol, om) = self.offsets();
-        if i < 7 * nb {
-            format!("kinematics of body '{}'", self.model.bodies[i / 7].name)
+        let oe = self.oe();
+        if i < ov {
+            let (b, _) = self.body_at(&self.qo, i);
+            format!("kinematics of body '{}'", self.model.bodies[b].name)
         } else if i < ol {
-            let k = i - ov;
-            let what = if k % 6 < 3 { "force" } else { "moment" };
-            format!("{what} balance of body '{}'", self.model.bodies[k / 6].name)
+            let (b, l) = self.body_at(&self.vo, i - ov);
+            let what = match l {
+                0..3 => "force".to_string(),
+                3..6 => "moment".to_string(),
+                _ => format!("modal force {}", l - 5),
+            };
+            format!("{what} balance of body '{}'", self.model.bodies[b].name)
         } else if i < om {
             format!("position constraint, {}", self.kept_row(i - ol))
-        } else {
+        } else if i < oe {
             format!("velocity constraint, {}", self.kept_row(i - om))
+        } else {
+            match self.ext_of(i - oe) {
+                Some((e, k)) => format!("equation of {}", self.ext_state_name(e, k)),
+                None => format!("equation {i}"),
+            }
         }
+    }
+
+    /// The body whose block (offsets `offs`) holds index i, and the local index.
+    fn body_at(&self, offs: &[usize], i: usize) -> (usize, usize) {
+        let b = offs.partition_point(|&o| o <= i) - 1;
+        (b, i - offs[b])
     }
 }

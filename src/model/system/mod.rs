@@ -1,33 +1,46 @@
 //! The assembled equations of a [`Model`]: a stabilised index-2 (GGL) DAE in absolute
-//! coordinates with quaternions, implementing [`DaeProblem`] with an exact, sparse
-//! iteration matrix.
+//! coordinates with quaternions, implementing [`DaeProblem`] with a sparse iteration
+//! matrix.
 //!
-//! Unknowns, per body k: r (3, centre of mass, world), p (4, quaternion), u = r' (3) and
-//! omega (3, body axes); then the multipliers lambda (one per kept constraint row) and the
-//! GGL multipliers mu. Equations:
+//! Unknowns, per body k: q_k = (r (3, centre of mass, world), p (4, quaternion), eta
+//! (modal coordinates of a modal body)), v_k = (u = r' (3), omega (3, body axes), zeta =
+//! eta'); then the multipliers lambda (one per kept constraint row), the GGL multipliers
+//! mu, and the states of the extension elements (tyres, speed controllers). Equations:
 //!
 //! ```text
-//! r' - u + B_u^T mu                       = 0      (3 per body)
-//! p' - Q(p) (omega - B_w^T mu) / 2        = 0      (4 per body)
-//! m u' - m g - F + B_u^T lambda           = 0      (3 per body)
-//! J omega' + omega x J omega - T + B_w^T lambda = 0  (3 per body)
-//! g(q, t)                                 = 0      (one per kept row)
-//! B v + g_t                               = 0      (one per kept row)
+//! r' - u + B_u^T mu                                 = 0   (3 per body)
+//! p' - Q(p) (omega - B_w^T mu) / 2                  = 0   (4 per body)
+//! eta' - zeta + B_eta^T mu                          = 0   (modes)
+//! m u' - m g - F + B_u^T lambda                     = 0   (3 per body)
+//! J omega' + omega x J omega - T + B_w^T lambda     = 0   (3 per body)
+//! zeta' + C zeta + K eta - Q_eta + B_eta^T lambda   = 0   (modes)
+//! g(q, t)                                           = 0   (one per kept row)
+//! B v + g_t                                         = 0   (one per kept row)
+//! extension residuals (tyre states, controller integrators)
 //! ```
 //!
-//! B = dg/dx is the constraint Jacobian in velocity space (virtual displacement and
-//! body-axes rotation), F and T the element loads. The mu terms make the position and
-//! velocity constraints hold together (Gear, Gupta & Leimkuhler 1985); mu = 0 on the exact
-//! solution, so its O(mu) second-derivative terms are left out of the iteration matrix.
+//! B = dg/dx is the constraint Jacobian in velocity space (virtual displacement, body-axes
+//! rotation, modal coordinates); F, T and Q_eta are the element and extension loads. The
+//! mu terms make position and velocity constraints hold together (Gear, Gupta &
+//! Leimkuhler 1985); mu = 0 on the exact solution, so its O(mu) second-derivative terms are
+//! left out of the iteration matrix. Modal bodies: unit modal mass, modal stiffness and
+//! damping, mass coupling per [`crate::model::desc::Coupling`] (see `modal.rs`).
 
-use super::desc::{Force, Model, MotionDof};
-use super::dual::{Dual, Scalar};
-use super::force::{element_load, generalised, Rate};
-use super::joint::{motion_value, row_value, rows, MFrame, Row};
-use super::math::{cst33, mm, mvc, qdot, qmul, quat_from_matrix, rot, Q4, V3};
+use super::desc::{Force, Model};
+use super::joint::{rows, Row};
+use super::math::{cst33, mvc, qdot, quat_from_matrix, rot};
 use crate::solver::problem::{DaeProblem, JacobianSink, VarKind};
 
+mod constraint;
+pub mod ext;
+pub mod flexmarker;
+mod forces;
 mod jacobian;
+mod modal;
+
+pub use constraint::{ConEval, ConEval2};
+pub use ext::{Ext, ExtKind};
+pub use forces::{BodyPose, ElementForces};
 
 /// Who owns a constraint row.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -40,7 +53,7 @@ pub enum Owner {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ConRow {
     Prim(Row),
-    Drive(MotionDof),
+    Drive(super::desc::MotionDof),
 }
 
 /// A constraint element: a joint or a motion, its markers and rows.
@@ -63,18 +76,12 @@ pub struct Redundant {
     pub depends_on: Vec<(usize, usize, f64)>,
 }
 
-/// A body's (r, p, u, omega) in some scalar.
-pub type BodyPose<S> = (V3<S>, Q4<S>, V3<S>, V3<S>);
-/// An element's bodies, their generalised loads and its measures.
-pub type ElementForces<S> = ([Option<usize>; 2], [[S; 6]; 2], Vec<(S, S, S)>);
-/// A marker frame with rates, its quaternion, the body position and rotation.
-type RateFrame<S> = (MFrame<Rate<S>>, Q4<Rate<S>>, V3<S>, [[S; 3]; 3]);
+/// How far ahead (in travel time) the road is checked for obstacles before a step [s]:
+/// also the largest step taken on flat road, below a tenth of the body modes' periods.
+const ROAD_LOOK_AHEAD_S: f64 = 0.02;
+
 /// Kept constraint rows: g, g_t and B as (row, velocity column, value) triplets.
 pub type ConstraintSet = (Vec<f64>, Vec<f64>, Vec<(usize, usize, f64)>);
-
-type T1 = Dual<f64, 13>;
-type T2 = Dual<T1, 15>;
-type S26 = Dual<f64, 26>;
 
 /// The assembled mechanism.
 pub struct System {
@@ -83,32 +90,32 @@ pub struct System {
     pub redundant: Vec<Redundant>,
     /// Number of kept constraint rows.
     pub m: usize,
+    /// Per body: offset of its position unknowns in q, of its velocity unknowns in v, and
+    /// its number of modal coordinates.
+    pub qo: Vec<usize>,
+    pub vo: Vec<usize>,
+    pub nm: Vec<usize>,
+    /// Sizes of the q and v blocks.
+    pub nq: usize,
+    pub nv: usize,
+    /// Extension elements (tyres, speed controllers) and their total number of states.
+    pub ext: Vec<Ext>,
+    pub ne: usize,
+    /// Speed controllers act (false during statics: a car at rest is not driven).
+    pub controls_active: std::cell::Cell<bool>,
+    /// The sparse matrix [M B^T; B 0] of the acceleration-level solve, structure built
+    /// once (outputs solve it at every sample).
+    pub(crate) accel: std::cell::RefCell<Option<crate::solver::linear::NewtonMatrix>>,
     /// Marker axes as quaternions (body frame), for bushings.
     mquat: Vec<[f64; 4]>,
     /// Force elements: (index in model.forces, marker i, marker j or None).
     felems: Vec<(usize, usize, Option<usize>)>,
 }
 
-/// Constraint rows of one element with their first derivatives.
-pub struct ConEval {
-    pub g: Vec<f64>,
-    /// d g / d(x_a, x_b), 12 columns.
-    pub b: Vec<[f64; 12]>,
-    pub gt: Vec<f64>,
-}
-
-/// Constraint rows with second derivatives (iteration matrix, accelerations).
-pub struct ConEval2 {
-    pub first: ConEval,
-    /// d g / d(q_a, q_b), 14 columns.
-    pub gq: Vec<[f64; 14]>,
-    /// d B_k / d(q_a, q_b, t): [row][k][l], k < 13 (12 = g_t), l < 15 (14 = t).
-    pub dbq: Vec<[[f64; 15]; 13]>,
-}
-
 impl System {
-    /// Assembles a validated model at its initial configuration: numbers the constraint
-    /// rows and drops the redundant ones (see [`super::redundancy`]).
+    /// Assembles a validated model at its initial configuration: lays out the unknowns,
+    /// numbers the constraint rows and drops the redundant ones (see
+    /// [`super::redundancy`]).
     pub fn new(model: Model) -> System {
         let mut cons = Vec::new();
         for (k, j) in model.joints.iter().enumerate() {
@@ -147,11 +154,31 @@ impl System {
                 Force::Applied(a) => (k, a.i, None),
             })
             .collect();
+        let (mut qo, mut vo, mut nm) = (Vec::new(), Vec::new(), Vec::new());
+        let (mut nq, mut nv) = (0, 0);
+        for b in &model.bodies {
+            let n = b.modal.as_ref().map_or(0, |m| m.data.modes.len());
+            qo.push(nq);
+            vo.push(nv);
+            nm.push(n);
+            nq += 7 + n;
+            nv += 6 + n;
+        }
+        let (ext, ne) = ext::layout(&model);
         let mut sys = System {
             model,
             cons,
             redundant: Vec::new(),
             m: 0,
+            qo,
+            vo,
+            nm,
+            nq,
+            nv,
+            ext,
+            ne,
+            controls_active: std::cell::Cell::new(true),
+            accel: std::cell::RefCell::new(None),
             mquat,
             felems,
         };
@@ -173,84 +200,152 @@ impl System {
 
     /// Offsets: q block, v block, lambda, mu.
     pub fn offsets(&self) -> (usize, usize, usize, usize) {
-        let nb = self.nb();
-        (0, 7 * nb, 13 * nb, 13 * nb + self.m)
+        (0, self.nq, self.nq + self.nv, self.nq + self.nv + self.m)
+    }
+
+    /// Offset of the extension states.
+    pub fn oe(&self) -> usize {
+        self.nq + self.nv + 2 * self.m
+    }
+
+    /// Total number of unknowns.
+    pub fn size(&self) -> usize {
+        self.oe() + self.ne
+    }
+
+    /// Position and quaternion of body `b`.
+    pub fn pose(&self, q: &[f64], b: usize) -> ([f64; 3], [f64; 4]) {
+        let o = self.qo[b];
+        (
+            [q[o], q[o + 1], q[o + 2]],
+            [q[o + 3], q[o + 4], q[o + 5], q[o + 6]],
+        )
+    }
+
+    /// Velocity of the centre of mass (world) and angular velocity (body axes) of body `b`.
+    pub fn twist(&self, v: &[f64], b: usize) -> ([f64; 3], [f64; 3]) {
+        let o = self.vo[b];
+        ([v[o], v[o + 1], v[o + 2]], [v[o + 3], v[o + 4], v[o + 5]])
     }
 
     /// Positions and velocities from the bodies' initial values (world angular velocity
-    /// turned into body axes).
+    /// turned into body axes, modal coordinates zero).
     pub fn initial_q_v(&self) -> (Vec<f64>, Vec<f64>) {
-        let mut q = Vec::with_capacity(7 * self.nb());
-        let mut v = Vec::with_capacity(6 * self.nb());
-        for b in &self.model.bodies {
+        let mut q = Vec::with_capacity(self.nq);
+        let mut v = Vec::with_capacity(self.nv);
+        for (k, b) in self.model.bodies.iter().enumerate() {
             q.extend_from_slice(&b.position);
             q.extend_from_slice(&b.orientation);
+            q.extend(std::iter::repeat_n(0.0, self.nm[k]));
             let a = rot(&b.orientation);
             let wb = super::math::mtv(&a, &b.angular_velocity);
             v.extend_from_slice(&b.velocity);
             v.extend_from_slice(&wb);
+            v.extend(std::iter::repeat_n(0.0, self.nm[k]));
         }
         (q, v)
     }
 
+    /// Applies a velocity-space increment dx to positions: r += dr,
+    /// p <- p (x) exp(dtheta / 2) renormalised, eta += deta.
+    pub fn apply_increment(&self, q: &mut [f64], dx: &[f64]) {
+        for k in 0..self.nb() {
+            let (o, w) = (self.qo[k], self.vo[k]);
+            for c in 0..3 {
+                q[o + c] += dx[w + c];
+            }
+            let th = [dx[w + 3], dx[w + 4], dx[w + 5]];
+            let a = (th[0] * th[0] + th[1] * th[1] + th[2] * th[2]).sqrt();
+            let (s, c) = if a > 1e-12 {
+                ((0.5 * a).sin() / a, (0.5 * a).cos())
+            } else {
+                (0.5, 1.0)
+            };
+            let e = [c, s * th[0], s * th[1], s * th[2]];
+            let p = [q[o + 3], q[o + 4], q[o + 5], q[o + 6]];
+            let np = super::math::qmul(&p, &e);
+            let n = np.iter().map(|x| x * x).sum::<f64>().sqrt();
+            for c in 0..4 {
+                q[o + 3 + c] = np[c] / n;
+            }
+            for j in 0..self.nm[k] {
+                q[o + 7 + j] += dx[w + 6 + j];
+            }
+        }
+    }
+
+    /// q' from v (r' = u, p' = Q(p) omega / 2, eta' = zeta).
+    pub fn qdot_of(&self, q: &[f64], v: &[f64]) -> Vec<f64> {
+        let mut qd = vec![0.0; self.nq];
+        for k in 0..self.nb() {
+            let (o, w) = (self.qo[k], self.vo[k]);
+            qd[o..o + 3].copy_from_slice(&v[w..w + 3]);
+            let pd = qdot(
+                &[q[o + 3], q[o + 4], q[o + 5], q[o + 6]],
+                &[v[w + 3], v[w + 4], v[w + 5]],
+            );
+            qd[o + 3..o + 7].copy_from_slice(&pd);
+            qd[o + 7..o + 7 + self.nm[k]].copy_from_slice(&v[w + 6..w + 6 + self.nm[k]]);
+        }
+        qd
+    }
+
+    /// dq/dx: the map from velocity-space increments to position increments at q
+    /// (nq x nv, as (row, column, value) triplets).
+    pub fn q_map(&self, q: &[f64]) -> Vec<(usize, usize, f64)> {
+        let mut out = Vec::new();
+        for k in 0..self.nb() {
+            let (o, w) = (self.qo[k], self.vo[k]);
+            for c in 0..3 {
+                out.push((o + c, w + c, 1.0));
+            }
+            let qm = super::math::qmat(&[q[o + 3], q[o + 4], q[o + 5], q[o + 6]]);
+            for a in 0..4 {
+                for c in 0..3 {
+                    out.push((o + 3 + a, w + 3 + c, 0.5 * qm[a][c]));
+                }
+            }
+            for j in 0..self.nm[k] {
+                out.push((o + 7 + j, w + 6 + j, 1.0));
+            }
+        }
+        out
+    }
+
+    /// The constant velocity-space mass matrix (block diagonal: m I, J, identity modal
+    /// mass) as (row, column, value) triplets.
+    pub fn mass_entries(&self) -> Vec<(usize, usize, f64)> {
+        let mut out = Vec::new();
+        for (k, b) in self.model.bodies.iter().enumerate() {
+            let w = self.vo[k];
+            for c in 0..3 {
+                out.push((w + c, w + c, b.mass));
+                for d in 0..3 {
+                    out.push((w + 3 + c, w + 3 + d, b.inertia[c][d]));
+                }
+            }
+            for j in 0..self.nm[k] {
+                out.push((w + 6 + j, w + 6 + j, 1.0));
+            }
+        }
+        out
+    }
+
     /// World frame of marker `k` for given positions (f64).
-    pub fn marker_frame(&self, q: &[f64], k: usize) -> MFrame<f64> {
+    pub fn marker_frame(&self, q: &[f64], k: usize) -> super::joint::MFrame<f64> {
         let mk = &self.model.markers[k];
         match mk.body {
-            None => MFrame {
+            None => super::joint::MFrame {
                 origin: mk.position,
                 axes: mk.axes,
             },
-            Some(b) => {
-                let r = [q[7 * b], q[7 * b + 1], q[7 * b + 2]];
-                let p = [q[7 * b + 3], q[7 * b + 4], q[7 * b + 5], q[7 * b + 6]];
-                let a = rot(&p);
-                let o = mvc(&a, &mk.position);
-                MFrame {
-                    origin: [r[0] + o[0], r[1] + o[1], r[2] + o[2]],
-                    axes: mm(&a, &mk.axes),
+            Some(_) => {
+                let f = self.flex_frame(q, k);
+                super::joint::MFrame {
+                    origin: f.origin,
+                    axes: f.axes,
                 }
             }
-        }
-    }
-
-    /// Motion value s(t) as a scalar of time `t`.
-    fn drive<T: Scalar>(&self, e: &ConElem, t: T) -> T {
-        match e.owner {
-            Owner::Motion(k) => {
-                let (s, ds, d2s) = self.model.motions[k].eval(t.re());
-                t.chain(s, ds, d2s)
-            }
-            Owner::Joint(_) => T::cst(0.0),
-        }
-    }
-
-    fn rows_of<T: Scalar>(&self, e: &ConElem, t: T, fi: &MFrame<T>, fj: &MFrame<T>) -> Vec<T> {
-        e.rows
-            .iter()
-            .map(|r| match r {
-                ConRow::Prim(p) => row_value(*p, fi, fj),
-                ConRow::Drive(d) => motion_value(*d, self.drive(e, t), fi, fj),
-            })
-            .collect()
-    }
-
-    /// Marker frame from a body pose in any scalar.
-    fn frame_of<T: Scalar>(&self, k: usize, r: &V3<T>, p: &Q4<T>) -> MFrame<T> {
-        let mk = &self.model.markers[k];
-        let a = rot(p);
-        let o = mvc(&a, &mk.position);
-        MFrame {
-            origin: [r[0] + o[0], r[1] + o[1], r[2] + o[2]],
-            axes: mm(&a, &cst33(&mk.axes)),
-        }
-    }
-
-    fn ground_frame<T: Scalar>(&self, k: usize) -> MFrame<T> {
-        let mk = &self.model.markers[k];
-        MFrame {
-            origin: super::math::cst3(&mk.position),
-            axes: cst33(&mk.axes),
         }
     }
 
@@ -259,294 +354,52 @@ impl System {
         [self.model.markers[mi].body, self.model.markers[mj].body]
     }
 
-    /// Constraint rows of element `e` with B and g_t (all rows, kept or not).
-    pub fn con_eval(&self, e: &ConElem, t: f64, q: &[f64]) -> ConEval {
-        let bodies = self.bodies_of(e.mi, e.mj);
-        let mut frames = Vec::with_capacity(2);
-        for (side, (mk, b)) in [e.mi, e.mj].into_iter().zip(bodies).enumerate() {
-            frames.push(match b {
-                None => self.ground_frame::<T1>(mk),
-                Some(b) => {
-                    let r: V3<T1> = std::array::from_fn(|c| T1::var(q[7 * b + c], 6 * side + c));
-                    let p0: Q4<T1> = std::array::from_fn(|c| T1::cst(q[7 * b + 3 + c]));
-                    let dp: Q4<T1> = [
-                        T1::cst(1.0),
-                        T1::var(0.0, 6 * side + 3) * 0.5,
-                        T1::var(0.0, 6 * side + 4) * 0.5,
-                        T1::var(0.0, 6 * side + 5) * 0.5,
-                    ];
-                    self.frame_of(mk, &r, &qmul(&p0, &dp))
-                }
-            });
-        }
-        let vals = self.rows_of(e, T1::var(t, 12), &frames[0], &frames[1]);
-        ConEval {
-            g: vals.iter().map(|v| v.v).collect(),
-            b: vals
-                .iter()
-                .map(|v| std::array::from_fn(|k| v.d[k]))
-                .collect(),
-            gt: vals.iter().map(|v| v.d[12]).collect(),
-        }
-    }
-
-    /// Constraint rows with second derivatives.
-    pub fn con_eval2(&self, e: &ConElem, t: f64, q: &[f64]) -> ConEval2 {
-        let bodies = self.bodies_of(e.mi, e.mj);
-        let mut frames = Vec::with_capacity(2);
-        for (side, (mk, b)) in [e.mi, e.mj].into_iter().zip(bodies).enumerate() {
-            frames.push(match b {
-                None => self.ground_frame::<T2>(mk),
-                Some(b) => {
-                    let r: V3<T2> = std::array::from_fn(|c| T2 {
-                        v: T1::var(q[7 * b + c], 6 * side + c),
-                        d: std::array::from_fn(|l| {
-                            T1::cst(if l == 7 * side + c { 1.0 } else { 0.0 })
-                        }),
-                    });
-                    let p0: Q4<T2> = std::array::from_fn(|c| T2 {
-                        v: T1::cst(q[7 * b + 3 + c]),
-                        d: std::array::from_fn(|l| {
-                            T1::cst(if l == 7 * side + 3 + c { 1.0 } else { 0.0 })
-                        }),
-                    });
-                    let dth = |c: usize| T2::constant(T1::var(0.0, 6 * side + 3 + c)) * 0.5;
-                    let dp: Q4<T2> = [T2::cst(1.0), dth(0), dth(1), dth(2)];
-                    self.frame_of(mk, &r, &qmul(&p0, &dp))
-                }
-            });
-        }
-        let tt = T2 {
-            v: T1::var(t, 12),
-            d: std::array::from_fn(|l| T1::cst(if l == 14 { 1.0 } else { 0.0 })),
-        };
-        let vals = self.rows_of(e, tt, &frames[0], &frames[1]);
-        ConEval2 {
-            first: ConEval {
-                g: vals.iter().map(|v| v.v.v).collect(),
-                b: vals
-                    .iter()
-                    .map(|v| std::array::from_fn(|k| v.v.d[k]))
-                    .collect(),
-                gt: vals.iter().map(|v| v.v.d[12]).collect(),
-            },
-            gq: vals
-                .iter()
-                .map(|v| std::array::from_fn(|l| v.d[l].v))
-                .collect(),
-            dbq: vals
-                .iter()
-                .map(|v| std::array::from_fn(|k| std::array::from_fn(|l| v.d[l].d[k])))
-                .collect(),
-        }
-    }
-
-    /// Loads of force element `fe` as generalised forces on its (up to) two bodies, with
-    /// derivatives when `S` is a dual over (q_a, v_a, q_b, v_b) (13 per side).
-    fn force_generalised<S: Scalar>(
-        &self,
-        fe: usize,
-        t: f64,
-        pose: &dyn Fn(usize, usize) -> BodyPose<S>,
-    ) -> ElementForces<S> {
-        let (k, mi, mj) = self.felems[fe];
-        let bi = self.model.markers[mi].body;
-        let bj = mj.and_then(|m| self.model.markers[m].body);
-        // Frames as Rate<S> (value + time derivative along the motion).
-        let rate_frame = |mk: usize, side: usize, b: Option<usize>| -> RateFrame<S> {
-            let mq = self.mquat[mk];
-            match b {
-                None => {
-                    let f = self.ground_frame::<Rate<S>>(mk);
-                    let id = [
-                        [S::cst(1.0), S::cst(0.0), S::cst(0.0)],
-                        [S::cst(0.0), S::cst(1.0), S::cst(0.0)],
-                        [S::cst(0.0), S::cst(0.0), S::cst(1.0)],
-                    ];
-                    (f, mq.map(Rate::<S>::cst), [S::cst(0.0); 3], id)
-                }
-                Some(b) => {
-                    let (r, p, u, w) = pose(b, side);
-                    let pd = qdot(&p, &w);
-                    let rr: V3<Rate<S>> = std::array::from_fn(|c| Rate { v: r[c], d: [u[c]] });
-                    let pp: Q4<Rate<S>> = std::array::from_fn(|c| Rate {
-                        v: p[c],
-                        d: [pd[c]],
-                    });
-                    let f = self.frame_of(mk, &rr, &pp);
-                    let mqs: Q4<Rate<S>> = mq.map(Rate::<S>::cst);
-                    (f, qmul(&pp, &mqs), r, rot(&p))
-                }
-            }
-        };
-        let (fi, qi, ri, ai) = rate_frame(mi, 0, bi);
-        let mut out = [[S::cst(0.0); 6]; 2];
-        let measures;
-        let (force, torque);
-        match &self.model.forces[k] {
-            Force::Applied(app) => {
-                let (tf, ax) = (t, app.in_marker_axes);
-                let comp = |fs: &[Option<super::function::TimeFunction>; 3]| -> V3<S> {
-                    let local: [f64; 3] =
-                        std::array::from_fn(|c| fs[c].as_ref().map_or(0.0, |f| f.eval(tf).0));
-                    if ax {
-                        let a: [[S; 3]; 3] = fi.axes.map(|r| r.map(|x| x.v));
-                        mvc(&a, &local)
-                    } else {
-                        super::math::cst3(&local)
-                    }
-                };
-                force = comp(&app.force);
-                torque = comp(&app.torque);
-                measures = (0..3)
-                    .map(|c| (force[c], S::cst(0.0), S::cst(0.0)))
-                    .chain((0..3).map(|c| (torque[c], S::cst(0.0), S::cst(0.0))))
-                    .collect();
-            }
-            f => {
-                let mj = mj.expect("two-marker element");
-                let (fj, qj, _, _) = rate_frame(mj, 1, bj);
-                let l = element_load(f, &fi, &fj, &qi, &qj);
-                force = l.force;
-                torque = l.torque;
-                measures = l.measures;
+    /// Absolute tolerances per unknown for a run: 1e-6 m / 1e-6 (quaternions) / 1e-7 on
+    /// modal coordinates (unit modal mass: about 0.5 micrometre on a few-kg crossbeam),
+    /// 1e-4 m/s on velocities, 1e-2 on multipliers (N, N m; their error is scaled by the
+    /// step), the extension elements' own hints. All times `scale`.
+    pub fn atol(&self, scale: f64) -> Vec<f64> {
+        let mut out = vec![1e-6 * scale; self.nq];
+        for b in 0..self.nb() {
+            for j in 0..self.nm[b] {
+                out[self.qo[b] + 7 + j] = 1e-7 * scale;
             }
         }
-        let p: V3<S> = fi.origin.map(|x| x.v);
-        if bi.is_some() {
-            out[0] = generalised(&ri, &ai, &p, &force, &torque);
-        }
-        if let Some(b) = bj {
-            let (rj, pj, _, _) = pose(b, 1);
-            let aj = rot(&pj);
-            let nf = force.map(|x| -x);
-            let nt = torque.map(|x| -x);
-            out[1] = generalised(&rj, &aj, &p, &nf, &nt);
-        }
-        ([bi, bj], out, measures)
-    }
-
-    /// Element loads and measures at f64 (residual, outputs).
-    pub fn force_eval(&self, fe: usize, t: f64, q: &[f64], v: &[f64]) -> ElementForces<f64> {
-        let pose = |b: usize, _side: usize| {
-            (
-                [q[7 * b], q[7 * b + 1], q[7 * b + 2]],
-                [q[7 * b + 3], q[7 * b + 4], q[7 * b + 5], q[7 * b + 6]],
-                [v[6 * b], v[6 * b + 1], v[6 * b + 2]],
-                [v[6 * b + 3], v[6 * b + 4], v[6 * b + 5]],
-            )
-        };
-        self.force_generalised::<f64>(fe, t, &pose)
-    }
-
-    /// Element loads with derivatives d/d(q_a, v_a, q_b, v_b), 26 columns.
-    pub fn force_eval_dual(
-        &self,
-        fe: usize,
-        t: f64,
-        q: &[f64],
-        v: &[f64],
-    ) -> ([Option<usize>; 2], [[S26; 6]; 2]) {
-        let pose = |b: usize, side: usize| {
-            let o = 13 * side;
-            (
-                std::array::from_fn(|c| S26::var(q[7 * b + c], o + c)),
-                std::array::from_fn(|c| S26::var(q[7 * b + 3 + c], o + 3 + c)),
-                std::array::from_fn(|c| S26::var(v[6 * b + c], o + 7 + c)),
-                std::array::from_fn(|c| S26::var(v[6 * b + 3 + c], o + 10 + c)),
-            )
-        };
-        let (b, g, _) = self.force_generalised::<S26>(fe, t, &pose);
-        (b, g)
-    }
-
-    /// Name of force element `fe`.
-    pub fn force_name(&self, fe: usize) -> String {
-        self.model.forces[self.felems[fe].0].name().to_string()
-    }
-
-    /// Number of force elements.
-    pub fn n_forces(&self) -> usize {
-        self.felems.len()
-    }
-
-    /// Sum of element loads, gravity and gyroscopic terms: the generalised force vector
-    /// f(q, v) with M v' = f - B^T lambda (6 per body).
-    pub fn applied(&self, t: f64, q: &[f64], v: &[f64]) -> Vec<f64> {
-        let nb = self.nb();
-        let mut f = vec![0.0; 6 * nb];
-        let g = self.model.gravity;
-        for (k, b) in self.model.bodies.iter().enumerate() {
-            let w = [v[6 * k + 3], v[6 * k + 4], v[6 * k + 5]];
-            let jw = mvc(&cst33::<f64>(&b.inertia), &w);
-            let gyro = super::math::cross(&w, &jw);
-            for c in 0..3 {
-                f[6 * k + c] += b.mass * g[c];
-                f[6 * k + 3 + c] -= gyro[c];
+        out.extend(std::iter::repeat_n(1e-4 * scale, self.nv));
+        for b in 0..self.nb() {
+            for j in 0..self.nm[b] {
+                out[self.nq + self.vo[b] + 6 + j] = 1e-4 * scale;
             }
         }
-        for fe in 0..self.felems.len() {
-            let (bs, gl, _) = self.force_eval(fe, t, q, v);
-            for s in 0..2 {
-                if let Some(b) = bs[s] {
-                    for c in 0..6 {
-                        f[6 * b + c] += gl[s][c];
-                    }
-                }
-            }
-        }
-        f
+        out.extend(std::iter::repeat_n(1e-2 * scale, 2 * self.m));
+        out.extend(self.ext_atol(scale));
+        out
     }
 
-    /// Kept constraint rows: g, g_t and B as (row, velocity column, value) triplets with
-    /// the velocity column counted from 0 (6 per body).
-    pub fn constraints(&self, t: f64, q: &[f64]) -> ConstraintSet {
-        let mut g = vec![0.0; self.m];
-        let mut gt = vec![0.0; self.m];
-        let mut b = Vec::new();
-        for e in &self.cons {
-            if e.slot.iter().all(|s| s.is_none()) {
-                continue;
-            }
-            let ev = self.con_eval(e, t, q);
-            let bodies = self.bodies_of(e.mi, e.mj);
-            for (r, slot) in e.slot.iter().enumerate() {
-                let Some(row) = *slot else { continue };
-                g[row] = ev.g[r];
-                gt[row] = ev.gt[r];
-                for (side, body) in bodies.iter().enumerate() {
-                    if let Some(bb) = body {
-                        for c in 0..6 {
-                            let val = ev.b[r][6 * side + c];
-                            if val != 0.0 {
-                                b.push((row, 6 * bb + c, val));
-                            }
-                        }
-                    }
-                }
-            }
-        }
-        (g, gt, b)
+    /// Number of velocity unknowns of a body (6 for ground).
+    pub fn width(&self, b: Option<usize>) -> usize {
+        b.map_or(6, |b| 6 + self.nm[b])
     }
 }
 
 impl DaeProblem for System {
     fn size(&self) -> usize {
-        13 * self.nb() + 2 * self.m
+        System::size(self)
     }
 
     fn residual(&self, t: f64, y: &[f64], yp: &[f64], res: &mut [f64]) {
-        let nb = self.nb();
         let (_, ov, ol, om) = self.offsets();
-        let q = &y[..7 * nb];
+        let oe = self.oe();
+        let q = &y[..ov];
         let v = &y[ov..ol];
         let lam = &y[ol..om];
-        let mu = &y[om..];
-        // kinematics and dynamics without constraint terms
-        let f = self.applied(t, q, v);
+        let mu = &y[om..oe];
+        let x = &y[oe..];
+        // Loads and extension residuals.
+        let f = self.loads(t, q, v, x, Some((&yp[oe..], &mut res[oe..])));
         // B^T mu and B^T lambda accumulated in velocity space
-        let mut btmu = vec![0.0; 6 * nb];
-        let mut btl = vec![0.0; 6 * nb];
+        let mut btmu = vec![0.0; self.nv];
+        let mut btl = vec![0.0; self.nv];
         let (g, gt, b) = self.constraints(t, q);
         let mut bv = gt;
         for &(r, c, val) in &b {
@@ -555,40 +408,51 @@ impl DaeProblem for System {
             bv[r] += val * v[c];
         }
         for (k, body) in self.model.bodies.iter().enumerate() {
-            let p = [q[7 * k + 3], q[7 * k + 4], q[7 * k + 5], q[7 * k + 6]];
+            let (o, w) = (self.qo[k], self.vo[k]);
+            let p = [q[o + 3], q[o + 4], q[o + 5], q[o + 6]];
             for c in 0..3 {
-                res[7 * k + c] = yp[7 * k + c] - v[6 * k + c] + btmu[6 * k + c];
+                res[o + c] = yp[o + c] - v[w + c] + btmu[w + c];
             }
-            let w = [
-                v[6 * k + 3] - btmu[6 * k + 3],
-                v[6 * k + 4] - btmu[6 * k + 4],
-                v[6 * k + 5] - btmu[6 * k + 5],
+            let wv = [
+                v[w + 3] - btmu[w + 3],
+                v[w + 4] - btmu[w + 4],
+                v[w + 5] - btmu[w + 5],
             ];
-            let pd = qdot(&p, &w);
+            let pd = qdot(&p, &wv);
             for c in 0..4 {
-                res[7 * k + 3 + c] = yp[7 * k + 3 + c] - pd[c];
+                res[o + 3 + c] = yp[o + 3 + c] - pd[c];
             }
-            let vd = &yp[ov + 6 * k..ov + 6 * k + 6];
+            let vd = &yp[ov + w..ov + w + 6];
             let jwd = mvc(&cst33::<f64>(&body.inertia), &[vd[3], vd[4], vd[5]]);
             for c in 0..3 {
-                res[ov + 6 * k + c] = body.mass * vd[c] - f[6 * k + c] + btl[6 * k + c];
-                res[ov + 6 * k + 3 + c] = jwd[c] - f[6 * k + 3 + c] + btl[6 * k + 3 + c];
+                res[ov + w + c] = body.mass * vd[c] - f[w + c] + btl[w + c];
+                res[ov + w + 3 + c] = jwd[c] - f[w + 3 + c] + btl[w + 3 + c];
+            }
+            for j in 0..self.nm[k] {
+                res[o + 7 + j] = yp[o + 7 + j] - v[w + 6 + j] + btmu[w + 6 + j];
+                res[ov + w + 6 + j] = yp[ov + w + 6 + j] - f[w + 6 + j] + btl[w + 6 + j];
             }
         }
         res[ol..om].copy_from_slice(&g);
-        res[om..].copy_from_slice(&bv);
+        res[om..oe].copy_from_slice(&bv);
+    }
+
+    fn max_step(&self, _t: f64, y: &[f64]) -> Option<f64> {
+        let (_, ov, ol, _) = self.offsets();
+        self.road_step_limit(&y[..ov], &y[ov..ol], ROAD_LOOK_AHEAD_S)
     }
 
     fn var_kinds(&self) -> Vec<VarKind> {
-        let mut k = vec![VarKind::Differential; 13 * self.nb()];
+        let mut k = vec![VarKind::Differential; self.nq + self.nv];
         k.extend(std::iter::repeat_n(VarKind::Index2, 2 * self.m));
+        k.extend(self.ext_var_kinds());
         k
     }
 
     fn jacobian_pattern(&self) -> Option<Vec<(usize, usize)>> {
         let mut e = Vec::new();
-        let y = vec![1.0; self.size()];
-        let mut sink = JacobianSink { entries: &mut e };
+        let y = self.structural_state();
+        let mut sink = JacobianSink::new(&mut e);
         self.jacobian_entries(0.0, &y, 1.0, &mut sink, true);
         let mut p: Vec<(usize, usize)> = e.iter().map(|&(r, c, _)| (r, c)).collect();
         p.sort_unstable();
@@ -596,8 +460,8 @@ impl DaeProblem for System {
         Some(p)
     }
 
-    fn jacobian(&self, t: f64, y: &[f64], _yp: &[f64], cj: f64, jac: &mut JacobianSink) -> bool {
-        self.jacobian_entries(t, y, cj, jac, false);
+    fn jacobian(&self, t: f64, y: &[f64], yp: &[f64], cj: f64, jac: &mut JacobianSink) -> bool {
+        self.jacobian_full(t, y, yp, cj, jac);
         true
     }
 

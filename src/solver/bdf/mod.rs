@@ -411,6 +411,11 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
         let tsave = self.tn;
         let mut ncf = 0usize;
         let mut nef = 0usize;
+        if let Some(hl) = self.prob.max_step(self.tn, &self.phi[0]) {
+            if self.hh > hl {
+                self.hh = hl;
+            }
+        }
         if let Some(ts) = self.tstop {
             if self.tn + self.hh > ts {
                 self.hh = ts - self.tn;
