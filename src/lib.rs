@@ -10,6 +10,7 @@ pub mod flex;
 pub mod input;
 pub mod model;
 pub mod road;
+pub mod scene;
 pub mod solver;
 pub mod tyre;
 pub mod vehicle;

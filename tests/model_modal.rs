@@ -95,14 +95,14 @@ fn held(md: ModalData, load: Option<[Option<TimeFunction>; 3]>) -> Model {
             in_marker_axes: false,
         }));
     }
-    m.outputs.push(Output {
-        name: "ball".into(),
-        request: Request::Marker {
+    m.outputs.push(Output::new(
+        "ball",
+        Request::Marker {
             marker: 4,
             quantity: MarkerQuantity::Position,
             axes: Axes::World,
         },
-    });
+    ));
     m.bodies[0].modal = Some(Box::new(Modal {
         data: md,
         coupling: Coupling::Constant,

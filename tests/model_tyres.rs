@@ -107,14 +107,14 @@ fn quarter_car_from_bodies_and_joints_rolls_as_the_tyre_rig() {
         tyre: tyre.clone(),
     });
     m.road = Some(road);
-    m.outputs.push(Output {
-        name: "wheel".into(),
-        request: Request::Marker {
+    m.outputs.push(Output::new(
+        "wheel",
+        Request::Marker {
             marker: 6,
             quantity: MarkerQuantity::Position,
             axes: Axes::World,
         },
-    });
+    ));
     let sys = System::new(m);
     let (mut q, mut v) = sys.initial_q_v();
     let x = y_rig[..n].to_vec();

@@ -1,14 +1,46 @@
-//! `towride linear FILE` and `towride doctor FILE`: analyses before trusting a model.
+//! `towride linear FILE` and `towride doctor FILE`: analyses before trusting a model
+//! (a mechanism file or a vehicle scene).
 
 use std::path::PathBuf;
 
 use clap::Args;
 
 use crate::model::{self, spec};
+use crate::scene::{self, Scene};
+use crate::solver::SolverOptions;
+
+/// A mechanism or a scene, assembled, with its solver settings and output rate.
+struct Loaded {
+    sys: model::System,
+    solver: SolverOptions,
+    rate: f64,
+    scene: Option<Scene>,
+}
+
+fn load(file: &std::path::Path) -> Result<Loaded, String> {
+    if scene::is_scene(file) {
+        let s = scene::load(file).map_err(|e| e.to_string())?;
+        let sys = model::System::new(s.model().clone());
+        Ok(Loaded {
+            solver: s.solver_for(&sys),
+            rate: s.sample_rate,
+            sys,
+            scene: Some(s),
+        })
+    } else {
+        let mech = spec::load(file).map_err(|e| e.to_string())?;
+        Ok(Loaded {
+            sys: model::System::new(mech.model),
+            solver: mech.solver,
+            rate: mech.run.sample_rate_hz,
+            scene: None,
+        })
+    }
+}
 
 #[derive(Args, Debug)]
 pub struct LinearArgs {
-    /// The mechanism file (TOML).
+    /// A mechanism file or a scene (TOML).
     file: PathBuf,
     /// Linearise about the state of a run at this time [s] instead of the equilibrium.
     #[arg(long)]
@@ -19,24 +51,21 @@ pub struct LinearArgs {
 }
 
 pub fn linear(a: &LinearArgs) -> Result<i32, String> {
-    let mech = spec::load(&a.file).map_err(|e| e.to_string())?;
-    let sys = model::System::new(mech.model);
-    super::model_check(&sys)?;
+    let l = load(&a.file)?;
+    let sys = &l.sys;
+    super::model_check(sys)?;
     let (t, y, at) = match a.at {
         None => {
-            let st = model::statics::equilibrium(&sys, 0.0, &mech.solver)?;
+            let st = model::statics::equilibrium(sys, 0.0, &l.solver)?;
             (0.0, st.y, "equilibrium".to_string())
         }
         Some(t) if t > 0.0 => {
-            let res = model::run::simulate(
-                &sys,
-                0.0,
-                t,
-                mech.run.sample_rate_hz.max(1.0 / t),
-                &mech.solver,
-                None,
-                None,
-            );
+            let start = match &l.scene {
+                Some(s) => super::scene_run::start_state(s, &l.solver)?.0,
+                None => None,
+            };
+            let res =
+                model::run::simulate(sys, 0.0, t, l.rate.max(1.0 / t), &l.solver, start, None);
             if let Some((e, te)) = res.error {
                 return Err(format!("run to t = {t} s failed at {te:.6} s: {e}"));
             }
@@ -104,7 +133,7 @@ pub fn linear(a: &LinearArgs) -> Result<i32, String> {
 
 #[derive(Args, Debug)]
 pub struct DoctorArgs {
-    /// The mechanism file (TOML).
+    /// A mechanism file or a scene (TOML).
     file: PathBuf,
     /// Step size for the condition-number estimate [s].
     #[arg(long, default_value_t = 1e-3)]
@@ -115,10 +144,9 @@ pub struct DoctorArgs {
 }
 
 pub fn doctor(a: &DoctorArgs) -> Result<i32, String> {
-    let mech = spec::load(&a.file).map_err(|e| e.to_string())?;
-    let sys = model::System::new(mech.model);
-    super::model_check(&sys)?;
-    let rep = model::doctor::examine(&sys, &mech.solver, a.step);
+    let l = load(&a.file)?;
+    super::model_check(&l.sys)?;
+    let rep = model::doctor::examine(&l.sys, &l.solver, a.step);
     if a.json {
         println!(
             "{}",

@@ -6,6 +6,7 @@ pub mod lineplot;
 mod modes;
 pub mod plot;
 mod run;
+mod scene_run;
 mod tyre_rig;
 mod verify;
 
@@ -28,7 +29,7 @@ struct Cli {
 enum Command {
     /// Run the built-in published benchmark problems (IVP test set) and score them.
     Verify(verify::VerifyArgs),
-    /// Integrate a mechanism file and write its requested outputs.
+    /// Integrate a mechanism file, a scene or a plan and write the outputs.
     Run(run::RunArgs),
     /// Linearise a mechanism about its equilibrium (or a run's state): modes and stiffness ratio.
     Linear(analyse::LinearArgs),

@@ -1,4 +1,5 @@
-//! `towride run FILE`: integrate a mechanism file and write its outputs.
+//! `towride run FILE`: integrate a mechanism file, a scene or a plan's cases and write
+//! the outputs (scenes and plans: `scene_run.rs`).
 
 use std::path::PathBuf;
 
@@ -9,17 +10,26 @@ use crate::model::{self, spec};
 
 #[derive(Args, Debug)]
 pub struct RunArgs {
-    /// The mechanism file (TOML).
-    file: PathBuf,
-    /// Output folder for outputs.csv and summary.json.
+    /// A mechanism file, a scene (`[scene]`) or a plan (`[plan]`), TOML.
+    pub(crate) file: PathBuf,
+    /// Output folder for outputs.csv and summary.json (a plan: one folder per case).
     #[arg(long, default_value = "out")]
-    out: PathBuf,
+    pub(crate) out: PathBuf,
     /// Print the summary as JSON.
     #[arg(long)]
-    json: bool,
+    pub(crate) json: bool,
+    /// Plans: run only these cases (comma-separated names; `--list` shows them).
+    #[arg(long, value_delimiter = ',')]
+    pub(crate) case: Vec<String>,
+    /// Plans: list the cases and stop.
+    #[arg(long)]
+    pub(crate) list: bool,
 }
 
 pub fn run(a: &RunArgs) -> Result<i32, String> {
+    if crate::scene::plan::is_plan(&a.file) || crate::scene::is_scene(&a.file) {
+        return super::scene_run::run(a);
+    }
     let mech = spec::load(&a.file).map_err(|e| e.to_string())?;
     let sys = model::System::new(mech.model);
     super::model_check(&sys)?;

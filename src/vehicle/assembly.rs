@@ -190,7 +190,7 @@ pub fn load(path: &Path, opts: &Options) -> Result<Vehicle, InputError> {
                 &file,
                 car_body,
                 opts.hitch_variant,
-                opts.ball.clone(),
+                opts.ball_coupling.as_deref(),
             )?;
             let rear_x = rear.wheels[0].design_centre[0];
             if (hh.fe_origin[0] - rear_x).abs() > HITCH_ORIGIN_TOLERANCE_M {
@@ -261,6 +261,7 @@ pub fn load(path: &Path, opts: &Options) -> Result<Vehicle, InputError> {
         bodies: Default::default(),
         car_place,
         trailer_place: None,
+        body_place: Vec::new(),
     };
     let mut trailer_design = None;
     if let Some(t) = &f.trailer {
@@ -297,6 +298,7 @@ pub fn load(path: &Path, opts: &Options) -> Result<Vehicle, InputError> {
         .enumerate()
         .map(|(k, x)| (x.name.clone(), k))
         .collect();
+    handles.body_place = b.body_place.clone();
     handles.sensors = sensors::add(&mut b, &handles, &src, &path!["sensor"], &f.sensor)?;
     set_speed(&mut b, &wheels, opts.speed);
     handles.wheels = wheels;

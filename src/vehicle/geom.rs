@@ -13,6 +13,10 @@ pub type Axes = [[f64; 3]; 3];
 
 pub const IDENTITY: Axes = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 
+/// A frame with its z axis along y (columns x, -z, y): revolute axes of wheel bearings
+/// and axle pivots.
+pub const Z_ALONG_Y: Axes = [[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]];
+
 /// A rigid placement of subsystem coordinates in the world: p_world = R p + t.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Placement {
@@ -112,6 +116,13 @@ mod tests {
         assert!((norm(&sub(&col(&m, 2), &mirror(col(&a, 2))))) < 1e-12);
         let det = dot(&cross(&col(&m, 0), &col(&m, 1)), &col(&m, 2));
         assert!((det - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn z_along_y_is_a_right_handed_frame_with_z_on_y() {
+        let col = |k: usize| [Z_ALONG_Y[0][k], Z_ALONG_Y[1][k], Z_ALONG_Y[2][k]];
+        assert_eq!(col(2), [0.0, 1.0, 0.0]);
+        assert_eq!(cross(&col(0), &col(1)), col(2));
     }
 
     #[test]

@@ -37,7 +37,7 @@ struct Hitch {
     /// Where the FE file's origin lies in vehicle coordinates [m] (its axes are the
     /// vehicle's).
     fe_origin_m: [f64; 3],
-    /// Inertia coupling of the modal body: constant, partial or full.
+    /// Inertia coupling of the modal body: constant or partial.
     inertia_coupling: String,
     bracket_nodes: [String; 2],
     ball_node: String,
@@ -89,7 +89,7 @@ pub fn build(
     file: &Path,
     body: usize,
     variant: Option<u32>,
-    ball: Option<BallKind>,
+    ball: Option<&str>,
 ) -> Result<HitchHandle, InputError> {
     let src = Source::read(file)?;
     let f: File = src.parse()?;
@@ -99,7 +99,7 @@ pub fn build(
     let coupling = Coupling::parse(&h.inertia_coupling).ok_or_else(|| {
         src.error(
             &path!["hitch", "inertia_coupling"],
-            format!("'{}': use constant, partial or full", h.inertia_coupling),
+            format!("'{}': use constant or partial", h.inertia_coupling),
         )
     })?;
     let fe = file.parent().unwrap_or(Path::new(".")).join(&h.fe_file);
@@ -136,10 +136,9 @@ pub fn build(
     let bushing = f
         .bracket_bushing
         .check(&src, &path!["bracket_bushing"], [0.0, 1.0, 0.0])?;
-    let ball_kind = match (ball, f.ball_coupling.kind.as_str()) {
-        (Some(k), _) => k,
-        (None, "spherical") => BallKind::Spherical,
-        (None, "bushing") => {
+    let ball_kind = match ball.unwrap_or(&f.ball_coupling.kind) {
+        "spherical" => BallKind::Spherical,
+        "bushing" => {
             let jb = joint_bushing(
                 &src,
                 &path!["ball_coupling", "bushing"],
@@ -148,11 +147,11 @@ pub fn build(
             BallKind::Bushing(jb.ok_or_else(|| {
                 src.error(
                     &path!["ball_coupling"],
-                    "kind = \"bushing\" needs a bushing table",
+                    "the bushing coupling needs a bushing table",
                 )
             })?)
         }
-        (None, other) => {
+        other => {
             return Err(src.error(
                 &path!["ball_coupling", "kind"],
                 format!("'{other}': use spherical or bushing"),

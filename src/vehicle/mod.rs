@@ -66,8 +66,9 @@ pub struct Options {
     pub tyre_kind: Option<TyreKind>,
     /// Every ideal joint becomes a bushing of these properties.
     pub joints_as_bushings: Option<JointBushing>,
-    /// Ball coupling (hitch file: `ball_coupling`).
-    pub ball: Option<BallKind>,
+    /// Ball coupling, "spherical" or "bushing" (hitch file: `ball_coupling.kind`; the
+    /// bushing's properties always come from the hitch file).
+    pub ball_coupling: Option<String>,
 }
 
 /// A vehicle ready for a scene.
@@ -101,6 +102,9 @@ pub struct Handles {
     pub bodies: BTreeMap<String, usize>,
     pub car_place: Placement,
     pub trailer_place: Option<Placement>,
+    /// The placement of each body's subsystem (indexed like `Model::bodies`): sensor
+    /// positions are given in these coordinates.
+    pub body_place: Vec<Placement>,
 }
 
 /// What the design statics found (no solver involved).

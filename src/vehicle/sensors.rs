@@ -82,7 +82,7 @@ pub fn add(
             return Err(src.error(&at("axes"), "name at least one axis"));
         }
         let name = format!("sensor_{}", s.name);
-        let place = b.body_place[body];
+        let place = h.body_place[body];
         let marker = match (&s.node, &s.position_m) {
             (Some(node), None) => {
                 let modal = b.model.bodies[body].modal.as_ref().ok_or_else(|| {

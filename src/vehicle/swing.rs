@@ -11,7 +11,7 @@
 
 use super::build::Builder;
 use super::design::CornerRates;
-use super::geom::{mirror, mirror_axes, turning, Axes, V};
+use super::geom::{mirror, mirror_axes, turning, Axes, V, Z_ALONG_Y};
 use super::mcpherson::mirror_inertia;
 use super::props::{BushingLaws, Mass};
 use super::wheel::{self, WheelHandle};
@@ -101,8 +101,8 @@ pub fn build(b: &mut Builder, s: &Spec, tyre: &Tyre) -> Built {
         bushings[k] = bu;
         wheels.push(wh);
     }
-    // The centre joint turns about y; its z axis along y.
-    let axes: Axes = [[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    // The centre joint turns about y.
+    let axes = Z_ALONG_Y;
     let centre = [s.pivot[0], 0.0, s.pivot[2]];
     b.joint(
         s.centre,

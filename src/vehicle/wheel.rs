@@ -9,7 +9,7 @@
 use nalgebra::Vector3;
 
 use super::build::{Builder, Link};
-use super::geom::{Axes, IDENTITY, V};
+use super::geom::{IDENTITY, V, Z_ALONG_Y};
 use super::props::{at, Mass, WheelProps};
 use crate::input::{InputError, Seg, Source};
 use crate::model::desc::{JointKind, TyreElem};
@@ -93,15 +93,13 @@ pub fn add(
 ) -> WheelHandle {
     let centre = rim.cm;
     let body = b.body(&format!("wheel_{name}"), rim);
-    // The bearing turns about the spin axis (y): its z axis along y.
-    let spin_axes: Axes = [[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
     let link = b.joint(
         &format!("bearing_{name}"),
         JointKind::Revolute,
         Some(body),
         Some(carrier),
         centre,
-        &spin_axes,
+        &Z_ALONG_Y,
         bearing,
     );
     let centre_marker = b.marker(

@@ -1,0 +1,169 @@
+//! `towride run SCENE` and `towride run PLAN`: a vehicle scene from its start state (by
+//! default static equilibrium at speed) to its end, written as `outputs.csv` (the fixed
+//! channels, units in the headers) and `summary.json` (status, solver effort, per channel
+//! max, min and their times).
+
+use std::path::Path;
+
+use serde_json::{json, Map, Value};
+
+use super::run::RunArgs;
+use crate::model::run::{simulate, RunResult};
+use crate::model::{self, System};
+use crate::scene::{self, plan, Scene, Start};
+
+pub fn run(a: &RunArgs) -> Result<i32, String> {
+    if !plan::is_plan(&a.file) {
+        let s = scene::load(&a.file).map_err(|e| e.to_string())?;
+        return run_scene(&s, &a.out, a.json);
+    }
+    let p = plan::load(&a.file).map_err(|e| e.to_string())?;
+    if a.list {
+        for c in &p.cases {
+            println!("{}", c.name);
+        }
+        return Ok(0);
+    }
+    for name in &a.case {
+        if p.case(name).is_none() {
+            return Err(format!(
+                "{}: no case '{name}' (--list shows them)",
+                a.file.display()
+            ));
+        }
+    }
+    let mut code = 0;
+    for c in p
+        .cases
+        .iter()
+        .filter(|c| a.case.is_empty() || a.case.contains(&c.name))
+    {
+        let s = p.scene(c).map_err(|e| e.to_string())?;
+        code = code.max(run_scene(&s, &a.out.join(&c.name), a.json)?);
+    }
+    Ok(code)
+}
+
+/// The state at t = 0 by the scene's start mode, and what the start did.
+pub(crate) fn start_state(
+    s: &Scene,
+    opts: &crate::solver::SolverOptions,
+) -> Result<(Option<(Vec<f64>, Vec<f64>)>, Value), String> {
+    match s.start {
+        Start::EquilibriumAtSpeed => {
+            let (y, yp, rep) = model::start::at_speed(s.model(), s.speed, s.settle, opts)?;
+            Ok((Some((y, yp)), json!(rep)))
+        }
+        Start::Assembly => Ok((None, Value::Null)),
+    }
+}
+
+fn run_scene(s: &Scene, out: &Path, quiet: bool) -> Result<i32, String> {
+    let sys = System::new(s.model().clone());
+    super::model_check(&sys)?;
+    let warnings = super::redundancy_warnings(&sys);
+    if !quiet {
+        for w in &warnings {
+            eprintln!("warning: {w}");
+        }
+    }
+    let opts = s.solver_for(&sys);
+    let (start, start_report) = start_state(s, &opts)?;
+    let pb = super::progress((s.duration * s.sample_rate).round() as u64, quiet);
+    let res = simulate(
+        &sys,
+        0.0,
+        s.duration,
+        s.sample_rate,
+        &opts,
+        start,
+        Some(&pb),
+    );
+    pb.finish_and_clear();
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    let csv = out.join("outputs.csv");
+    res.write_csv(&csv)
+        .map_err(|e| format!("{}: {e}", csv.display()))?;
+    let st = &res.stats;
+    let summary = json!({
+        "scene": s.name,
+        "file": s.file.display().to_string(),
+        "status": if res.error.is_none() { "completed" } else { "failed" },
+        "error": res.error.as_ref().map(|e| e.0.clone()),
+        "failed_at_s": res.error.as_ref().map(|e| e.1),
+        "wall_s": res.wall_s,
+        "t_end": res.times.last().copied().unwrap_or(0.0),
+        "steps": st.steps,
+        "rejected_steps": st.rejected_steps,
+        "newton_iterations": st.newton_iterations,
+        "jacobian_evals": st.jacobian_evals,
+        "speed_m_s": s.speed,
+        "road": s.road_file.display().to_string(),
+        "load_case": s.vehicle.design.trailer.as_ref().map(|t| t.load_case.clone()),
+        "hitch_variant": s.vehicle.handles.hitch.as_ref().map(|h| h.variant),
+        "equations": sys.size(),
+        "warnings": warnings,
+        "start": start_report,
+        "design": s.vehicle.design,
+        "channels": channel_summary(&res),
+    });
+    let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
+    std::fs::write(out.join("summary.json"), &text).map_err(|e| e.to_string())?;
+    if quiet {
+        println!("{text}");
+    } else {
+        println!(
+            "{}: {} in {:.1} s wall, {} steps; outputs in {}",
+            s.name,
+            if res.error.is_none() {
+                "completed"
+            } else {
+                "FAILED"
+            },
+            res.wall_s,
+            st.steps,
+            csv.display()
+        );
+        if let Some(Value::Object(m)) = summary.get("channels") {
+            for (name, c) in m {
+                println!(
+                    "  {name:<20} min {:>11.4e} at {:>7.4} s   max {:>11.4e} at {:>7.4} s  [{}]",
+                    c["min"].as_f64().unwrap_or(f64::NAN),
+                    c["t_min"].as_f64().unwrap_or(f64::NAN),
+                    c["max"].as_f64().unwrap_or(f64::NAN),
+                    c["t_max"].as_f64().unwrap_or(f64::NAN),
+                    c["unit"].as_str().unwrap_or("")
+                );
+            }
+        }
+    }
+    if let Some((e, t)) = &res.error {
+        eprintln!(
+            "error: run stopped at t = {t:.6} s: {e}\n  results up to that time are in {}",
+            csv.display()
+        );
+        return Ok(1);
+    }
+    Ok(0)
+}
+
+/// Per channel (keyed by its fixed name): unit, max, min and their times.
+fn channel_summary(res: &RunResult) -> Map<String, Value> {
+    let mut m = Map::new();
+    for (c, ch) in res.channels.iter().enumerate() {
+        let (mut lo, mut hi, mut t_lo, mut t_hi) = (f64::INFINITY, f64::NEG_INFINITY, 0.0, 0.0);
+        for (t, row) in res.times.iter().zip(&res.rows) {
+            if row[c] < lo {
+                (lo, t_lo) = (row[c], *t);
+            }
+            if row[c] > hi {
+                (hi, t_hi) = (row[c], *t);
+            }
+        }
+        m.insert(
+            ch.name.clone(),
+            json!({"unit": ch.unit, "max": hi, "t_max": t_hi, "min": lo, "t_min": t_lo}),
+        );
+    }
+    m
+}

@@ -1,0 +1,148 @@
+//! A plan: one template scene run over obstacles x speeds x trailer load cases, like the
+//! thesis's measurement plan (5.5.3.4: 3 obstacles x 6 speeds x 4 loads = 72 passes).
+//!
+//! ```toml
+//! [plan]
+//! name = "measurement_plan"
+//! template = "default.toml"
+//! speeds_km_h = [10.0, 20.0, 30.0, 40.0, 50.0, 60.0]
+//! load_cases = ["empty", "over_axle", "ahead_of_axle", "behind_axle"]
+//! # Each run lasts travel_m / speed + after_s: long enough for the trailer's wheels to
+//! # cross the obstacle, then a little more.
+//! travel_m = 7.5
+//! after_s = 1.0
+//!
+//! [[obstacle]]
+//! name = "ramp50"
+//! road = "../roads/ramp_thesis.toml"
+//! ```
+//!
+//! Case names are `<obstacle>_<speed>kmh_<load case>`, e.g. `ramp50_50kmh_empty`.
+
+use std::path::{Path, PathBuf};
+
+use serde::Deserialize;
+
+use super::{load_with, Overrides, Scene};
+use crate::input::{InputError, Source};
+use crate::path;
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct File {
+    plan: PlanSec,
+    obstacle: Vec<ObstacleSec>,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct PlanSec {
+    name: String,
+    template: String,
+    speeds_km_h: Vec<f64>,
+    load_cases: Vec<String>,
+    travel_m: f64,
+    after_s: f64,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct ObstacleSec {
+    name: String,
+    road: String,
+}
+
+/// One run of a plan.
+#[derive(Clone, Debug)]
+pub struct Case {
+    pub name: String,
+    pub overrides: Overrides,
+}
+
+/// A plan read and expanded (scenes are built on demand: [`Plan::scene`]).
+#[derive(Clone, Debug)]
+pub struct Plan {
+    pub name: String,
+    pub template: PathBuf,
+    pub cases: Vec<Case>,
+}
+
+impl Plan {
+    /// The scene of one case.
+    pub fn scene(&self, case: &Case) -> Result<Scene, InputError> {
+        load_with(&self.template, &case.overrides)
+    }
+
+    pub fn case(&self, name: &str) -> Option<&Case> {
+        self.cases.iter().find(|c| c.name == name)
+    }
+}
+
+/// True when `path` is a plan file (it has a `[plan]` table).
+pub fn is_plan(path: &Path) -> bool {
+    super::has_table(path, "plan")
+}
+
+/// Reads a plan file and lists its cases (obstacle-major, then speed, then load).
+pub fn load(path: &Path) -> Result<Plan, InputError> {
+    let src = Source::read(path)?;
+    let f: File = src.parse()?;
+    let dir = path.parent().unwrap_or(Path::new("."));
+    let p = &f.plan;
+    let template = dir.join(&p.template);
+    if !template.is_file() {
+        return Err(src.error(
+            &path!["plan", "template"],
+            format!("no file {}", template.display()),
+        ));
+    }
+    let travel = src.positive(&path!["plan", "travel_m"], p.travel_m)?;
+    let after = src.non_negative(&path!["plan", "after_s"], p.after_s)?;
+    if f.obstacle.is_empty() || p.speeds_km_h.is_empty() || p.load_cases.is_empty() {
+        return Err(src.error(
+            &path!["plan"],
+            "give at least one obstacle, speed and load case",
+        ));
+    }
+    let mut cases = Vec::new();
+    for (i, o) in f.obstacle.iter().enumerate() {
+        let road = dir.join(&o.road);
+        if !road.is_file() {
+            return Err(src.error(
+                &path!["obstacle", i, "road"],
+                format!("no file {}", road.display()),
+            ));
+        }
+        for (j, &v) in p.speeds_km_h.iter().enumerate() {
+            src.positive(&path!["plan", "speeds_km_h", j], v)?;
+            for load in &p.load_cases {
+                let name = format!("{}_{}kmh_{load}", o.name, fmt_speed(v));
+                cases.push(Case {
+                    name: name.clone(),
+                    overrides: Overrides {
+                        name: Some(name),
+                        road: Some(road.clone()),
+                        speed_km_h: Some(v),
+                        duration_s: Some(travel / (v / 3.6) + after),
+                        load_case: Some(load.clone()),
+                        hitch_variant: None,
+                    },
+                });
+            }
+        }
+    }
+    Ok(Plan {
+        name: p.name.clone(),
+        template,
+        cases,
+    })
+}
+
+/// 50 -> "50", 12.5 -> "12.5".
+fn fmt_speed(v: f64) -> String {
+    if v.fract() == 0.0 {
+        format!("{v:.0}")
+    } else {
+        format!("{v}")
+    }
+}
