@@ -76,12 +76,12 @@ pub fn linear(a: &LinearArgs) -> Result<i32, String> {
             let (mut q, mut v) = sys.initial_q_v();
             let (y, _, _) = {
                 let x = sys.ext_initial(&q, &v, 0.0);
-                model::ic::initial_state(&sys, 0.0, &mut q, &mut v, &x)?
+                model::ic::initial_state(sys, 0.0, &mut q, &mut v, &x)?
             };
             (0.0, y, "initial state".to_string())
         }
     };
-    let lin = model::linear::linearise(&sys, t, &y)?;
+    let lin = model::linear::linearise(sys, t, &y)?;
     if a.json {
         let v = serde_json::json!({"model": sys.model.name, "linearised_at": at, "result": lin});
         println!(

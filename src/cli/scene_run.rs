@@ -44,11 +44,14 @@ pub fn run(a: &RunArgs) -> Result<i32, String> {
     Ok(code)
 }
 
+/// A consistent (y, y') to start from; `None`: the model's initial values.
+pub(crate) type StartState = Option<(Vec<f64>, Vec<f64>)>;
+
 /// The state at t = 0 by the scene's start mode, and what the start did.
 pub(crate) fn start_state(
     s: &Scene,
     opts: &crate::solver::SolverOptions,
-) -> Result<(Option<(Vec<f64>, Vec<f64>)>, Value), String> {
+) -> Result<(StartState, Value), String> {
     match s.start {
         Start::EquilibriumAtSpeed => {
             let (y, yp, rep) = model::start::at_speed(s.model(), s.speed, s.settle, opts)?;

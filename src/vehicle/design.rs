@@ -25,7 +25,7 @@ use crate::model::math::{add, dot, scale};
 /// The element of a corner that carries the static load, before its preload is known.
 pub enum Preloaded {
     /// A coil spring (rate [N/m]) along `line`; its free length follows from the preload.
-    Coil { line: Line, rate: f64 },
+    Coil { line: Box<Line>, rate: f64 },
     /// A bushing (index in `Model::forces`) whose torque about its z axis carries the
     /// load (a rubber torsion spring); rate of the torsion [N m/rad].
     Torsion { force: usize, rate: f64 },
@@ -61,7 +61,7 @@ pub fn finish(b: &mut Builder, c: Corner, load: f64) -> Result<CornerDesign, Inp
             line.preload = 0.0;
             line.spring = Law::Linear(rate);
             let free = line.free_length;
-            b.line(line);
+            b.line(*line);
             (rate, Some(free))
         }
         Preloaded::Torsion { force, rate } => {

@@ -284,7 +284,7 @@ pub fn build(
             wheel: name.to_string(),
             rates: r,
             element: Preloaded::Coil {
-                line: Line {
+                line: Box::new(Line {
                     name: format!("spring_{name}"),
                     body_i: Some(kn),
                     point_i: pt.q,
@@ -296,7 +296,7 @@ pub fn build(
                     damper: Law::Linear(0.0),
                     bump_stop: None,
                     rebound_stop: None,
-                },
+                }),
                 rate: k_spring,
             },
             complaint: src.error(&path!["spring", "stiffness_n_m"], ""),

@@ -151,7 +151,7 @@ pub fn build(
             wheel: name.clone(),
             rates,
             element: Preloaded::Coil {
-                line: Line {
+                line: Box::new(Line {
                     name: format!("spring_{name}"),
                     body_i: arm,
                     point_i: m(sl),
@@ -163,7 +163,7 @@ pub fn build(
                     damper: Law::Linear(0.0),
                     bump_stop: None,
                     rebound_stop: None,
-                },
+                }),
                 rate: k_spring,
             },
             complaint: src.error(&path!["spring", "stiffness_n_m"], ""),
