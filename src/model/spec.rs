@@ -389,9 +389,11 @@ pub fn build(src: &Source, f: File) -> Result<Mechanism, InputError> {
         }
         vec3(src, &p("position_m"), &j.position_m)?;
         let axes = axes_of(src, &path!["joint", k], j.z_axis, j.x_axis)?;
+        let replace = j.bushing.clone().or(f.model.joints_as_bushings.clone());
         // A universal joint's pins: z_axis on body_j, x_axis on body_i; marker I turns
-        // its z onto the I pin (cyclic permutation keeps the frame right-handed).
-        let axes_i = if kind == JointKind::Universal {
+        // its z onto the I pin (cyclic permutation keeps the frame right-handed). A
+        // bushing in its place keeps J's axes on I too, so it starts undeflected.
+        let axes_i = if kind == JointKind::Universal && replace.is_none() {
             let c = |k: usize| [axes[0][k], axes[1][k], axes[2][k]];
             let (x, y, z) = (c(0), c(1), c(2));
             [[y[0], z[0], x[0]], [y[1], z[1], x[1]], [y[2], z[2], x[2]]]
@@ -400,7 +402,6 @@ pub fn build(src: &Source, f: File) -> Result<Mechanism, InputError> {
         };
         let mi = m.add_marker_world(format!("{}.i", j.name), bi, j.position_m, axes_i);
         let mj = m.add_marker_world(format!("{}.j", j.name), bj, j.position_m, axes);
-        let replace = j.bushing.clone().or(f.model.joints_as_bushings.clone());
         if let Some(jb) = replace {
             check_joint_bushing(src, &path!["joint", k, "bushing"], &jb)?;
             let locked = kind.locked();

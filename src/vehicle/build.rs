@@ -128,6 +128,20 @@ impl<'m> Builder<'m> {
             }));
             return Link::Bushing(self.model.forces.len() - 1);
         }
+        self.ideal_joint(name, kind, bi, bj, p, axes)
+    }
+
+    /// An ideal joint that is never replaced: a spinning wheel's bearing (a bushing
+    /// measures rotation as a rotation vector, which cannot follow a full turn).
+    pub fn ideal_joint(
+        &mut self,
+        name: &str,
+        kind: JointKind,
+        bi: BodyId,
+        bj: BodyId,
+        p: V,
+        axes: &Axes,
+    ) -> Link {
         // Universal: marker I turns its z onto the I pin (J's x); a cyclic permutation
         // keeps it right-handed.
         let axes_i = if kind == JointKind::Universal {

@@ -260,7 +260,7 @@ pub fn build(
             bump_stop: bump.clone(),
             rebound_stop: rebound.clone(),
         });
-        let wh = wheel::add(b, name, kn, &mirrored(&rim), tyre, jbr);
+        let wh = wheel::add(b, name, kn, &mirrored(&rim), tyre);
         let cms = [
             mirrored(&knuckle).cm,
             mirrored(&lca).cm,

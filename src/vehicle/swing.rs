@@ -85,7 +85,7 @@ pub fn build(b: &mut Builder, s: &Spec, tyre: &Tyre) -> Built {
             &laws,
             [0.0; 6],
         );
-        let wh = wheel::add(b, name, h, &rim, tyre, s.joints_as_bushings.as_ref());
+        let wh = wheel::add(b, name, h, &rim, tyre);
         let vw = turning(&pivot, &y, &rim.cm);
         rates.push(CornerRates {
             masses: vec![

@@ -13,7 +13,6 @@ use super::geom::{IDENTITY, V, Z_ALONG_Y};
 use super::props::{at, Mass, WheelProps};
 use crate::input::{InputError, Seg, Source};
 use crate::model::desc::{JointKind, TyreElem};
-use crate::model::spec::JointBushing;
 use crate::tyre::Tyre;
 
 /// What the scene and the outputs need of a wheel.
@@ -83,24 +82,18 @@ pub fn tyre_own_mass(tyre: &Tyre) -> f64 {
 }
 
 /// Adds the rim body `wheel_<name>`, its bearing on `carrier` and the tyre `tyre_<name>`.
-pub fn add(
-    b: &mut Builder,
-    name: &str,
-    carrier: usize,
-    rim: &Mass,
-    tyre: &Tyre,
-    bearing: Option<&JointBushing>,
-) -> WheelHandle {
+pub fn add(b: &mut Builder, name: &str, carrier: usize, rim: &Mass, tyre: &Tyre) -> WheelHandle {
     let centre = rim.cm;
     let body = b.body(&format!("wheel_{name}"), rim);
-    let link = b.joint(
+    // The bearing stays an ideal revolute joint even when the other joints become
+    // bushings: a bushing's rotation-vector deflection cannot follow the wheel's spin.
+    let link = b.ideal_joint(
         &format!("bearing_{name}"),
         JointKind::Revolute,
         Some(body),
         Some(carrier),
         centre,
         &Z_ALONG_Y,
-        bearing,
     );
     let centre_marker = b.marker(
         &format!("wheel_{name}.centre"),
