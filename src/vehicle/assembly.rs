@@ -273,7 +273,7 @@ pub fn load(path: &Path, opts: &Options) -> Result<Vehicle, InputError> {
         let tt = tyre(&src, dir, &tp, t, kind)?;
         let case = opts.load_case.as_deref().or(t.load_case.as_deref());
         let tf = trailer::read(&file, case)?;
-        let (place, pitch) = place_trailer(&src, &tf, car_place.point(h.ball))?;
+        let (place, pitch) = trailer::place(&src, &tf, car_place.point(h.ball))?;
         b.place = place;
         let built = trailer::build(&mut b, &tf, &tt)?;
         b.place = car_place;
@@ -300,7 +300,7 @@ pub fn load(path: &Path, opts: &Options) -> Result<Vehicle, InputError> {
         .collect();
     handles.body_place = b.body_place.clone();
     handles.sensors = sensors::add(&mut b, &handles, &src, &path!["sensor"], &f.sensor)?;
-    set_speed(&mut b, &wheels, opts.speed);
+    wheel::set_speed(b.model, &wheels, opts.speed);
     handles.wheels = wheels;
     let total: f64 = model.bodies.iter().map(|x| x.mass).sum::<f64>()
         + handles
@@ -332,42 +332,4 @@ fn masses(m: &Model, place: &Placement, axles: &[&Vec<wheel::WheelHandle>]) -> V
         parts.push((wheel::tyre_own_mass(&m.tyres[w.tyre].tyre), w.design_centre));
     }
     parts
-}
-
-/// The trailer's placement: its coupling on the ball `ball` (world), pitched about the
-/// axle's ground line so its wheels stay on the ground. Returns it and the pitch [rad].
-fn place_trailer(
-    src: &Source,
-    t: &trailer::TrailerFile,
-    ball: V,
-) -> Result<(Placement, f64), InputError> {
-    let (xa, c) = (t.wheel_centre[0], t.coupling);
-    let (a, h) = (c[0] - xa, c[2]);
-    let rho = a.hypot(h);
-    let pitch = (ball[2] / rho).clamp(-1.0, 1.0).acos() - a.atan2(h);
-    // More than about 6 deg means the files disagree on the ball height.
-    if pitch.is_nan() || pitch.abs() > 0.1 || c[1] != 0.0 {
-        return Err(src.error(&path!["trailer", "file"], format!("{}: the coupling at height {h} m (y {}) cannot sit on a ball {} m high on the centreline without pitching the trailer by {pitch:.3} rad", t.src_path.display(), c[1], ball[2])));
-    }
-    let x_rot = xa + pitch.cos() * a + pitch.sin() * h;
-    let place = Placement::pitched([xa, 0.0, 0.0], pitch, [ball[0] - x_rot, ball[1], 0.0]);
-    Ok((place, pitch))
-}
-
-/// Every body moves forward at `speed`; wheels spin at the free-rolling rate of their
-/// tyre at the design deflection.
-fn set_speed(b: &mut Builder, wheels: &[wheel::WheelHandle], speed: f64) {
-    for body in &mut b.model.bodies {
-        body.velocity = [speed, 0.0, 0.0];
-        body.angular_velocity = [0.0; 3];
-    }
-    for w in wheels {
-        let p = b.model.tyres[w.tyre].tyre.params().clone();
-        let rho = p.r0 - w.design_centre[2];
-        let mut omega = speed / p.r0;
-        for _ in 0..50 {
-            omega = speed / p.rolling_radius(rho, omega);
-        }
-        b.model.bodies[w.body].angular_velocity = [0.0, omega, 0.0];
-    }
 }

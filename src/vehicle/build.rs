@@ -36,6 +36,25 @@ pub struct Line {
     pub rebound_stop: Option<Stop>,
 }
 
+impl Line {
+    /// A line element without force laws, free at its current length.
+    pub fn new(name: String, body_i: BodyId, point_i: V, body_j: BodyId, point_j: V) -> Line {
+        Line {
+            name,
+            body_i,
+            point_i,
+            body_j,
+            point_j,
+            free_length: super::geom::distance(&point_i, &point_j),
+            preload: 0.0,
+            spring: Law::Linear(0.0),
+            damper: Law::Linear(0.0),
+            bump_stop: None,
+            rebound_stop: None,
+        }
+    }
+}
+
 pub struct Builder<'m> {
     pub model: &'m mut Model,
     /// Where the coordinates handed to the builder lie in the world.

@@ -67,6 +67,16 @@ pub fn mirror(p: V) -> V {
     [p[0], -p[1], p[2]]
 }
 
+/// The inertia tensor of the mirror image (products with y change sign).
+pub fn mirror_inertia(i: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
+    let mut o = *i;
+    o[0][1] = -i[0][1];
+    o[1][0] = -i[1][0];
+    o[1][2] = -i[1][2];
+    o[2][1] = -i[2][1];
+    o
+}
+
 /// The mirror image of a frame, made right-handed again (x and z mirrored, y = z x x).
 pub fn mirror_axes(a: &Axes) -> Axes {
     let c = |k: usize| mirror([a[0][k], a[1][k], a[2][k]]);

@@ -16,7 +16,7 @@
 //! [`driveline`] (speed control), [`hitch`] (modal crossbeam and ball coupling),
 //! [`trailer`] (box trailer with rubber torsion axle); shared pieces in [`wheel`],
 //! [`swing`], [`design`] (spring preloads by virtual work), [`build`], [`props`],
-//! [`geom`], [`sensors`].
+//! [`geom`], [`sensors`], [`strut`] (McPherson kinematics).
 
 pub mod assembly;
 pub mod body;
@@ -28,6 +28,7 @@ pub mod hitch;
 pub mod mcpherson;
 pub mod props;
 pub mod sensors;
+pub mod strut;
 pub mod swing;
 pub mod trailer;
 pub mod twist_beam;

@@ -43,6 +43,20 @@ pub struct Mass {
     pub inertia: [[f64; 3]; 3],
 }
 
+impl Mass {
+    /// The right-side image of a left-side part (itself when `right` is false).
+    pub fn side(&self, right: bool) -> Mass {
+        if !right {
+            return self.clone();
+        }
+        Mass {
+            mass: self.mass,
+            cm: super::geom::mirror(self.cm),
+            inertia: super::geom::mirror_inertia(&self.inertia),
+        }
+    }
+}
+
 impl MassProps {
     pub fn check(&self, src: &Source, p: &[Seg]) -> Result<Mass, InputError> {
         let mass = src.positive(&at(p, "mass_kg"), self.mass_kg)?;
@@ -108,6 +122,17 @@ pub struct BushingLaws {
     pub axes: Axes,
     pub stiffness: [Law; 6],
     pub damping: [Law; 6],
+}
+
+impl BushingLaws {
+    /// The right-side image of a left-side bushing (mirrored axes).
+    pub fn side(&self, right: bool) -> BushingLaws {
+        let mut b = self.clone();
+        if right {
+            b.axes = super::geom::mirror_axes(&self.axes);
+        }
+        b
+    }
 }
 
 impl BushingProps {

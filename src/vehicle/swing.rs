@@ -11,8 +11,7 @@
 
 use super::build::Builder;
 use super::design::CornerRates;
-use super::geom::{mirror, mirror_axes, turning, Axes, V, Z_ALONG_Y};
-use super::mcpherson::mirror_inertia;
+use super::geom::{mirror, turning, Axes, V, Z_ALONG_Y};
 use super::props::{BushingLaws, Mass};
 use super::wheel::{self, WheelHandle};
 use crate::model::desc::{JointKind, Law};
@@ -59,23 +58,11 @@ pub fn build(b: &mut Builder, s: &Spec, tyre: &Tyre) -> Built {
     let mut rates = Vec::new();
     let mut bushing_rates = [0.0; 2];
     for (k, side) in [false, true].into_iter().enumerate() {
-        let m = |p: V| if side { mirror(p) } else { p };
-        let mass = |x: &Mass| Mass {
-            mass: x.mass,
-            cm: m(x.cm),
-            inertia: if side {
-                mirror_inertia(&x.inertia)
-            } else {
-                x.inertia
-            },
-        };
         let name = s.wheels[k];
-        let (half, rim, pivot) = (mass(&s.half), mass(&s.rim), m(s.pivot));
+        let (half, rim) = (s.half.side(side), s.rim.side(side));
+        let pivot = if side { mirror(s.pivot) } else { s.pivot };
         let h = b.body(&format!("{}_{name}", s.prefix), &half);
-        let mut laws = s.bushing.clone();
-        if side {
-            laws.axes = mirror_axes(&s.bushing.axes);
-        }
+        let laws = s.bushing.side(side);
         let bu = b.bushing(
             &format!("{}_bushing_{name}", s.prefix),
             Some(h),

@@ -15,7 +15,7 @@ use serde::Deserialize;
 
 use super::build::Builder;
 use super::design::{self, centre_of_mass, Corner, CornerDesign, Preloaded};
-use super::geom::{mirror, V};
+use super::geom::{mirror, Placement, V};
 use super::props::{
     at, joints, law, point, BushingProps, JointsProps, Mass, MassProps, TorsionProps, WheelProps,
 };
@@ -263,4 +263,20 @@ pub fn build(b: &mut Builder, t: &TrailerFile, tyre: &Tyre) -> Result<Trailer, I
         mass,
         cm,
     })
+}
+
+/// The trailer's placement: its coupling on the ball `ball` (world), pitched about the
+/// axle's ground line so its wheels stay on the ground. Returns it and the pitch [rad].
+pub fn place(src: &Source, t: &TrailerFile, ball: V) -> Result<(Placement, f64), InputError> {
+    let (xa, c) = (t.wheel_centre[0], t.coupling);
+    let (a, h) = (c[0] - xa, c[2]);
+    let rho = a.hypot(h);
+    let pitch = (ball[2] / rho).clamp(-1.0, 1.0).acos() - a.atan2(h);
+    // More than about 6 deg means the files disagree on the ball height.
+    if pitch.is_nan() || pitch.abs() > 0.1 || c[1] != 0.0 {
+        return Err(src.error(&path!["trailer", "file"], format!("{}: the coupling at height {h} m (y {}) cannot sit on a ball {} m high on the centreline without pitching the trailer by {pitch:.3} rad", t.src_path.display(), c[1], ball[2])));
+    }
+    let x_rot = xa + pitch.cos() * a + pitch.sin() * h;
+    let place = Placement::pitched([xa, 0.0, 0.0], pitch, [ball[0] - x_rot, ball[1], 0.0]);
+    Ok((place, pitch))
 }

@@ -7,7 +7,7 @@ use serde::Deserialize;
 
 use super::build::{Builder, Line};
 use super::design::{Corner, Preloaded};
-use super::geom::{distance, length_rate, mirror, turning, V};
+use super::geom::{length_rate, mirror, turning, V};
 use super::props::{
     at, joints, law, point, stop, BushingProps, DamperProps, JointsProps, MassProps, TorsionProps,
     WheelProps,
@@ -15,7 +15,6 @@ use super::props::{
 use super::swing::{self, Spec};
 use super::wheel::{self, WheelHandle};
 use crate::input::{InputError, Source};
-use crate::model::desc::Law;
 use crate::model::spec::StopSpec;
 use crate::path;
 use crate::tyre::Tyre;
@@ -88,7 +87,7 @@ pub fn build(
     let half = f.half.check(&src, &path!["half"])?;
     let rim = wheel::rim_mass(&src, &path!["wheel"], &f.wheel, tyre, w)?;
     let k_spring = src.positive(&path!["spring", "stiffness_n_m"], f.spring.stiffness_n_m)?;
-    let damper = f.damper.check(&src, &path!["damper"])?;
+    let damper_law = f.damper.check(&src, &path!["damper"])?;
     let bump = stop(&src, &path!["bump_stop"], &f.bump_stop)?;
     let rebound = stop(&src, &path!["rebound_stop"], &f.rebound_stop)?;
     let bushing = f
@@ -132,38 +131,24 @@ pub fn build(
         let name = built.wheels[k].name.clone();
         let arm = Some(built.halves[k]);
         let piv = m(pivot);
-        b.line(Line {
-            name: format!("damper_{name}"),
-            body_i: arm,
-            point_i: m(dl),
-            body_j: Some(body),
-            point_j: m(du),
-            free_length: distance(&dl, &du),
-            preload: 0.0,
-            spring: Law::Linear(0.0),
-            damper: damper.clone(),
-            bump_stop: bump.clone(),
-            rebound_stop: rebound.clone(),
-        });
+        let mut damper = Line::new(format!("damper_{name}"), arm, m(dl), Some(body), m(du));
+        damper.damper = damper_law.clone();
+        damper.bump_stop = bump.clone();
+        damper.rebound_stop = rebound.clone();
+        b.line(damper);
         let mut rates = built.rates[k].clone();
         rates.element_rate = length_rate(&m(sl), &turning(&piv, &y, &m(sl)), &m(su));
         corners.push(Corner {
             wheel: name.clone(),
             rates,
             element: Preloaded::Coil {
-                line: Box::new(Line {
-                    name: format!("spring_{name}"),
-                    body_i: arm,
-                    point_i: m(sl),
-                    body_j: Some(body),
-                    point_j: m(su),
-                    free_length: 0.0,
-                    preload: 0.0,
-                    spring: Law::Linear(k_spring),
-                    damper: Law::Linear(0.0),
-                    bump_stop: None,
-                    rebound_stop: None,
-                }),
+                line: Box::new(Line::new(
+                    format!("spring_{name}"),
+                    arm,
+                    m(sl),
+                    Some(body),
+                    m(su),
+                )),
                 rate: k_spring,
             },
             complaint: src.error(&path!["spring", "stiffness_n_m"], ""),

@@ -12,7 +12,7 @@ use super::build::{Builder, Link};
 use super::geom::{IDENTITY, V, Z_ALONG_Y};
 use super::props::{at, Mass, WheelProps};
 use crate::input::{InputError, Seg, Source};
-use crate::model::desc::{JointKind, TyreElem};
+use crate::model::desc::{JointKind, Model, TyreElem};
 use crate::tyre::Tyre;
 
 /// What the scene and the outputs need of a wheel.
@@ -119,5 +119,23 @@ pub fn add(b: &mut Builder, name: &str, carrier: usize, rim: &Mass, tyre: &Tyre)
         bearing: link,
         tyre: b.model.tyres.len() - 1,
         design_centre: centre,
+    }
+}
+
+/// Every body moves forward at `speed`; wheels spin at the free-rolling rate of their
+/// tyre at the design deflection.
+pub fn set_speed(model: &mut Model, wheels: &[WheelHandle], speed: f64) {
+    for body in &mut model.bodies {
+        body.velocity = [speed, 0.0, 0.0];
+        body.angular_velocity = [0.0; 3];
+    }
+    for w in wheels {
+        let p = model.tyres[w.tyre].tyre.params().clone();
+        let rho = p.r0 - w.design_centre[2];
+        let mut omega = speed / p.r0;
+        for _ in 0..50 {
+            omega = speed / p.rolling_radius(rho, omega);
+        }
+        model.bodies[w.body].angular_velocity = [0.0, omega, 0.0];
     }
 }
