@@ -11,5 +11,6 @@ pub mod input;
 pub mod model;
 pub mod road;
 pub mod solver;
+pub mod sweep;
 pub mod tyre;
 pub mod verify;

@@ -6,6 +6,7 @@ pub mod lineplot;
 mod modes;
 pub mod plot;
 mod run;
+mod sweep;
 mod tyre_rig;
 mod verify;
 
@@ -41,6 +42,8 @@ enum Command {
     Modes(modes::ModesArgs),
     /// Run a tyre test rig (cleat or quarter rig) from a TOML file.
     TyreRig(tyre_rig::TyreRigArgs),
+    /// Parameter sweep over property-file values, in parallel; `sweep merge` joins shards.
+    Sweep(sweep::SweepArgs),
 }
 
 #[derive(Subcommand, Debug)]
@@ -76,6 +79,7 @@ pub fn main() -> i32 {
         Command::Doctor(a) => analyse::doctor(&a),
         Command::Modes(a) => modes::run(&a),
         Command::TyreRig(a) => tyre_rig::run(&a),
+        Command::Sweep(a) => sweep::run(&a),
     };
     match result {
         Ok(code) => code,
