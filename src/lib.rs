@@ -12,4 +12,5 @@ pub mod model;
 pub mod road;
 pub mod solver;
 pub mod tyre;
+pub mod validate;
 pub mod verify;

@@ -7,6 +7,7 @@ mod modes;
 pub mod plot;
 mod run;
 mod tyre_rig;
+mod validate;
 mod verify;
 
 use clap::{Parser, Subcommand};
@@ -41,6 +42,9 @@ enum Command {
     Modes(modes::ModesArgs),
     /// Run a tyre test rig (cleat or quarter rig) from a TOML file.
     TyreRig(tyre_rig::TyreRigArgs),
+    /// Compare the simulation with recorded runs (RUN.toml or a folder); `validate synth`
+    /// writes synthetic runs.
+    Validate(validate::ValidateArgs),
 }
 
 #[derive(Subcommand, Debug)]
@@ -76,6 +80,7 @@ pub fn main() -> i32 {
         Command::Doctor(a) => analyse::doctor(&a),
         Command::Modes(a) => modes::run(&a),
         Command::TyreRig(a) => tyre_rig::run(&a),
+        Command::Validate(a) => validate::run(&a),
     };
     match result {
         Ok(code) => code,
