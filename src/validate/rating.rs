@@ -105,7 +105,7 @@ pub fn corridor_score(t: &[f64], c: &[f64], p: &RatingParams) -> f64 {
     sum / t.len().max(1) as f64
 }
 
-/// (lag of `c` against `t` in samples, phase score): the lag within eps_p n maximising
+/// (lag of `c` behind `t` in samples, phase score): the lag within eps_p n maximising
 /// the correlation of the overlapping parts (smaller |lag| wins ties), scored linearly
 /// from 1 (no lag) to 0 (eps_p n).
 pub fn phase_score(t: &[f64], c: &[f64], p: &RatingParams) -> (i64, f64) {
@@ -117,7 +117,7 @@ pub fn phase_score(t: &[f64], c: &[f64], p: &RatingParams) -> (i64, f64) {
     let mut best = (pearson(t, c), 0_i64);
     for k in 1..kmax {
         let ku = k as usize;
-        // c leads: c[i + k] matches t[i]; c lags: c[i] matches t[i + k].
+        // +k: c is late, c[i + k] matches t[i]; -k: c is early, c[i] matches t[i + k].
         for (rho, lag) in [
             (pearson(&t[..n - ku], &c[ku..]), k),
             (pearson(&t[ku..], &c[..n - ku]), -k),
