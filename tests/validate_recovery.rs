@@ -125,3 +125,69 @@ fn no_errors_no_shift() {
     assert!(c.mean_rating > 0.99, "{}", c.mean_rating);
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn gravity_offset_is_zeroed_when_asked() {
+    let dir = tmp("offset");
+    let sim = Analytic::default();
+    let run = SynthRun {
+        name: "offset".into(),
+        scene: PathBuf::from("roads/bump_25mm.toml"),
+        obstacle: "bump_25mm".into(),
+        nominal_speed_kmh: 20.0,
+        load_case: "empty".into(),
+    };
+    let desc = make_synthetic(
+        &sim,
+        &run,
+        &SensorModel::default(),
+        &TriggerLayout::default(),
+        &dir,
+    )
+    .unwrap();
+    let rate = |d: &std::path::Path| {
+        validate_run(d, &sim, &Options::default())
+            .unwrap()
+            .corrected
+            .unwrap()
+    };
+    let before = rate(&desc);
+    // A DC accelerometer reads +1 g at rest on every channel.
+    let csv = dir.join("offset.csv");
+    let text: Vec<String> = std::fs::read_to_string(&csv)
+        .unwrap()
+        .lines()
+        .map(|l| {
+            if l.starts_with('#') || l.starts_with("time") {
+                return l.to_string();
+            }
+            let v: Vec<String> = l
+                .split(',')
+                .enumerate()
+                .map(|(i, x)| {
+                    if i == 0 {
+                        x.to_string()
+                    } else {
+                        format!("{:.6}", x.parse::<f64>().unwrap() + 9.80665)
+                    }
+                })
+                .collect();
+            v.join(",")
+        })
+        .collect();
+    std::fs::write(&csv, text.join("\n")).unwrap();
+    let offset = rate(&desc);
+    let toml = std::fs::read_to_string(&desc)
+        .unwrap()
+        .replace("gain = 1.0\n", "gain = 1.0\nzero_before_obstacle = true\n");
+    std::fs::write(&desc, toml).unwrap();
+    let zeroed = rate(&desc);
+    eprintln!(
+        "rating without offset {:.4}, with 1 g offset {:.4}, zeroed {:.4}",
+        before.mean_rating, offset.mean_rating, zeroed.mean_rating
+    );
+    assert!(offset.mean_rating < before.mean_rating - 0.2);
+    assert!((zeroed.mean_rating - before.mean_rating).abs() < 0.01);
+    assert!((zeroed.shift_s - before.shift_s).abs() < 2e-4);
+    std::fs::remove_dir_all(&dir).ok();
+}

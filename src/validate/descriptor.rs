@@ -60,6 +60,9 @@ pub struct ChannelSpec {
     pub unit: Option<Unit>,
     /// Calibration gain: physical value = gain * sign * recorded value (in `unit`).
     pub gain: f64,
+    /// Subtract each curve's mean before the obstacle (a DC accelerometer's gravity or
+    /// offset); applied to the simulated channel alike.
+    pub zero_before_obstacle: bool,
 }
 
 /// The acquisition low-pass (Butterworth, see [`super::filter`]).
@@ -168,6 +171,8 @@ struct ChannelToml {
     unit: Option<String>,
     #[serde(default = "onef")]
     gain: f64,
+    #[serde(default)]
+    zero_before_obstacle: bool,
 }
 
 fn one() -> i64 {
@@ -292,6 +297,7 @@ impl Descriptor {
                 sign: c.sign as f64,
                 unit,
                 gain,
+                zero_before_obstacle: c.zero_before_obstacle,
             });
         }
         if f.injected.is_some() && !f.synthetic {

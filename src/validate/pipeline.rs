@@ -117,7 +117,7 @@ pub fn validate_run(
 ) -> Result<RunValidation, String> {
     let wall = Instant::now();
     let desc = Descriptor::from_file(descriptor).map_err(|e| e.to_string())?;
-    let meas = read_measurement(&desc).map_err(|e| e.to_string())?;
+    let mut meas = read_measurement(&desc).map_err(|e| e.to_string())?;
     let foil = speed_from_foils(&desc.trigger.foils)
         .map_err(|e| format!("{}: {e}", desc.path.display()))?;
     let run_sim = |v: f64| -> Result<Acquired, String> {
@@ -140,12 +140,22 @@ pub fn validate_run(
         }
         acquire(&s, desc.filter).map_err(|e| format!("{}: {e}", desc.path.display()))
     };
-    let plain = run_sim(desc.nominal_speed_mps)?;
-    let fitted = if opts.correct {
+    let mut plain = run_sim(desc.nominal_speed_mps)?;
+    let mut fitted = if opts.correct {
         Some(run_sim(foil.speed_mps)?)
     } else {
         None
     };
+    for c in desc.channels.iter().filter(|c| c.zero_before_obstacle) {
+        let t_end = obstacle_time(&desc.trigger, foil.speed_mps) - ZERO_MARGIN_S;
+        zero(&meas.time_s, meas.channels.get_mut(&c.simulated), t_end);
+        for a in [Some(&mut plain), fitted.as_mut()].into_iter().flatten() {
+            let n = a.channels.get(&c.simulated).map_or(0, |v| v.len());
+            let t: Vec<f64> = (0..n).map(|k| a.t0_s + k as f64 * a.dt_s).collect();
+            let t_end = a.obstacle_time_s - ZERO_MARGIN_S;
+            zero(&t, a.channels.get_mut(&c.simulated), t_end);
+        }
+    }
     // One evaluation window for both comparisons: from just before the obstacle to the
     // end of the recording, inside both simulations' spans (with room for the shift).
     let t_obs = obstacle_time(&desc.trigger, foil.speed_mps);
@@ -298,6 +308,19 @@ fn compare(
         time_s: t,
         measured,
         simulated,
+    }
+}
+
+/// The zeroing mean is taken up to this long before the obstacle [s].
+const ZERO_MARGIN_S: f64 = 0.1;
+
+/// Subtracts from `y` its mean over t < `t_end` (needs 10 samples there).
+fn zero(t: &[f64], y: Option<&mut Vec<f64>>, t_end: f64) {
+    let Some(y) = y else { return };
+    let n = t.iter().take_while(|&&ti| ti < t_end).count().min(y.len());
+    if n >= 10 {
+        let mean = y[..n].iter().sum::<f64>() / n as f64;
+        y.iter_mut().for_each(|v| *v -= mean);
     }
 }
 

@@ -38,14 +38,13 @@ fn panel(run: &RunValidation, c: &Comparison, i: usize) -> LinePanel {
     };
     LinePanel {
         title: format!(
-            "{name} {}: R {:.3} ({}), r {:.3}, {:.2} km/h{}",
+            "{}: R {:.3} {}, {:.2} km/h{}",
             c.label,
             f.rating.overall,
             grade(f.rating.overall),
-            f.correlation,
             c.speed_mps * 3.6,
             if c.label == "corrected" {
-                format!(", shift {:+.1} ms", c.shift_s * 1e3)
+                format!(", {:+.1} ms", c.shift_s * 1e3)
             } else {
                 String::new()
             }
