@@ -93,6 +93,7 @@ fn cli_folder_with_one_bad_descriptor() {
     assert_eq!(runs.len(), 3);
     assert_eq!(v["failures"].as_array().unwrap().len(), 1);
     assert!(v["wall_s"].as_f64().unwrap() > 0.0);
+    assert!(v["simulator"].as_str().unwrap().contains("stand-in"));
     for r in runs {
         assert_eq!(r["synthetic"], true);
         let shift = r["shift_s"].as_f64().unwrap();

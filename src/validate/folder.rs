@@ -15,6 +15,8 @@ pub struct FolderResult {
     /// (descriptor, error) of each run that could not be validated.
     pub failures: Vec<(PathBuf, String)>,
     pub wall_s: f64,
+    /// The simulator's name (so a stand-in is never mistaken for the vehicle model).
+    pub simulator: String,
 }
 
 /// `path` itself if it is a file, else every `*.toml` below it (recursively, sorted).
@@ -50,7 +52,10 @@ pub fn validate_folder(
     progress: &dyn Fn(usize, &Path),
 ) -> FolderResult {
     let wall = std::time::Instant::now();
-    let mut res = FolderResult::default();
+    let mut res = FolderResult {
+        simulator: sim.name(),
+        ..FolderResult::default()
+    };
     for (i, f) in files.iter().enumerate() {
         progress(i, f);
         match validate_run(f, sim, opts) {
@@ -116,6 +121,7 @@ pub fn run_json(r: &RunValidation) -> Value {
 /// The whole batch as JSON.
 pub fn summary_json(res: &FolderResult) -> Value {
     json!({
+        "simulator": res.simulator,
         "runs": res.runs.iter().map(run_json).collect::<Vec<_>>(),
         "failures": res.failures.iter().map(|(f, e)| json!({"descriptor": f.display().to_string(), "error": e})).collect::<Vec<_>>(),
         "wall_s": res.wall_s,
