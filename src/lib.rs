@@ -13,4 +13,5 @@ pub mod road;
 pub mod solver;
 pub mod sweep;
 pub mod tyre;
+pub mod validate;
 pub mod verify;

@@ -8,6 +8,7 @@ pub mod plot;
 mod run;
 mod sweep;
 mod tyre_rig;
+mod validate;
 mod verify;
 
 use clap::{Parser, Subcommand};
@@ -44,6 +45,9 @@ enum Command {
     TyreRig(tyre_rig::TyreRigArgs),
     /// Parameter sweep over property-file values, in parallel; `sweep merge` joins shards.
     Sweep(sweep::SweepArgs),
+    /// Compare the simulation with recorded runs (RUN.toml or a folder); `validate synth`
+    /// writes synthetic runs.
+    Validate(validate::ValidateArgs),
 }
 
 #[derive(Subcommand, Debug)]
@@ -80,6 +84,7 @@ pub fn main() -> i32 {
         Command::Modes(a) => modes::run(&a),
         Command::TyreRig(a) => tyre_rig::run(&a),
         Command::Sweep(a) => sweep::run(&a),
+        Command::Validate(a) => validate::run(&a),
     };
     match result {
         Ok(code) => code,
