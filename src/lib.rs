@@ -12,6 +12,8 @@ pub mod model;
 pub mod road;
 pub mod scene;
 pub mod solver;
+pub mod sweep;
 pub mod tyre;
+pub mod validate;
 pub mod vehicle;
 pub mod verify;

@@ -100,7 +100,9 @@ fn hitch_fe_mass(v: u32) -> (f64, [f64; 3]) {
             node(e["node_b"].as_str().unwrap()),
         );
         let d = sub(&b, &a);
-        let me = rho * area(e["section"].as_str().unwrap()) * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        let me = rho
+            * area(e["section"].as_str().unwrap())
+            * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
         m += me;
         for c in 0..3 {
             s[c] += me * 0.5 * (a[c] + b[c]);
@@ -135,7 +137,8 @@ fn total_mass_is_the_sum_of_the_property_files() {
                 + mass(&rear, "wheel"))
         + 4.0 * car_tyre
         + hitch;
-    let tr = mass(&trailer, "body") + 2.0 * (mass(&trailer, "half") + mass(&trailer, "wheel") + tr_tyre);
+    let tr =
+        mass(&trailer, "body") + 2.0 * (mass(&trailer, "half") + mass(&trailer, "wheel") + tr_tyre);
     for kind in [TyreKind::RigidRing, TyreKind::PointFollower] {
         let v = load(&Options {
             tyre_kind: Some(kind),
@@ -151,7 +154,12 @@ fn total_mass_is_the_sum_of_the_property_files() {
             })
             .sum();
         let bodies: f64 = v.model.bodies.iter().map(|b| b.mass).sum();
-        assert!(((bodies + belts) - (car + tr)).abs() < 1e-9 * (car + tr), "{kind:?}: {} vs {}", bodies + belts, car + tr);
+        assert!(
+            ((bodies + belts) - (car + tr)).abs() < 1e-9 * (car + tr),
+            "{kind:?}: {} vs {}",
+            bodies + belts,
+            car + tr
+        );
         assert!((v.design.total_mass_kg - (car + tr)).abs() < 1e-9 * (car + tr));
         assert!((v.design.car_mass_kg - car).abs() < 1e-9 * car);
     }
@@ -173,15 +181,35 @@ fn right_side_mirrors_the_left_and_hardpoints_are_where_the_files_say() {
             continue;
         };
         let right = mk.name.replace(l, r);
-        let j = m.marker_index(&right).unwrap_or_else(|| panic!("no {right} for {}", mk.name));
+        let j = m
+            .marker_index(&right)
+            .unwrap_or_else(|| panic!("no {right} for {}", mk.name));
         let (a, b) = (marker_world(m, k), marker_world(m, j));
-        assert!((a[0] - b[0]).abs() < 1e-12 && (a[1] + b[1]).abs() < 1e-12 && (a[2] - b[2]).abs() < 1e-12, "{} {a:?} / {right} {b:?}", mk.name);
+        assert!(
+            (a[0] - b[0]).abs() < 1e-12
+                && (a[1] + b[1]).abs() < 1e-12
+                && (a[2] - b[2]).abs() < 1e-12,
+            "{} {a:?} / {right} {b:?}",
+            mk.name
+        );
         // Axes: z along the mirrored line (either sense: joint axes and pins are lines).
-        let za = mv(&rot(&m.bodies[mk.body.unwrap()].orientation), &[mk.axes[0][2], mk.axes[1][2], mk.axes[2][2]]);
+        let za = mv(
+            &rot(&m.bodies[mk.body.unwrap()].orientation),
+            &[mk.axes[0][2], mk.axes[1][2], mk.axes[2][2]],
+        );
         let mj = &m.markers[j];
-        let zb = mv(&rot(&m.bodies[mj.body.unwrap()].orientation), &[mj.axes[0][2], mj.axes[1][2], mj.axes[2][2]]);
-        let mirrored = |s: f64| (za[0] - s * zb[0]).abs() + (za[1] + s * zb[1]).abs() + (za[2] - s * zb[2]).abs();
-        assert!(mirrored(1.0).min(mirrored(-1.0)) < 1e-12, "{} axes {za:?} / {zb:?}", mk.name);
+        let zb = mv(
+            &rot(&m.bodies[mj.body.unwrap()].orientation),
+            &[mj.axes[0][2], mj.axes[1][2], mj.axes[2][2]],
+        );
+        let mirrored = |s: f64| {
+            (za[0] - s * zb[0]).abs() + (za[1] + s * zb[1]).abs() + (za[2] - s * zb[2]).abs()
+        };
+        assert!(
+            mirrored(1.0).min(mirrored(-1.0)) < 1e-12,
+            "{} axes {za:?} / {zb:?}",
+            mk.name
+        );
         pairs += 1;
     }
     assert!(pairs > 40, "{pairs} mirrored marker pairs");
@@ -197,7 +225,10 @@ fn right_side_mirrors_the_left_and_hardpoints_are_where_the_files_say() {
     let at = |name: &str| marker_world(m, m.marker_index(name).unwrap());
     let hp = |t: &toml::Table, k: &str| vec3(&t["hardpoints"][k]);
     let close = |a: [f64; 3], b: [f64; 3]| (0..3).all(|c| (a[c] - b[c]).abs() < 1e-12);
-    assert!(close(at("lca_front_bushing_fl.j"), hp(&front, "lower_arm_front_m")));
+    assert!(close(
+        at("lca_front_bushing_fl.j"),
+        hp(&front, "lower_arm_front_m")
+    ));
     assert!(close(at("ball_joint_fl.i"), hp(&front, "ball_joint_m")));
     assert!(close(at("top_mount_fl.j"), hp(&front, "strut_top_m")));
     assert!(close(at("spring_fl.i"), hp(&front, "spring_seat_m")));
@@ -224,20 +255,40 @@ fn modal_hitch_carries_the_fe_mass_properties_for_every_variant() {
         let b = &v.model.bodies[h.body];
         let md = &b.modal.as_ref().unwrap().data;
         let (m_fe, cm_fe) = hitch_fe_mass(variant);
-        assert!((b.mass - m_fe).abs() < 1e-9 * m_fe, "variant {variant}: {} vs {m_fe}", b.mass);
+        assert!(
+            (b.mass - m_fe).abs() < 1e-9 * m_fe,
+            "variant {variant}: {} vs {m_fe}",
+            b.mass
+        );
         for c in 0..3 {
-            assert!((b.position[c] - (origin[c] + cm_fe[c])).abs() < 1e-9, "variant {variant} cm");
+            assert!(
+                (b.position[c] - (origin[c] + cm_fe[c])).abs() < 1e-9,
+                "variant {variant} cm"
+            );
             for r in 0..3 {
                 assert_eq!(b.inertia[r][c], md.inertia_com_kg_m2[r][c]);
             }
         }
-        let full = towride::flex::modal_data(Path::new("flex/hitch_crossbeam.toml"), Some(variant)).unwrap();
-        assert_eq!(md.modes.len(), full.modes.iter().filter(|m| m.selected).count());
+        let full = towride::flex::modal_data(Path::new("flex/hitch_crossbeam.toml"), Some(variant))
+            .unwrap();
+        assert_eq!(
+            md.modes.len(),
+            full.modes.iter().filter(|m| m.selected).count()
+        );
         // Markers on nodes sit at the node's undeformed position.
-        for mk in v.model.markers.iter().filter(|mk| mk.body == Some(h.body) && mk.node.is_some()) {
+        for mk in v
+            .model
+            .markers
+            .iter()
+            .filter(|mk| mk.body == Some(h.body) && mk.node.is_some())
+        {
             let n = &md.nodes[mk.node.unwrap()];
             for c in 0..3 {
-                assert!((mk.position[c] - (n.position_m[c] - md.com_m[c])).abs() < 1e-12, "{}", mk.name);
+                assert!(
+                    (mk.position[c] - (n.position_m[c] - md.com_m[c])).abs() < 1e-12,
+                    "{}",
+                    mk.name
+                );
             }
         }
         masses.push(m_fe);
@@ -292,8 +343,16 @@ fn load_cases_move_the_trailer_centre_of_mass_where_the_file_says() {
         let d = v.design.trailer.as_ref().unwrap();
         assert_eq!(d.load_case, name);
         for k in 0..3 {
-            assert!((cm[k] - want.1[k]).abs() < 1e-9, "{name}: cm {cm:?} vs {:?}", want.1);
-            assert!((d.cm_m[k] - want.1[k]).abs() < 1e-9, "{name}: design cm {:?}", d.cm_m);
+            assert!(
+                (cm[k] - want.1[k]).abs() < 1e-9,
+                "{name}: cm {cm:?} vs {:?}",
+                want.1
+            );
+            assert!(
+                (d.cm_m[k] - want.1[k]).abs() < 1e-9,
+                "{name}: design cm {:?}",
+                d.cm_m
+            );
         }
     }
 }

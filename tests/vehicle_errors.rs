@@ -25,7 +25,10 @@ impl std::ops::Deref for Scratch {
 
 /// A scratch copy of the files a scene needs, in the repository's layout.
 fn scratch(tag: &str) -> Scratch {
-    let root = std::env::temp_dir().join(format!("towride_vehicle_errors_{}_{tag}", std::process::id()));
+    let root = std::env::temp_dir().join(format!(
+        "towride_vehicle_errors_{}_{tag}",
+        std::process::id()
+    ));
     let _ = std::fs::remove_dir_all(&root);
     for f in [
         "vehicles/fabia_trailer.toml",
@@ -52,13 +55,19 @@ fn scratch(tag: &str) -> Scratch {
 fn break_file(root: &Path, file: &str, from: &str, to: &str) -> usize {
     let p = root.join(file);
     let text = std::fs::read_to_string(&p).unwrap();
-    let at = text.find(from).unwrap_or_else(|| panic!("'{from}' not in {file}"));
+    let at = text
+        .find(from)
+        .unwrap_or_else(|| panic!("'{from}' not in {file}"));
     std::fs::write(&p, text.replacen(from, to, 1)).unwrap();
     text[..at].matches('\n').count() + 1
 }
 
 fn vehicle_error(root: &Path) -> InputError {
-    vehicle::load(&root.join("vehicles/fabia_trailer.toml"), &Options::default()).unwrap_err()
+    vehicle::load(
+        &root.join("vehicles/fabia_trailer.toml"),
+        &Options::default(),
+    )
+    .unwrap_err()
 }
 
 fn check(e: &InputError, file: &str, line: usize, field: &str) {
@@ -80,7 +89,12 @@ fn negative_mass_in_a_property_file() {
 fn misspelt_field_is_named_with_its_line() {
     let root = scratch("typo");
     let f = "vehicles/fabia/rear_twist_beam.toml";
-    let line = break_file(&root, f, "stiffness_n_m = 32000.0", "stifness_n_m = 32000.0");
+    let line = break_file(
+        &root,
+        f,
+        "stiffness_n_m = 32000.0",
+        "stifness_n_m = 32000.0",
+    );
     let e = vehicle_error(&root);
     check(&e, f, line, "spring");
     assert!(e.message.contains("stifness_n_m"), "{e}");
@@ -106,7 +120,12 @@ fn unphysical_inertia() {
 fn wrong_template_in_the_assembly_file() {
     let root = scratch("template");
     let f = "vehicles/fabia_trailer.toml";
-    let line = break_file(&root, f, "template = \"mcpherson\"", "template = \"double_wishbone\"");
+    let line = break_file(
+        &root,
+        f,
+        "template = \"mcpherson\"",
+        "template = \"double_wishbone\"",
+    );
     check(&vehicle_error(&root), f, line, "car.front.template");
 }
 
@@ -122,7 +141,12 @@ fn unknown_hitch_node() {
 fn bad_sensor_axis() {
     let root = scratch("sensor");
     let f = "vehicles/fabia_trailer.toml";
-    let line = break_file(&root, f, "axes = [\"x\", \"y\", \"z\"]", "axes = [\"x\", \"v\", \"z\"]");
+    let line = break_file(
+        &root,
+        f,
+        "axes = [\"x\", \"y\", \"z\"]",
+        "axes = [\"x\", \"v\", \"z\"]",
+    );
     check(&vehicle_error(&root), f, line, "sensor[8].axes[1]");
 }
 
@@ -134,9 +158,17 @@ fn unknown_load_case_and_bad_scene_values() {
     let e = towride::scene::load(&root.join(f)).unwrap_err();
     // The trailer file lists its load cases; the error is located there.
     assert!(e.file.ends_with("vehicles/trailer/box_trailer.toml"), "{e}");
-    assert!(e.field.starts_with("load_case") && e.message.contains("full"), "{e}");
+    assert!(
+        e.field.starts_with("load_case") && e.message.contains("full"),
+        "{e}"
+    );
     assert!(e.line.is_some(), "{e}");
     break_file(&root, f, "load_case = \"full\"", "load_case = \"empty\"");
     let line = break_file(&root, f, "speed_km_h = 50.0", "speed_km_h = -50.0");
-    check(&towride::scene::load(&root.join(f)).unwrap_err(), f, line, "run.speed_km_h");
+    check(
+        &towride::scene::load(&root.join(f)).unwrap_err(),
+        f,
+        line,
+        "run.speed_km_h",
+    );
 }

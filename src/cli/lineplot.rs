@@ -27,21 +27,25 @@ pub fn line_panels(path: &Path, panels: &[LinePanel], cols: usize) -> Result<(),
     let size = (560 * cols as u32, 360 * rows as u32);
     if path.extension().is_some_and(|e| e == "svg") {
         let root = SVGBackend::new(path, size).into_drawing_area();
-        draw(&root, panels, rows, cols)
+        root.fill(&WHITE).map_err(|e| e.to_string())?;
+        draw_panels(&root, panels, rows, cols)?;
+        root.present().map_err(|e| e.to_string())
     } else {
         let root = BitMapBackend::new(path, size).into_drawing_area();
-        draw(&root, panels, rows, cols)
+        root.fill(&WHITE).map_err(|e| e.to_string())?;
+        draw_panels(&root, panels, rows, cols)?;
+        root.present().map_err(|e| e.to_string())
     }
 }
 
-fn draw<DB: DrawingBackend>(
+/// Draws panels in a `rows` x `cols` grid into `root` (part of a larger page, say).
+pub fn draw_panels<DB: DrawingBackend>(
     root: &DrawingArea<DB, plotters::coord::Shift>,
     panels: &[LinePanel],
     rows: usize,
     cols: usize,
 ) -> Result<(), String> {
     let e = |x: &dyn std::fmt::Display| x.to_string();
-    root.fill(&WHITE).map_err(|x| e(&x))?;
     for (panel, area) in panels.iter().zip(root.split_evenly((rows, cols)).iter()) {
         let pts: Vec<(f64, f64)> = panel
             .lines
@@ -101,6 +105,5 @@ fn draw<DB: DrawingBackend>(
             .draw()
             .map_err(|x| e(&x))?;
     }
-    root.present().map_err(|x| e(&x))?;
     Ok(())
 }

@@ -7,7 +7,9 @@ mod modes;
 pub mod plot;
 mod run;
 mod scene_run;
+mod sweep;
 mod tyre_rig;
+mod validate;
 mod verify;
 
 use clap::{Parser, Subcommand};
@@ -42,6 +44,11 @@ enum Command {
     Modes(modes::ModesArgs),
     /// Run a tyre test rig (cleat or quarter rig) from a TOML file.
     TyreRig(tyre_rig::TyreRigArgs),
+    /// Parameter sweep over property-file values, in parallel; `sweep merge` joins shards.
+    Sweep(sweep::SweepArgs),
+    /// Compare the simulation with recorded runs (RUN.toml or a folder); `validate synth`
+    /// writes synthetic runs.
+    Validate(validate::ValidateArgs),
 }
 
 #[derive(Subcommand, Debug)]
@@ -77,6 +84,8 @@ pub fn main() -> i32 {
         Command::Doctor(a) => analyse::doctor(&a),
         Command::Modes(a) => modes::run(&a),
         Command::TyreRig(a) => tyre_rig::run(&a),
+        Command::Sweep(a) => sweep::run(&a),
+        Command::Validate(a) => validate::run(&a),
     };
     match result {
         Ok(code) => code,

@@ -6,6 +6,7 @@
 //! as `file:line:column: field `path`: message`, the line found from the TOML spans.
 
 pub mod csv_table;
+pub mod overrides;
 
 use std::fmt;
 use std::ops::Range;
@@ -110,6 +111,7 @@ impl Source {
             field: String::new(),
             message: format!("cannot read: {e}"),
         })?;
+        let text = overrides::apply(path, text)?;
         Source::from_text(path, text)
     }
 

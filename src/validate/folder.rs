@@ -1,0 +1,209 @@
+//! Many runs at once: every descriptor under a folder, one summary table (CSV + JSON).
+//! A run that fails is reported with its error and does not stop the others.
+
+use std::path::{Path, PathBuf};
+
+use serde_json::{json, Value};
+
+use super::pipeline::{validate_run, ChannelFigures, Comparison, Options, RunValidation};
+use super::Simulator;
+
+/// The outcome of a batch.
+#[derive(Debug, Default)]
+pub struct FolderResult {
+    pub runs: Vec<RunValidation>,
+    /// (descriptor, error) of each run that could not be validated.
+    pub failures: Vec<(PathBuf, String)>,
+    pub wall_s: f64,
+    /// The simulator's name (so a stand-in is never mistaken for the vehicle model).
+    pub simulator: String,
+}
+
+/// `path` itself if it is a file, else every `*.toml` below it (recursively, sorted).
+pub fn find_descriptors(path: &Path) -> Result<Vec<PathBuf>, String> {
+    if path.is_file() {
+        return Ok(vec![path.to_path_buf()]);
+    }
+    let mut out = Vec::new();
+    let mut stack = vec![path.to_path_buf()];
+    while let Some(dir) = stack.pop() {
+        let entries = std::fs::read_dir(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+        for e in entries.flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                stack.push(p);
+            } else if p.extension().is_some_and(|x| x == "toml") {
+                out.push(p);
+            }
+        }
+    }
+    out.sort();
+    if out.is_empty() {
+        return Err(format!("{}: no *.toml descriptors found", path.display()));
+    }
+    Ok(out)
+}
+
+/// Validates every descriptor in `files`; `progress(i, file)` is called before each.
+pub fn validate_folder(
+    files: &[PathBuf],
+    sim: &dyn Simulator,
+    opts: &Options,
+    progress: &dyn Fn(usize, &Path),
+) -> FolderResult {
+    let wall = std::time::Instant::now();
+    let mut res = FolderResult {
+        simulator: sim.name(),
+        ..FolderResult::default()
+    };
+    for (i, f) in files.iter().enumerate() {
+        progress(i, f);
+        match validate_run(f, sim, opts) {
+            Ok(r) => res.runs.push(r),
+            Err(e) => res.failures.push((f.clone(), e)),
+        }
+    }
+    res.wall_s = wall.elapsed().as_secs_f64();
+    res
+}
+
+fn figures(c: &Comparison, f: &ChannelFigures) -> Value {
+    json!({
+        "peak_measured_mps2": f.peak_measured_mps2,
+        "t_peak_measured_s": f.t_peak_measured_s,
+        "peak_simulated_mps2": f.peak_simulated_mps2,
+        "t_peak_simulated_s": f.t_peak_simulated_s,
+        "rms_diff_mps2": f.rms_diff_mps2,
+        "correlation": f.correlation,
+        "gain_ratio": f.gain_ratio,
+        "rating": f.rating.overall,
+        "scores": f.rating,
+        "shift_s": c.shift_s,
+        "speed_mps": c.speed_mps,
+    })
+}
+
+/// One run as JSON: per channel the corrected and uncorrected figures.
+pub fn run_json(r: &RunValidation) -> Value {
+    let channels: Vec<Value> = r
+        .uncorrected
+        .channels
+        .iter()
+        .enumerate()
+        .map(|(i, u)| {
+            let mut v = json!({ "channel": u.channel, "uncorrected": figures(&r.uncorrected, u) });
+            if let Some(c) = &r.corrected {
+                v["corrected"] = figures(c, &c.channels[i]);
+            }
+            v
+        })
+        .collect();
+    json!({
+        "run": r.name,
+        "descriptor": r.descriptor,
+        "synthetic": r.synthetic,
+        "obstacle": r.obstacle,
+        "load_case": r.load_case,
+        "nominal_speed_mps": r.nominal_speed_mps,
+        "speed_mps": r.foil_speed.speed_mps,
+        "foil_fit_residual_s": r.foil_speed.residual_rms_s,
+        "shift_s": r.corrected.as_ref().map(|c| c.shift_s),
+        "shift_at_bound": r.corrected.as_ref().map(|c| c.shift_at_bound),
+        "mean_rating_corrected": r.corrected.as_ref().map(|c| c.mean_rating),
+        "mean_rating_uncorrected": r.uncorrected.mean_rating,
+        "sample_rate_hz": r.sample_rate_hz,
+        "notes": r.notes,
+        "wall_s": r.wall_s,
+        "channels": channels,
+    })
+}
+
+/// The whole batch as JSON.
+pub fn summary_json(res: &FolderResult) -> Value {
+    json!({
+        "simulator": res.simulator,
+        "runs": res.runs.iter().map(run_json).collect::<Vec<_>>(),
+        "failures": res.failures.iter().map(|(f, e)| json!({"descriptor": f.display().to_string(), "error": e})).collect::<Vec<_>>(),
+        "wall_s": res.wall_s,
+    })
+}
+
+/// Writes `dir/summary.csv` (one row per run and channel, failures last with their
+/// error) and `dir/summary.json`.
+pub fn write_summary(res: &FolderResult, dir: &Path) -> Result<(PathBuf, PathBuf), String> {
+    let e = |x: &dyn std::fmt::Display| format!("{}: {x}", dir.display());
+    std::fs::create_dir_all(dir).map_err(|x| e(&x))?;
+    let csv_path = dir.join("summary.csv");
+    let mut w = csv::Writer::from_path(&csv_path).map_err(|x| e(&x))?;
+    w.write_record([
+        "run",
+        "synthetic",
+        "obstacle",
+        "load_case",
+        "nominal_speed [m/s]",
+        "speed [m/s]",
+        "shift [s]",
+        "channel",
+        "rating_corrected [-]",
+        "rating_uncorrected [-]",
+        "corridor [-]",
+        "phase [-]",
+        "magnitude [-]",
+        "slope [-]",
+        "peak_measured [m/s^2]",
+        "t_peak_measured [s]",
+        "peak_simulated [m/s^2]",
+        "t_peak_simulated [s]",
+        "rms_diff [m/s^2]",
+        "correlation [-]",
+        "gain_ratio [-]",
+        "error",
+    ])
+    .map_err(|x| e(&x))?;
+    let f = |x: f64| format!("{x:.6}");
+    for r in &res.runs {
+        let p = r.primary();
+        for (i, c) in p.channels.iter().enumerate() {
+            let rc = r
+                .corrected
+                .as_ref()
+                .map_or(String::new(), |k| f(k.channels[i].rating.overall));
+            w.write_record([
+                r.name.clone(),
+                r.synthetic.to_string(),
+                r.obstacle.clone(),
+                r.load_case.clone(),
+                f(r.nominal_speed_mps),
+                f(p.speed_mps),
+                f(p.shift_s),
+                c.channel.clone(),
+                rc,
+                f(r.uncorrected.channels[i].rating.overall),
+                f(c.rating.corridor),
+                f(c.rating.phase),
+                f(c.rating.magnitude),
+                f(c.rating.slope),
+                f(c.peak_measured_mps2),
+                f(c.t_peak_measured_s),
+                f(c.peak_simulated_mps2),
+                f(c.t_peak_simulated_s),
+                f(c.rms_diff_mps2),
+                f(c.correlation),
+                f(c.gain_ratio),
+                String::new(),
+            ])
+            .map_err(|x| e(&x))?;
+        }
+    }
+    for (file, err) in &res.failures {
+        let mut row = vec![String::new(); 22];
+        row[0] = file.display().to_string();
+        row[21] = err.clone();
+        w.write_record(&row).map_err(|x| e(&x))?;
+    }
+    w.flush().map_err(|x| e(&x))?;
+    let json_path = dir.join("summary.json");
+    let text = serde_json::to_string_pretty(&summary_json(res)).map_err(|x| e(&x))?;
+    std::fs::write(&json_path, text).map_err(|x| e(&x))?;
+    Ok((csv_path, json_path))
+}

@@ -1,0 +1,80 @@
+//! Validation against recorded accelerometer data (issue 7).
+//!
+//! A measured run is a CSV of time plus channels and a TOML descriptor ([`descriptor`]).
+//! [`validate_run`] reads both, derives the true speed from the foil pulses
+//! ([`trigger`]), asks a [`Simulator`] for the run at that speed, passes the simulation
+//! through the acquisition chain ([`filter`]), aligns it in time from the trigger and
+//! obstacle events refined by a bounded cross-correlation ([`align`]), and scores every
+//! channel ([`metrics`], [`rating`]) — once with these corrections and once without
+//! (nominal speed, event timing only), so the effect of the corrections is visible.
+//!
+//! The vehicle simulation enters only through the [`Simulator`] trait; the command line
+//! takes its simulator from [`default_simulator`], the one place to swap in the vehicle
+//! model. [`synth`] and [`plan`] make clearly labelled synthetic runs from any simulator.
+
+pub mod align;
+pub mod csv_reader;
+pub mod descriptor;
+pub mod filter;
+pub mod folder;
+pub mod metrics;
+pub mod pipeline;
+pub mod plan;
+pub mod rating;
+mod repair;
+pub mod report;
+pub mod standin;
+pub mod synth;
+pub mod trigger;
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+pub use descriptor::Descriptor;
+pub use folder::{validate_folder, write_summary, FolderResult};
+pub use pipeline::{validate_run, Comparison, Options, RunValidation};
+
+/// Standard gravity [m/s^2], for channels recorded in g.
+pub const G_MPS2: f64 = 9.80665;
+
+/// The trailer load cases of the measurement plan (thesis 5.5.3.4).
+pub const LOAD_CASES: [&str; 4] = [
+    "empty",
+    "200kg_over_axle",
+    "200kg_ahead_of_axle",
+    "200kg_behind_axle",
+];
+
+/// A simulated run: sampled channels in SI units on one time grid.
+#[derive(Clone, Debug, Default)]
+pub struct SimChannels {
+    /// Sample times [s], increasing.
+    pub time_s: Vec<f64>,
+    /// Channel name (e.g. `acc_trailer_drawbar_z`) -> values in SI units [m/s^2].
+    pub channels: BTreeMap<String, Vec<f64>>,
+    /// When the front wheels reach the obstacle start [s], on the same clock as `time_s`.
+    pub obstacle_time_s: f64,
+}
+
+/// Anything that can simulate a measured run: the vehicle model, or a stand-in.
+pub trait Simulator {
+    /// Simulates `scene` driven at `speed_mps` with trailer load case `load_case` (one of
+    /// [`LOAD_CASES`]).
+    fn simulate(
+        &self,
+        scene: &Path,
+        speed_mps: f64,
+        load_case: &str,
+    ) -> Result<SimChannels, String>;
+
+    /// A short name for reports and synthetic-data labels.
+    fn name(&self) -> String {
+        "unnamed simulator".into()
+    }
+}
+
+/// The simulator the command line uses. For now the analytic stand-in (not the vehicle
+/// model): replace this one line with the vehicle simulation when it lands.
+pub fn default_simulator() -> Box<dyn Simulator> {
+    Box::new(standin::StandInSimulator::default())
+}

@@ -1,0 +1,219 @@
+//! Synthetic measurements: a simulation passed through a documented sensor model and
+//! written as CSV + descriptor, both labelled synthetic (`synthetic = true`, a header
+//! comment, and an `[injected]` table recording what was put in).
+//!
+//! Sensor model (docs/validation.md): the run is simulated at the true speed, the
+//! speedometer (the descriptor's nominal speed) reads `speed_error_pct` high; the
+//! acquisition low-pass is applied; samples are taken at `sample_rate_hz` on a clock whose
+//! zero is the recorded photocell pulse, which fires `trigger_delay_s` after the car
+//! passes the photocell (every foil pulse carries the same latency plus white jitter of
+//! RMS `foil_jitter_s`); each channel reads (1 + gain error) times the true value (the
+//! descriptor keeps gain 1, as if the calibration were unaware); white noise of RMS
+//! `noise_rms_mps2` is added to every sample.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use super::descriptor::{AcqFilter, Unit};
+use super::filter::acquire;
+use super::Simulator;
+
+/// The documented sensor model; defaults are the test values.
+#[derive(Clone, Debug)]
+pub struct SensorModel {
+    pub noise_rms_mps2: f64,
+    pub filter: AcqFilter,
+    pub trigger_delay_s: f64,
+    /// The nominal (speedometer) speed reads this much above the true speed [%].
+    pub speed_error_pct: f64,
+    /// Every channel reads this much high [%] unless listed in `channel_gain_error_pct`.
+    pub gain_error_pct: f64,
+    pub channel_gain_error_pct: Vec<(String, f64)>,
+    pub sample_rate_hz: f64,
+    pub foil_jitter_s: f64,
+    /// Unit written to the CSV.
+    pub unit: Unit,
+    pub seed: u64,
+}
+
+impl Default for SensorModel {
+    fn default() -> Self {
+        SensorModel {
+            noise_rms_mps2: 0.05,
+            filter: AcqFilter {
+                order: 4,
+                cutoff_hz: 100.0,
+            },
+            trigger_delay_s: 0.037,
+            speed_error_pct: 3.0,
+            gain_error_pct: 5.0,
+            channel_gain_error_pct: Vec::new(),
+            sample_rate_hz: 1000.0,
+            foil_jitter_s: 1e-4,
+            unit: Unit::Mps2,
+            seed: 1,
+        }
+    }
+}
+
+/// Where the photocell and the foils are, relative to the obstacle start [m] (front-wheel
+/// contact point when each pulse fires).
+#[derive(Clone, Debug)]
+pub struct TriggerLayout {
+    pub photocell_m: f64,
+    pub foils_m: Vec<f64>,
+}
+
+impl Default for TriggerLayout {
+    fn default() -> Self {
+        // As in the thesis: the trigger foil before the obstacle, two more at known spacing.
+        TriggerLayout {
+            photocell_m: -10.0,
+            foils_m: vec![-10.0, -6.0, -2.0],
+        }
+    }
+}
+
+/// One run to synthesise.
+#[derive(Clone, Debug)]
+pub struct SynthRun {
+    pub name: String,
+    pub scene: PathBuf,
+    pub obstacle: String,
+    pub nominal_speed_kmh: f64,
+    pub load_case: String,
+}
+
+/// Deterministic normal deviates (SplitMix64 + Box-Muller): the same seed gives the same
+/// file on every machine.
+pub struct Noise(u64);
+
+impl Noise {
+    pub fn new(seed: u64) -> Noise {
+        Noise(seed)
+    }
+
+    fn uniform(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// A standard normal deviate.
+    pub fn normal(&mut self) -> f64 {
+        let u1 = self.uniform().max(1e-300);
+        let u2 = self.uniform();
+        (-2.0 * u1.ln()).sqrt() * (2.0 * std::f64::consts::PI * u2).cos()
+    }
+}
+
+/// `target` relative to directory `base` (both made absolute), with `/` separators.
+pub fn relative_path(target: &Path, base: &Path) -> String {
+    let abs = |p: &Path| std::fs::canonicalize(p).unwrap_or_else(|_| p.to_path_buf());
+    let (t, b) = (abs(target), abs(base));
+    let (tc, bc): (Vec<_>, Vec<_>) = (t.components().collect(), b.components().collect());
+    let common = tc.iter().zip(&bc).take_while(|(a, b)| a == b).count();
+    let mut parts: Vec<String> = vec!["..".into(); bc.len() - common];
+    parts.extend(
+        tc[common..]
+            .iter()
+            .map(|c| c.as_os_str().to_string_lossy().to_string()),
+    );
+    parts.join("/")
+}
+
+/// Simulates `run` with `sim`, applies `sensor`, and writes `<out>/<name>.csv` and
+/// `<out>/<name>.toml`; returns the descriptor's path.
+pub fn make_synthetic(
+    sim: &dyn Simulator,
+    run: &SynthRun,
+    sensor: &SensorModel,
+    layout: &TriggerLayout,
+    out: &Path,
+) -> Result<PathBuf, String> {
+    let s = sensor;
+    // The folder must exist before paths can be made relative to it.
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    let v_true = run.nominal_speed_kmh / 3.6 / (1.0 + s.speed_error_pct / 100.0);
+    let simulated = sim.simulate(&run.scene, v_true, &run.load_case)?;
+    let acq = acquire(&simulated, s.filter)?;
+    // Recording clock: the photocell pulse is stamped 0, trigger_delay after the passage.
+    let t_obs = -s.trigger_delay_s - layout.photocell_m / v_true;
+    let to_sim = |t_rec: f64| t_rec - t_obs + acq.obstacle_time_s;
+    let (s0, s1) = acq.span();
+    let fs = s.sample_rate_hz;
+    let k0 = ((s0 + t_obs - acq.obstacle_time_s) * fs).ceil() as i64;
+    let k1 = ((s1 - 0.1 + t_obs - acq.obstacle_time_s) * fs).floor() as i64;
+    if k1 - k0 < 20 {
+        return Err(format!(
+            "{}: the simulation is too short to record",
+            run.name
+        ));
+    }
+    let mut noise = Noise::new(s.seed);
+    let names: Vec<&String> = acq.channels.keys().collect();
+    let unit = s.unit.to_si();
+    let gain = |n: &str| {
+        let pct = s
+            .channel_gain_error_pct
+            .iter()
+            .find(|(c, _)| c == n)
+            .map_or(s.gain_error_pct, |c| c.1);
+        1.0 + pct / 100.0
+    };
+    let column = |n: &str| n.strip_prefix("acc_").unwrap_or(n).to_string();
+    let injected = format!(
+        "trigger delay {} ms, speedometer +{} %, gain error +{} %, noise {} m/s^2 RMS, foil jitter {} ms RMS, {}th-order {} Hz Butterworth, {} Hz, seed {}",
+        s.trigger_delay_s * 1e3, s.speed_error_pct, s.gain_error_pct, s.noise_rms_mps2,
+        s.foil_jitter_s * 1e3, s.filter.order, s.filter.cutoff_hz, fs, s.seed
+    );
+    let mut csv = format!(
+        "# SYNTHETIC DATA, not a measurement: made by `towride validate synth` with the {}\n# sensor model: {injected}\ntime [s]",
+        sim.name()
+    );
+    for n in &names {
+        let _ = write!(csv, ",{} [{}]", column(n), s.unit.label());
+    }
+    csv.push('\n');
+    for k in k0..=k1 {
+        let t = k as f64 / fs;
+        let _ = write!(csv, "{t:.6}");
+        for n in &names {
+            let v = gain(n) * acq.at(n, to_sim(t)) + s.noise_rms_mps2 * noise.normal();
+            let _ = write!(csv, ",{:.6}", v / unit);
+        }
+        csv.push('\n');
+    }
+    let csv_path = out.join(format!("{}.csv", run.name));
+    std::fs::write(&csv_path, csv).map_err(|e| format!("{}: {e}", csv_path.display()))?;
+    let mut toml = format!(
+        "# SYNTHETIC run, not a measurement: {} simulated by the {} and passed through the\n# sensor model of docs/validation.md ({injected}).\nsynthetic = true\nscene = \"{}\"\nobstacle = \"{}\"\nnominal_speed_kmh = {:?}\nload_case = \"{}\"\ndata = \"{}.csv\"\n\n[acquisition]\nfilter = \"butterworth\"\norder = {}\ncutoff_hz = {:?}\n\n[trigger]\nphotocell_position_m = {:?}\nphotocell_time_s = 0.0\n",
+        run.name, sim.name(), relative_path(&run.scene, out), run.obstacle, run.nominal_speed_kmh,
+        run.load_case, run.name, s.filter.order, s.filter.cutoff_hz, layout.photocell_m
+    );
+    for &x in &layout.foils_m {
+        let t = t_obs + x / v_true + s.trigger_delay_s + s.foil_jitter_s * noise.normal();
+        let _ = write!(
+            toml,
+            "\n[[trigger.foil]]\nposition_m = {x:?}\ntime_s = {t:.7}\n"
+        );
+    }
+    for n in &names {
+        let axis = n
+            .rsplit('_')
+            .next()
+            .filter(|a| matches!(*a, "x" | "y" | "z"))
+            .unwrap_or("z");
+        let _ = write!(toml, "\n[[channel]]\ncolumn = \"{}\"\nsimulated = \"{n}\"\naxis = \"{axis}\"\nsign = 1\ngain = 1.0\n", column(n));
+    }
+    let _ = write!(
+        toml,
+        "\n[injected]\nsimulator = \"{}\"\ntrigger_delay_s = {:?}\nspeed_error_pct = {:?}\ngain_error_pct = {:?}\nnoise_rms_mps2 = {:?}\nfoil_jitter_s = {:?}\nsample_rate_hz = {:?}\nseed = {}\n",
+        sim.name(), s.trigger_delay_s, s.speed_error_pct, s.gain_error_pct, s.noise_rms_mps2, s.foil_jitter_s, fs, s.seed
+    );
+    let desc = out.join(format!("{}.toml", run.name));
+    std::fs::write(&desc, toml).map_err(|e| format!("{}: {e}", desc.display()))?;
+    Ok(desc)
+}
