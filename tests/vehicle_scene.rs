@@ -11,16 +11,16 @@ use towride::model::System;
 use towride::scene::{self, plan};
 
 const SENSORS: [&str; 10] = [
-    "fl_wheel",
-    "fr_wheel",
-    "rl_wheel",
-    "rr_wheel",
-    "fl_body",
-    "fr_body",
-    "rl_body",
-    "rr_body",
-    "crossbeam",
-    "drawbar",
+    "wheel_front_left",
+    "wheel_front_right",
+    "wheel_rear_left",
+    "wheel_rear_right",
+    "body_front_left",
+    "body_front_right",
+    "body_rear_left",
+    "body_rear_right",
+    "hitch",
+    "trailer_drawbar",
 ];
 
 #[test]
@@ -45,7 +45,7 @@ fn default_scene_has_the_fixed_channels() {
     };
     assert_eq!(unit("hitch_fx"), "N");
     assert_eq!(unit("speed"), "m/s");
-    assert_eq!(unit("acc_crossbeam_y"), "m/s^2");
+    assert_eq!(unit("acc_hitch_y"), "m/s^2");
     for r in [
         "tyre_fl_fz",
         "tyre_tr_contact",
@@ -68,14 +68,14 @@ fn measurement_plan_has_72_cases() {
     names.sort_unstable();
     names.dedup();
     assert_eq!(names.len(), 72);
-    let c = p.case("bump50_20kmh_behind_axle").unwrap();
+    let c = p.case("bump_50mm_20kmh_200kg_behind_axle").unwrap();
     assert_eq!(c.overrides.speed_km_h, Some(20.0));
     // 7.5 m of travel at 20 km/h, then 1 s.
     assert!((c.overrides.duration_s.unwrap() - (7.5 / (20.0 / 3.6) + 1.0)).abs() < 1e-12);
     let s = p.scene(c).unwrap();
     assert_eq!(
         s.vehicle.design.trailer.as_ref().unwrap().load_case,
-        "behind_axle"
+        "200kg_behind_axle"
     );
     assert!(s.road_file.ends_with("bump_50mm.toml"));
 }
@@ -93,7 +93,7 @@ fn plan_lists_its_cases_on_the_command_line() {
     );
     let text = String::from_utf8_lossy(&out.stdout);
     assert_eq!(text.lines().count(), 72);
-    assert!(text.lines().any(|l| l == "ramp50_50kmh_empty"));
+    assert!(text.lines().any(|l| l == "ramp_50mm_50kmh_empty"));
 }
 
 /// First time |channel| exceeds `level`.
@@ -144,7 +144,7 @@ fn default_scene_runs_over_the_ramp() {
     // The ramp's foot is 1 m ahead of the front wheels; the trailer's wheels follow at
     // the distance the vehicle files give (the tyre meets a 45 deg flank a little before
     // its centre is over the foot).
-    let front = onset(t, &ch("acc_fl_wheel_z"), 20.0);
+    let front = onset(t, &ch("acc_wheel_front_left_z"), 20.0);
     assert!(
         (0.04..=0.09).contains(&front),
         "front wheels reach the ramp at {front} s"

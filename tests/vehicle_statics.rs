@@ -104,7 +104,12 @@ fn trailer_nose_load_follows_each_load_case() {
     let axle_x = tf["hardpoints"]["wheel_centre_m"][0].as_float().unwrap();
     let g = 9.81;
     let mut nose = Vec::new();
-    for case in ["empty", "over_axle", "ahead_of_axle", "behind_axle"] {
+    for case in [
+        "empty",
+        "200kg_over_axle",
+        "200kg_ahead_of_axle",
+        "200kg_behind_axle",
+    ] {
         let (v, sys, y, yp) = at_rest("vehicles/fabia_trailer.toml", Some(case));
         let sum: f64 = tyre_loads(&sys, &y).iter().map(|l| l.1).sum();
         let weight = v.design.total_mass_kg * g;

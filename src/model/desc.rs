@@ -351,7 +351,7 @@ pub struct Output {
     pub request: Request,
     /// Channel names replacing the default `<name>.x`, `<name>.y`, ... (one per component
     /// the request produces, in order); an empty name drops that component. Fixed
-    /// channel names such as `hitch_fx` or `acc_fl_wheel_z` come from here.
+    /// channel names such as `hitch_fx` or `acc_wheel_front_left_z` come from here.
     pub components: Option<Vec<String>>,
     /// Factor on every component (-1 reports an element's load on its J body).
     pub scale: f64,

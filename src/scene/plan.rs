@@ -6,18 +6,19 @@
 //! name = "measurement_plan"
 //! template = "default.toml"
 //! speeds_km_h = [10.0, 20.0, 30.0, 40.0, 50.0, 60.0]
-//! load_cases = ["empty", "over_axle", "ahead_of_axle", "behind_axle"]
+//! load_cases = ["empty", "200kg_over_axle", "200kg_ahead_of_axle", "200kg_behind_axle"]
 //! # Each run lasts travel_m / speed + after_s: long enough for the trailer's wheels to
 //! # cross the obstacle, then a little more.
 //! travel_m = 7.5
 //! after_s = 1.0
 //!
 //! [[obstacle]]
-//! name = "ramp50"
+//! name = "ramp_50mm"
 //! road = "../roads/ramp_thesis.toml"
 //! ```
 //!
-//! Case names are `<obstacle>_<speed>kmh_<load case>`, e.g. `ramp50_50kmh_empty`.
+//! Case names are `<obstacle>_<speed>kmh_<load case>`, e.g. `ramp_50mm_50kmh_empty` (the
+//! names `validate::plan` gives its synthetic runs).
 
 use std::path::{Path, PathBuf};
 
@@ -138,10 +139,10 @@ pub fn load(path: &Path) -> Result<Plan, InputError> {
     })
 }
 
-/// 50 -> "50", 12.5 -> "12.5".
+/// 50 -> "50", 5 -> "05" (as `validate::plan` names its runs), 12.5 -> "12.5".
 fn fmt_speed(v: f64) -> String {
     if v.fract() == 0.0 {
-        format!("{v:.0}")
+        format!("{v:02.0}")
     } else {
         format!("{v}")
     }

@@ -21,7 +21,7 @@
 //! load_case = "empty"
 //!
 //! [[sensor]]
-//! name = "fl_wheel"
+//! name = "wheel_front_left"
 //! body = "knuckle_fl"
 //! position_m = [0.0, 0.7175, 0.273]
 //! axes = ["z"]
