@@ -51,6 +51,21 @@ pub struct TandemCams {
     pub xi_max: f64,
     /// Lateral offsets of the tandems from the wheel centre plane [m].
     pub offsets: Vec<f64>,
+    /// The last query and its answer: a Newton matrix built by finite differences asks
+    /// for the same contact point again and again while it perturbs velocities and
+    /// states, and the search over an obstacle is the tyre's costliest part.
+    last: LastQuery,
+}
+
+/// A one-entry memo of [`TandemCams::effective`], keyed by the road's address and the
+/// query; a clone starts empty (it may serve another road).
+#[derive(Debug, Default)]
+struct LastQuery(std::cell::Cell<Option<(usize, [f64; 6], EffectiveRoad)>>);
+
+impl Clone for LastQuery {
+    fn clone(&self) -> Self {
+        LastQuery::default()
+    }
 }
 
 /// Tolerance of the golden-section search on the cam position [m].
@@ -73,6 +88,7 @@ impl TandemCams {
             l_s: p.d.l_s,
             xi_max: a * u,
             offsets,
+            last: LastQuery::default(),
         }
     }
 
@@ -158,6 +174,29 @@ impl TandemCams {
     /// The effective road under a wheel whose centre projects to `centre` (x, y), heading
     /// along the unit vector `heading` and with the lateral unit vector `lateral`.
     pub fn effective(
+        &self,
+        road: &Road,
+        centre: [f64; 2],
+        heading: [f64; 2],
+        lateral: [f64; 2],
+    ) -> EffectiveRoad {
+        let key = (
+            road as *const Road as usize,
+            [
+                centre[0], centre[1], heading[0], heading[1], lateral[0], lateral[1],
+            ],
+        );
+        if let Some((r, q, e)) = self.last.0.get() {
+            if (r, q) == key {
+                return e;
+            }
+        }
+        let e = self.effective_uncached(road, centre, heading, lateral);
+        self.last.0.set(Some((key.0, key.1, e)));
+        e
+    }
+
+    fn effective_uncached(
         &self,
         road: &Road,
         centre: [f64; 2],
