@@ -22,6 +22,10 @@ pub struct VerifyArgs {
     /// How index-3 problems are integrated: ggl (stabilised index 2) or index3.
     #[arg(long, value_enum, default_value = "ggl")]
     formulation: runner::Formulation,
+    /// Cap the Newton tolerance at the error level the step controller acts on
+    /// (`newton_tol_growth_cap`, see docs/solver.md).
+    #[arg(long)]
+    newton_tol_cap: bool,
 }
 
 pub fn run(a: &VerifyArgs) -> Result<i32, String> {
@@ -31,14 +35,12 @@ pub fn run(a: &VerifyArgs) -> Result<i32, String> {
     for b in &benches {
         for &tol in &a.tol {
             pb.set_message(format!("{} {tol:e}", b.name));
-            records.push(runner::run_case(
-                b,
-                tol,
-                tol * b.atol_scale,
-                a.method.into(),
-                a.formulation,
-                0.0,
-            ));
+            let opts = crate::solver::SolverOptions {
+                method: a.method.into(),
+                newton_tol_growth_cap: a.newton_tol_cap,
+                ..crate::solver::SolverOptions::with_tol(tol, tol * b.atol_scale)
+            };
+            records.push(runner::run_with(b, &opts, a.formulation, 0.0));
             pb.inc(1);
         }
     }

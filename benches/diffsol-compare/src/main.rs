@@ -11,7 +11,7 @@
 //!
 //! Usage: `cargo run --release -- [--json] [--out DIR] [--min-wall S] [--max-repeats N]
 //! [--kmin K] [--kmax K] [--problems hires,vdpol,rober] [--linalg nalgebra|faer]
-//! [--rober-atol-factor F]`.
+//! [--rober-atol-factor F] [--towride-cap]`.
 
 use std::cell::{Cell, RefCell};
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -25,8 +25,8 @@ use diffsol::{
     VectorRef,
 };
 use serde_json::{json, Value};
-use towride::solver::Method;
-use towride::verify::runner::{run_case, Formulation};
+use towride::solver::{Method, SolverOptions};
+use towride::verify::runner::{run_with, Formulation};
 use towride::verify::{self, StiffOde, StiffOdeCase};
 
 /// diffsol version this crate is built against (checked against Cargo.lock by hand).
@@ -102,6 +102,10 @@ struct Args {
     /// Robertson's atol as a multiple of rtol.
     #[arg(long, default_value_t = ROBER_ATOL_FACTOR)]
     rober_atol_factor: f64,
+    /// Run towride with `newton_tol_growth_cap` (Newton tolerance capped at the error level
+    /// the step controller acts on) instead of IDA's constant 0.33.
+    #[arg(long)]
+    towride_cap: bool,
 }
 
 /// One run of one solver at one tolerance.
@@ -209,10 +213,16 @@ fn run_towride(
     atol: f64,
     comps: &[usize],
     min_wall: f64,
+    cap: bool,
 ) -> Point {
     let clock = Instant::now();
+    let opts = SolverOptions {
+        method: Method::Variable,
+        newton_tol_growth_cap: cap,
+        ..SolverOptions::with_tol(rtol, atol)
+    };
     let r = match catch_unwind(AssertUnwindSafe(|| {
-        run_case(b, rtol, atol, Method::Variable, Formulation::Ggl, min_wall)
+        run_with(b, &opts, Formulation::Ggl, min_wall)
     })) {
         Ok(r) => r,
         Err(p) => {
@@ -751,7 +761,15 @@ fn main() {
             let rtol = 10f64.powi(-k);
             let atol = atol_for(name, rtol, args.rober_atol_factor);
             eprintln!("{name} k={k}: towride ...");
-            points.push(run_towride(&bench, k, rtol, atol, &comps, args.min_wall));
+            points.push(run_towride(
+                &bench,
+                k,
+                rtol,
+                atol,
+                &comps,
+                args.min_wall,
+                args.towride_cap,
+            ));
             eprintln!("{name} k={k}: diffsol ...");
             points.push(run_diffsol(
                 case,
@@ -792,7 +810,8 @@ fn main() {
         },
         "towride": {
             "method": "Variable (variable-coefficient BDF, fixed-leading-coefficient form)",
-            "entry": "towride::verify::runner::run_case on the DAE form F = y' - f(t, y)",
+            "entry": "towride::verify::runner::run_with on the DAE form F = y' - f(t, y)",
+            "newton_tol_growth_cap": args.towride_cap,
         },
         "settings": {
             "tolerances": "rtol = 10^-k; atol = rtol for hires and vdpol, atol = rober_atol_factor * rtol for rober",

@@ -79,15 +79,20 @@ impl<P: DaeProblem + ?Sized> Bdf<'_, P> {
                 }
                 err_kp1 = self.wrms(&d, &self.wt_err) / (kk as f64 + 2.0);
                 self.scratch = d;
+                // IDA compares the terms T(j) = (j+1) err_j, not the scaled errors
+                // (IDACompleteStep: terr_km1 = k err_km1, terr_k = (k+1) err_k,
+                // terr_kp1 = (k+2) err_kp1; DASSL's TERKM1/TERK/TERKP1 likewise).
+                let terr_k = (kk as f64 + 1.0) * self.err_k;
+                let terr_kp1 = (kk as f64 + 2.0) * err_kp1;
                 if kk == 1 {
-                    if err_kp1 >= 0.5 * self.err_k {
+                    if terr_kp1 >= 0.5 * terr_k {
                         Action::Maintain
                     } else {
                         Action::Raise
                     }
-                } else if self.err_km1 <= self.err_k.min(err_kp1) {
+                } else if kk as f64 * self.err_km1 <= terr_k.min(terr_kp1) {
                     Action::Lower
-                } else if err_kp1 >= self.err_k {
+                } else if terr_kp1 >= terr_k {
                     Action::Maintain
                 } else {
                     Action::Raise

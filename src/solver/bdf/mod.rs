@@ -46,6 +46,9 @@ pub struct Bdf<'a, P: DaeProblem + ?Sized> {
     opts: SolverOptions,
     n: usize,
     kinds: Vec<VarKind>,
+    /// Error control of the algebraic unknowns with `Auto` resolved (`Auto` stays only
+    /// for problems of index <= 2, meaning: index-2 unknowns out of the error test).
+    algebraic: AlgebraicControl,
     // History and coefficients (IDA names).
     phi: Vec<Vec<f64>>,
     psi: [f64; MAXORD + 2],
@@ -143,6 +146,10 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
                 what: format!("var_kinds has {} entries for {n} unknowns", kinds.len()),
             });
         }
+        let algebraic = match opts.algebraic {
+            AlgebraicControl::Auto if kinds.contains(&VarKind::Index3) => AlgebraicControl::Scaled,
+            a => a,
+        };
         let pattern = prob.jacobian_pattern();
         let dense = match opts.linear_solver {
             LinearSolver::Dense => true,
@@ -160,6 +167,7 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
             prob,
             n,
             kinds,
+            algebraic,
             phi,
             psi: [0.0; MAXORD + 2],
             alpha: [0.0; MAXORD + 2],
@@ -380,7 +388,7 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
             } else {
                 1.0
             };
-            match self.opts.algebraic {
+            match self.algebraic {
                 AlgebraicControl::Full => {
                     self.wt_err[i] = self.ewt[i];
                     self.wt_newton[i] = self.ewt[i];
@@ -395,6 +403,12 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
                     } else {
                         self.ewt[i]
                     };
+                    self.wt_newton[i] = self.ewt[i] * scale;
+                }
+                // Resolved in `new` to one of the others or to this: index >= 2 out of
+                // the error test, index 1 in full.
+                AlgebraicControl::Auto => {
+                    self.wt_err[i] = if kind.level() >= 2 { 0.0 } else { self.ewt[i] };
                     self.wt_newton[i] = self.ewt[i] * scale;
                 }
             }
