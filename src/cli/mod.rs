@@ -6,6 +6,7 @@ pub mod lineplot;
 mod modes;
 pub mod plot;
 mod run;
+mod scene_report;
 mod scene_run;
 mod sweep;
 mod tyre_rig;

@@ -88,6 +88,9 @@ fn run_scene(s: &Scene, out: &Path, quiet: bool) -> Result<i32, String> {
     res.write_csv(&csv)
         .map_err(|e| format!("{}: {e}", csv.display()))?;
     let st = &res.stats;
+    let plot = out.join("plots.png");
+    let plot_error = super::scene_report::plots(&res, &plot).err();
+    let lift = super::scene_report::lift_off(&res);
     let summary = json!({
         "scene": s.name,
         "file": s.file.display().to_string(),
@@ -108,6 +111,9 @@ fn run_scene(s: &Scene, out: &Path, quiet: bool) -> Result<i32, String> {
         "warnings": warnings,
         "start": start_report,
         "design": s.vehicle.design,
+        "lift_off": lift,
+        "modal_energy": super::scene_report::energy(&sys, &res),
+        "plots": plot_error.as_ref().map_or(Value::String(plot.display().to_string()), |e| Value::String(format!("not written: {e}"))),
         "channels": channel_summary(&res),
     });
     let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
@@ -127,8 +133,19 @@ fn run_scene(s: &Scene, out: &Path, quiet: bool) -> Result<i32, String> {
             st.steps,
             csv.display()
         );
+        for l in &lift {
+            println!(
+                "  wheel {} off the road from {:.3} s for {:.3} s",
+                l["wheel"].as_str().unwrap_or(""),
+                l["start_s"].as_f64().unwrap_or(f64::NAN),
+                l["duration_s"].as_f64().unwrap_or(f64::NAN)
+            );
+        }
+        if let Some(e) = &plot_error {
+            eprintln!("warning: plots not written: {e}");
+        }
         if let Some(Value::Object(m)) = summary.get("channels") {
-            for (name, c) in m {
+            for (name, c) in m.iter().filter(|(n, _)| !n.starts_with("hitch_eta_")) {
                 println!(
                     "  {name:<20} min {:>11.4e} at {:>7.4} s   max {:>11.4e} at {:>7.4} s  [{}]",
                     c["min"].as_f64().unwrap_or(f64::NAN),

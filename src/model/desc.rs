@@ -327,8 +327,39 @@ pub enum ElementQuantity {
     Velocity,
 }
 
+/// What a tyre output reports.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TyreQuantity {
+    /// Contact normal force [N].
+    NormalForce,
+    /// 1 while the tyre touches the road, 0 in flight.
+    Contact,
+    /// Longitudinal contact force [N].
+    LongitudinalForce,
+}
+
+/// What a modal-body output reports.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum ModalQuantity {
+    /// The modal coordinates, one channel per selected mode.
+    Coordinates,
+    /// Strain energy sum w_j^2 eta_j^2 / 2 [J].
+    StrainEnergy,
+    /// Elastic displacement of modal node `node` relative to the mean of the nodes
+    /// `reference` (e.g. the ball relative to the brackets), body axes [m].
+    Deflection { node: usize, reference: Vec<usize> },
+}
+
 #[derive(Clone, Debug)]
 pub enum Request {
+    Tyre {
+        tyre: usize,
+        quantity: TyreQuantity,
+    },
+    Modal {
+        body: usize,
+        quantity: ModalQuantity,
+    },
     Marker {
         marker: usize,
         quantity: MarkerQuantity,

@@ -2,7 +2,8 @@
 //! from a solver state (y, y') and laid out as named channels with units.
 
 use super::desc::{
-    Axes, ElementQuantity, Force, JointQuantity, MarkerQuantity, Model, MotionDof, Output, Request,
+    Axes, ElementQuantity, Force, JointQuantity, MarkerQuantity, ModalQuantity, Model, MotionDof,
+    Output, Request, TyreQuantity,
 };
 use super::joint::joint_coordinate;
 use super::math::{add, cross, mtv, mv, rot, sub};
@@ -60,7 +61,31 @@ pub fn component_count(m: &Model, request: &Request) -> usize {
 /// The default channels of one output.
 fn raw_channels(m: &Model, o: &Output) -> Vec<ChannelInfo> {
     let mut out = Vec::new();
+    let one = |unit: &'static str| ChannelInfo {
+        name: o.name.clone(),
+        unit,
+        angle: false,
+    };
     match &o.request {
+        Request::Tyre { quantity, .. } => out.push(match quantity {
+            TyreQuantity::NormalForce | TyreQuantity::LongitudinalForce => one("N"),
+            TyreQuantity::Contact => one("-"),
+        }),
+        Request::Modal { body, quantity } => match quantity {
+            ModalQuantity::Coordinates => {
+                let n = m.bodies[*body]
+                    .modal
+                    .as_ref()
+                    .map_or(0, |md| md.data.modes.len());
+                out.extend((1..=n).map(|k| ChannelInfo {
+                    name: format!("{}.{k}", o.name),
+                    unit: "-",
+                    angle: false,
+                }));
+            }
+            ModalQuantity::StrainEnergy => out.push(one("J")),
+            ModalQuantity::Deflection { .. } => out.extend(vec_channels(&o.name, "m")),
+        },
         Request::Marker { quantity, .. } => {
             let unit = match quantity {
                 MarkerQuantity::Position => "m",
@@ -226,6 +251,51 @@ pub fn evaluate(sys: &System, t: f64, y: &[f64], yp: &[f64]) -> Vec<f64> {
                             tq
                         };
                         out.extend_from_slice(&resolve(*axes, w));
+                    }
+                }
+            }
+            Request::Tyre { tyre, quantity } => {
+                let te = &m.tyres[*tyre];
+                let road = m.road.as_ref().expect("validated: tyres need a road");
+                let kin = sys.wheel_kinematics(q, v, te.marker);
+                let e = sys
+                    .ext
+                    .iter()
+                    .find(|e| e.kind == super::system::ExtKind::Tyre(*tyre))
+                    .expect("every tyre has its states");
+                let c = te.tyre.outputs(&kin, road, &x[e.off..e.off + e.n]);
+                out.push(match quantity {
+                    TyreQuantity::NormalForce => c.normal_force,
+                    TyreQuantity::LongitudinalForce => c.longitudinal_force,
+                    TyreQuantity::Contact => f64::from(c.normal_force > 0.0),
+                });
+            }
+            Request::Modal { body, quantity } => {
+                let o0 = sys.qo[*body] + 7;
+                let eta = &q[o0..o0 + sys.nm[*body]];
+                match quantity {
+                    ModalQuantity::Coordinates => out.extend_from_slice(eta),
+                    ModalQuantity::StrainEnergy => out.push(sys.strain_energy(*body, q).0),
+                    ModalQuantity::Deflection { node, reference } => {
+                        let md = &m.bodies[*body].modal.as_ref().expect("modal body").data;
+                        let disp = |n: usize| -> [f64; 3] {
+                            std::array::from_fn(|c| {
+                                md.nodes[n]
+                                    .shapes
+                                    .iter()
+                                    .zip(eta)
+                                    .map(|(s, e)| s[c] * e)
+                                    .sum()
+                            })
+                        };
+                        let mut d = disp(*node);
+                        for r in reference {
+                            let dr = disp(*r);
+                            for c in 0..3 {
+                                d[c] -= dr[c] / reference.len() as f64;
+                            }
+                        }
+                        out.extend_from_slice(&d);
                     }
                 }
             }

@@ -8,13 +8,18 @@
 //! | `trailer_ax` [m/s^2] | trailer box centre of mass: acceleration along the box's x |
 //! | `acc_<sensor>_<axis>` [m/s^2] | sensor marker: acceleration along its measuring axes (kinematic, gravity not included) |
 //!
-//! Reserved for channels that need the assembled system: `tyre_<wheel>_fz` [N],
-//! `tyre_<wheel>_contact` [-], `hitch_eta_<k>` (k = 1.. over the selected modes) and
-//! `hitch_strain_energy` [J].
+//! | `tyre_<wheel>_fz` [N], `tyre_<wheel>_contact` [-] | contact normal force, 1 in contact / 0 in flight |
+//! | `hitch_eta_<k>` [-] | crossbeam modal coordinates (k = 1.. over the selected modes, unit modal mass) |
+//! | `hitch_strain_energy` [J] | crossbeam strain energy |
+//! | `hitch_deflection_<x,y,z>` [m] | elastic displacement of the ball relative to the brackets, hitch axes |
 
 use serde::Serialize;
 
-use crate::model::desc::{Axes, ElementQuantity, JointQuantity, MarkerQuantity, Output, Request};
+use crate::flex::NodeKind;
+use crate::model::desc::{
+    Axes, ElementQuantity, JointQuantity, MarkerQuantity, ModalQuantity, Output, Request,
+    TyreQuantity,
+};
 use crate::model::output::{channels_of, component_count};
 use crate::vehicle::{Link, Vehicle};
 
@@ -105,6 +110,72 @@ pub fn standard(v: &Vehicle) -> (Vec<Output>, Vec<Channel>) {
             &refs,
             1.0,
         ));
+    }
+    for w in &h.wheels {
+        for (q, suffix) in [
+            (TyreQuantity::NormalForce, "fz"),
+            (TyreQuantity::Contact, "contact"),
+        ] {
+            let name = format!("tyre_{}_{suffix}", w.name);
+            out.push(named(
+                &name,
+                Request::Tyre {
+                    tyre: w.tyre,
+                    quantity: q,
+                },
+                &[name.as_str()],
+                1.0,
+            ));
+        }
+    }
+    if let Some(hh) = &h.hitch {
+        let names: Vec<String> = (1..=hh.modes).map(|k| format!("hitch_eta_{k}")).collect();
+        let refs: Vec<&str> = names.iter().map(|s| s.as_str()).collect();
+        out.push(named(
+            "hitch_eta",
+            Request::Modal {
+                body: hh.body,
+                quantity: ModalQuantity::Coordinates,
+            },
+            &refs,
+            1.0,
+        ));
+        out.push(named(
+            "hitch_strain_energy",
+            Request::Modal {
+                body: hh.body,
+                quantity: ModalQuantity::StrainEnergy,
+            },
+            &["hitch_strain_energy"],
+            1.0,
+        ));
+        // The ball's elastic displacement relative to the brackets.
+        if let Some(md) = &v.model.bodies[hh.body].modal {
+            let reference: Vec<usize> = md
+                .data
+                .nodes
+                .iter()
+                .enumerate()
+                .filter(|(k, n)| n.kind == NodeKind::Interface && *k != hh.ball_node)
+                .map(|(k, _)| k)
+                .collect();
+            out.push(named(
+                "hitch_deflection",
+                Request::Modal {
+                    body: hh.body,
+                    quantity: ModalQuantity::Deflection {
+                        node: hh.ball_node,
+                        reference,
+                    },
+                },
+                &[
+                    "hitch_deflection_x",
+                    "hitch_deflection_y",
+                    "hitch_deflection_z",
+                ],
+                1.0,
+            ));
+        }
     }
     let mut m = v.model.clone();
     for o in &out {

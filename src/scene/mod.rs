@@ -272,7 +272,7 @@ pub fn load_with(path: &Path, o: &Overrides) -> Result<Scene, InputError> {
     let (outputs, channels) = channels::standard(&v);
     let reserved = channels::reserved(&v);
     for (k, c) in channels.iter().enumerate() {
-        if channels[..k].iter().any(|d| d.name == c.name) || reserved.contains(&c.name) {
+        if channels[..k].iter().any(|d| d.name == c.name) {
             return Err(src.error(&path!["sensor"], format!("channel '{}' is defined twice (sensor names must differ from the vehicle's and from the reserved channels)", c.name)));
         }
     }
