@@ -6,8 +6,10 @@ pub mod lineplot;
 mod modes;
 pub mod plot;
 mod run;
+mod scene_bench;
 mod scene_report;
 mod scene_run;
+mod scene_stress;
 mod sweep;
 mod tyre_rig;
 mod validate;
@@ -38,18 +40,30 @@ enum Command {
     Linear(analyse::LinearArgs),
     /// Numerical health check: redundant constraints, conditioning, ratios, advice.
     Doctor(analyse::DoctorArgs),
-    /// Work-precision benchmarks.
-    #[command(subcommand)]
-    Bench(BenchCommand),
+    /// Work-precision study of a scene (`bench SCENE`) or of the solver on the test set
+    /// (`bench solver`).
+    Bench(BenchArgs),
     /// Mode table, mode selection and inertia invariants of a flexible body (flex/*.toml).
     Modes(modes::ModesArgs),
     /// Run a tyre test rig (cleat or quarter rig) from a TOML file.
     TyreRig(tyre_rig::TyreRigArgs),
+    /// Stress test of a scene: the thesis's integrator settings and worse, each case
+    /// classified.
+    Stress(scene_stress::StressArgs),
     /// Parameter sweep over property-file values, in parallel; `sweep merge` joins shards.
     Sweep(sweep::SweepArgs),
     /// Compare the simulation with recorded runs (RUN.toml or a folder); `validate synth`
     /// writes synthetic runs.
     Validate(validate::ValidateArgs),
+}
+
+#[derive(clap::Args, Debug)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
+struct BenchArgs {
+    #[command(subcommand)]
+    cmd: Option<BenchCommand>,
+    #[command(flatten)]
+    scene: scene_bench::BenchSceneArgs,
 }
 
 #[derive(Subcommand, Debug)]
@@ -79,13 +93,18 @@ pub fn main() -> i32 {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Verify(a) => verify::run(&a),
-        Command::Bench(BenchCommand::Solver(a)) => bench::run_solver(&a),
+        Command::Bench(BenchArgs {
+            cmd: Some(BenchCommand::Solver(a)),
+            ..
+        }) => bench::run_solver(&a),
+        Command::Bench(a) => scene_bench::run_bench(&a.scene),
         Command::Run(a) => run::run(&a),
         Command::Linear(a) => analyse::linear(&a),
         Command::Doctor(a) => analyse::doctor(&a),
         Command::Modes(a) => modes::run(&a),
         Command::TyreRig(a) => tyre_rig::run(&a),
         Command::Sweep(a) => sweep::run(&a),
+        Command::Stress(a) => scene_stress::run_stress(&a),
         Command::Validate(a) => validate::run(&a),
     };
     match result {

@@ -48,7 +48,7 @@ struct SynthArgs {
     /// All 72 runs of the measurement plan (3 obstacles x 6 speeds x 4 loads).
     #[arg(long)]
     plan: bool,
-    /// Plan obstacles as NAME=SCENE (repeatable; default the three thesis road files).
+    /// Plan obstacles as NAME=SCENE (repeatable; default the three thesis scenes).
     #[arg(long = "plan-scene")]
     plan_scenes: Vec<String>,
     /// Single run: the scene file.

@@ -69,9 +69,13 @@ pub fn apply(path: &Path, text: String) -> Result<String, InputError> {
                 format!("override value `{}` is not TOML: {e}", o.value),
             )
         })?;
-        let slot = locate(doc.as_item_mut(), &o.path)
-            .ok_or_else(|| err(&o.path, "override path not found in the file".into()))?;
-        *slot = Item::Value(value);
+        match locate(doc.as_item_mut(), &o.path) {
+            Some(slot) => *slot = Item::Value(value),
+            // A key missing from an existing table is added (the file's own checks
+            // then refuse a key that does not belong there).
+            None => insert(doc.as_item_mut(), &o.path, value)
+                .ok_or_else(|| err(&o.path, "override path not found in the file".into()))?,
+        }
     }
     Ok(doc.to_string())
 }
@@ -94,6 +98,23 @@ fn segments(path: &str) -> Option<Vec<(String, Option<usize>)>> {
 /// The item at a dotted path with `[k]` indices into arrays of tables.
 fn locate<'a>(item: &'a mut Item, path: &str) -> Option<&'a mut Item> {
     walk(item, &segments(path)?)
+}
+
+/// Adds `value` under the last key of `path` in the table its parent path names.
+fn insert(item: &mut Item, path: &str, value: Value) -> Option<()> {
+    let (parent, key) = match path.rsplit_once('.') {
+        Some((p, k)) => (Some(p), k),
+        None => (None, path),
+    };
+    if key.contains('[') {
+        return None;
+    }
+    let table = match parent {
+        Some(p) => locate(item, p)?,
+        None => item,
+    };
+    table.as_table_like_mut()?.insert(key, Item::Value(value));
+    Some(())
 }
 
 fn walk<'a>(item: &'a mut Item, segs: &Segs) -> Option<&'a mut Item> {
@@ -149,8 +170,15 @@ mod tests {
         assert_eq!(doc["spring"]["stiffness_n_m"].as_float(), Some(2.5e4));
         assert_eq!(doc["axle"][1]["mass_kg"].as_float(), Some(7.5));
         assert_eq!(doc["axle"][0]["mass_kg"].as_float(), Some(2.0));
-        let e = with(&[ov("spring.stiffnes_n_m", "1")], || apply(p, text.clone())).unwrap_err();
-        assert!(e.field.contains("stiffnes_n_m"));
+        let e = with(&[ov("sprin.stiffness_n_m", "1")], || apply(p, text.clone())).unwrap_err();
+        assert!(e.field.contains("sprin.stiffness_n_m"));
+        // A missing key of an existing table is added.
+        let out = with(&[ov("spring.damping_n_s_m", "3.0")], || {
+            apply(p, text.clone())
+        })
+        .unwrap();
+        let doc: DocumentMut = out.parse().unwrap();
+        assert_eq!(doc["spring"]["damping_n_s_m"].as_float(), Some(3.0));
         // Other files and other threads are untouched.
         assert_eq!(apply(p, text.clone()).unwrap(), text);
     }

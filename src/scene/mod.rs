@@ -31,6 +31,7 @@
 //! template scene over obstacles, speeds and load cases.
 
 pub mod channels;
+pub mod exec;
 pub mod plan;
 
 use std::path::{Path, PathBuf};

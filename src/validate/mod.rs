@@ -26,6 +26,7 @@ pub mod report;
 pub mod standin;
 pub mod synth;
 pub mod trigger;
+pub mod vehicle_sim;
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -73,8 +74,8 @@ pub trait Simulator {
     }
 }
 
-/// The simulator the command line uses. For now the analytic stand-in (not the vehicle
-/// model): replace this one line with the vehicle simulation when it lands.
+/// The simulator the command line uses: the vehicle model driven through a scene file
+/// (the analytic stand-in of [`standin`] remains for tests of the pipeline itself).
 pub fn default_simulator() -> Box<dyn Simulator> {
-    Box::new(standin::StandInSimulator::default())
+    Box::new(vehicle_sim::VehicleSimulator)
 }

@@ -9,13 +9,13 @@ use super::{Simulator, LOAD_CASES};
 /// Nominal speeds of the plan [km/h].
 pub const SPEEDS_KMH: [f64; 6] = [10.0, 20.0, 30.0, 40.0, 50.0, 60.0];
 
-/// The plan's obstacles and the road files the stand-in simulates them with. With the
-/// vehicle model these become its scenes (`--scene NAME=FILE`).
+/// The plan's obstacles and the vehicle scenes that drive over them (`--plan-scene
+/// NAME=FILE` replaces one).
 pub fn default_obstacles() -> Vec<(String, PathBuf)> {
     [
-        ("bump_25mm", "roads/bump_25mm.toml"),
-        ("bump_50mm", "roads/bump_50mm.toml"),
-        ("ramp_50mm", "roads/ramp_thesis.toml"),
+        ("bump_25mm", "scenes/bump_25mm.toml"),
+        ("bump_50mm", "scenes/bump_50mm.toml"),
+        ("ramp_50mm", "scenes/default.toml"),
     ]
     .iter()
     .map(|(n, p)| (n.to_string(), PathBuf::from(p)))

@@ -42,6 +42,10 @@ struct Hitch {
     bracket_nodes: [String; 2],
     ball_node: String,
     sensor_node: String,
+    /// How the brackets are held: "bushing" (default, `[bracket_bushing]`) or "fixed"
+    /// (ideal fixed joints: the thesis's over-constrained variant, for stress tests).
+    #[serde(default)]
+    bracket_mount: Option<String>,
 }
 
 #[derive(Deserialize, Debug)]
@@ -165,9 +169,34 @@ pub fn build(
         inertia: data.inertia_com_kg_m2,
     };
     let hb = b.body("hitch", &mass);
+    let fixed = match h.bracket_mount.as_deref() {
+        None | Some("bushing") => false,
+        Some("fixed") => true,
+        Some(other) => {
+            return Err(src.error(
+                &path!["hitch", "bracket_mount"],
+                format!("is \"bushing\" or \"fixed\", not \"{other}\""),
+            ))
+        }
+    };
     for (k, &n) in brackets.iter().enumerate() {
         let p = at(&data.nodes[n].position_m);
         let name = format!("hitch_bracket_{}", ["left", "right"][k]);
+        if fixed {
+            let link = b.ideal_joint(
+                &name,
+                JointKind::Fixed,
+                Some(hb),
+                Some(body),
+                p,
+                &bushing.axes,
+            );
+            if let Link::Joint(j) = link {
+                let i = b.model.joints[j].i;
+                b.model.markers[i].node = Some(n);
+            }
+            continue;
+        }
         let f = b.bushing(
             &name,
             Some(hb),
