@@ -112,6 +112,7 @@ fn run_scene(s: &Scene, out: &Path, quiet: bool) -> Result<i32, String> {
         "start": start_report,
         "design": s.vehicle.design,
         "lift_off": lift,
+        "skipped": skipped(&sys),
         "modal_energy": super::scene_report::energy(&sys, &res),
         "plots": plot_error.as_ref().map_or(Value::String(plot.display().to_string()), |e| Value::String(format!("not written: {e}"))),
         "channels": channel_summary(&res),
@@ -186,4 +187,34 @@ fn channel_summary(res: &RunResult) -> Map<String, Value> {
         );
     }
     m
+}
+
+/// What the run did not compute, and why.
+fn skipped(sys: &System) -> Value {
+    let mut q = [0u64; 3];
+    for t in &sys.model.tyres {
+        if let Some(c) = t.tyre.query_counts() {
+            for k in 0..3 {
+                q[k] += c[k];
+            }
+        }
+    }
+    let modes: Vec<Value> = sys
+        .model
+        .bodies
+        .iter()
+        .filter_map(|b| b.modal.as_ref().map(|m| (b, m)))
+        .map(|(b, m)| {
+            json!({"body": b.name, "modes_kept": m.data.modes.len(),
+                   "why": "modes outside the body file's selection rule are not integrated"})
+        })
+        .collect();
+    json!({
+        "tyre_road_queries": q[0],
+        "answered_from_memo": q[1],
+        "answered_flat_without_search": q[2],
+        "enveloping_searches": q[0] - q[1] - q[2],
+        "why": "no tandem-cam search where the road under a tyre is flat; the last query is memoised",
+        "modal_bodies": modes,
+    })
 }

@@ -60,7 +60,11 @@ pub struct TandemCams {
 /// A one-entry memo of [`TandemCams::effective`], keyed by the road's address and the
 /// query; a clone starts empty (it may serve another road).
 #[derive(Debug, Default)]
-struct LastQuery(std::cell::Cell<Option<(usize, [f64; 6], EffectiveRoad)>>);
+struct LastQuery(
+    std::cell::Cell<Option<(usize, [f64; 6], EffectiveRoad)>>,
+    /// Queries, memo hits, queries answered by the flat-road test alone.
+    std::cell::Cell<[u64; 3]>,
+);
 
 impl Clone for LastQuery {
     fn clone(&self) -> Self {
@@ -90,6 +94,12 @@ impl TandemCams {
             offsets,
             last: LastQuery::default(),
         }
+    }
+
+    /// Effective-road queries so far: (all, answered from the memo, answered by the
+    /// flat-road test without a search).
+    pub fn query_counts(&self) -> [u64; 3] {
+        self.last.1.get()
     }
 
     /// Height of the cam contour above the cam centre's lowest point plus b: z_c(xi).
@@ -186,12 +196,18 @@ impl TandemCams {
                 centre[0], centre[1], heading[0], heading[1], lateral[0], lateral[1],
             ],
         );
+        let mut st = self.last.1.get();
+        st[0] += 1;
         if let Some((r, q, e)) = self.last.0.get() {
             if (r, q) == key {
+                st[1] += 1;
+                self.last.1.set(st);
                 return e;
             }
         }
         let e = self.effective_uncached(road, centre, heading, lateral);
+        st[2] += u64::from(e.flat);
+        self.last.1.set(st);
         self.last.0.set(Some((key.0, key.1, e)));
         e
     }

@@ -261,6 +261,15 @@ impl Tyre {
         }
     }
 
+    /// Effective-road queries of the enveloping model: (all, from the memo, flat road
+    /// without a search); `None` for the point follower, which has none.
+    pub fn query_counts(&self) -> Option<[u64; 3]> {
+        match self {
+            Tyre::RigidRing(r) => Some(r.cams.query_counts()),
+            Tyre::PointFollower(_) => None,
+        }
+    }
+
     /// Horizontal extent [x0, x1] of road this tyre can touch when its centre is at `x`:
     /// a scene may skip the tyre's road work where `Road::is_flat` holds over it.
     pub fn reach(&self, x: f64) -> (f64, f64) {
