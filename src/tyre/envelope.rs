@@ -54,7 +54,7 @@ pub struct TandemCams {
     /// The last query and its answer: a Newton matrix built by finite differences asks
     /// for the same contact point again and again while it perturbs velocities and
     /// states, and the search over an obstacle is the tyre's costliest part.
-    last: LastQuery,
+    last: Box<LastQuery>,
 }
 
 /// A one-entry memo of [`TandemCams::effective`], keyed by the road's address and the
@@ -92,7 +92,7 @@ impl TandemCams {
             l_s: p.d.l_s,
             xi_max: a * u,
             offsets,
-            last: LastQuery::default(),
+            last: Box::default(),
         }
     }
 
