@@ -6,10 +6,8 @@
 use std::path::Path;
 
 use super::{SimChannels, Simulator};
-use crate::input::overrides::{self, Override};
-use crate::model::run::simulate;
-use crate::model::System;
-use crate::scene::{self, Overrides};
+use crate::input::overrides::Override;
+use crate::scene::Overrides;
 
 /// Quiet travel before the obstacle [s] (the alignment needs a lead-in).
 const LEAD_IN_S: f64 = 0.5;
@@ -37,29 +35,14 @@ impl Simulator for VehicleSimulator {
             path: "road.obstacle_ahead_m".into(),
             value: format!("{ahead:?}"),
         }];
-        let s = overrides::with(&ov, || {
-            scene::load_with(
-                scene,
-                &Overrides {
-                    speed_km_h: Some(speed_mps * 3.6),
-                    duration_s: Some((ahead + TRAVEL_M) / speed_mps + RING_DOWN_S),
-                    load_case: Some(load_case.to_string()),
-                    ..Default::default()
-                },
-            )
-        })
-        .map_err(|e| e.to_string())?;
-        let sys = System::new(s.model().clone());
-        let opts = s.solver_for(&sys);
-        let start = match s.start {
-            scene::Start::EquilibriumAtSpeed => {
-                let (y, yp, _) =
-                    crate::model::start::at_speed(s.model(), s.speed, s.settle, &opts)?;
-                Some((y, yp))
-            }
-            scene::Start::Assembly => None,
+        let o = Overrides {
+            speed_km_h: Some(speed_mps * 3.6),
+            duration_s: Some((ahead + TRAVEL_M) / speed_mps + RING_DOWN_S),
+            load_case: Some(load_case.to_string()),
+            ..Default::default()
         };
-        let res = simulate(&sys, 0.0, s.duration, s.sample_rate, &opts, start, None);
+        let r = crate::scene::exec::run(scene, &ov, &o, &|_| {})?;
+        let res = r.result;
         if let Some((e, t)) = res.error {
             return Err(format!(
                 "{}: simulation failed at t = {t:.4} s: {e}",
