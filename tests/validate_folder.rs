@@ -1,5 +1,6 @@
 //! Folders of runs: one bad descriptor is reported and the others complete into one
-//! summary table, on the command line (stand-in simulator) and over the 72-run plan.
+//! summary table, on the command line (the vehicle model) and over the 72-run plan
+//! (closed-form test simulator).
 
 mod validate_sim;
 
@@ -29,8 +30,8 @@ fn cli_folder_with_one_bad_descriptor() {
     let d = tmp("cli");
     let m = d.join("runs");
     for (scene, v, load) in [
-        ("roads/bump_25mm.toml", "20", "empty"),
-        ("roads/ramp_thesis.toml", "50", "200kg_behind_axle"),
+        ("scenes/bump_25mm.toml", "20", "empty"),
+        ("scenes/default.toml", "50", "200kg_behind_axle"),
     ] {
         let out = towride(&[
             "validate",
@@ -56,7 +57,7 @@ fn cli_folder_with_one_bad_descriptor() {
         "validate",
         "synth",
         "--scene",
-        "roads/bump_50mm.toml",
+        "scenes/bump_50mm.toml",
         "--speed-kmh",
         "30",
         "--in-g",
@@ -93,7 +94,7 @@ fn cli_folder_with_one_bad_descriptor() {
     assert_eq!(runs.len(), 3);
     assert_eq!(v["failures"].as_array().unwrap().len(), 1);
     assert!(v["wall_s"].as_f64().unwrap() > 0.0);
-    assert!(v["simulator"].as_str().unwrap().contains("stand-in"));
+    assert!(v["simulator"].as_str().unwrap().contains("vehicle model"));
     for r in runs {
         assert_eq!(r["synthetic"], true);
         let shift = r["shift_s"].as_f64().unwrap();
@@ -113,7 +114,7 @@ fn cli_folder_with_one_bad_descriptor() {
             }
         }
     }
-    // One summary table: a header, 3 runs x 6 channels, one failure row.
+    // One summary table: a header, 3 runs x 12 sensor channels, one failure row.
     let csv = std::fs::read_to_string(o.join("summary.csv")).unwrap();
     let lines: Vec<&str> = csv.lines().collect();
     assert!(
@@ -123,8 +124,8 @@ fn cli_folder_with_one_bad_descriptor() {
         "{}",
         lines[0]
     );
-    assert_eq!(lines.len(), 1 + 3 * 6 + 1);
-    assert!(lines[19].contains("broken.toml") && lines[19].contains("cutoff_hz"));
+    assert_eq!(lines.len(), 1 + 3 * 12 + 1);
+    assert!(lines[37].contains("broken.toml") && lines[37].contains("cutoff_hz"));
     assert!(o.join("summary.json").exists() && o.join("index.html").exists());
     let page = o.join("bump_25mm_20kmh_empty").join("report.png");
     assert!(std::fs::metadata(&page).unwrap().len() > 10_000);
