@@ -61,7 +61,7 @@ pub fn linear(a: &LinearArgs) -> Result<i32, String> {
         }
         Some(t) if t > 0.0 => {
             let start = match &l.scene {
-                Some(s) => super::scene_run::start_state(s, &l.solver)?.0,
+                Some(s) => crate::scene::exec::start(s, &l.solver)?.0,
                 None => None,
             };
             let res =

@@ -9,8 +9,8 @@ use serde_json::{json, Map, Value};
 
 use super::run::RunArgs;
 use crate::model::run::{simulate, RunResult};
-use crate::model::{self, System};
-use crate::scene::{self, plan, Scene, Start};
+use crate::model::System;
+use crate::scene::{self, plan, Scene};
 
 pub fn run(a: &RunArgs) -> Result<i32, String> {
     if !plan::is_plan(&a.file) {
@@ -44,23 +44,6 @@ pub fn run(a: &RunArgs) -> Result<i32, String> {
     Ok(code)
 }
 
-/// A consistent (y, y') to start from; `None`: the model's initial values.
-pub(crate) type StartState = Option<(Vec<f64>, Vec<f64>)>;
-
-/// The state at t = 0 by the scene's start mode, and what the start did.
-pub(crate) fn start_state(
-    s: &Scene,
-    opts: &crate::solver::SolverOptions,
-) -> Result<(StartState, Value), String> {
-    match s.start {
-        Start::EquilibriumAtSpeed => {
-            let (y, yp, rep) = model::start::at_speed(s.model(), s.speed, s.settle, opts)?;
-            Ok((Some((y, yp)), json!(rep)))
-        }
-        Start::Assembly => Ok((None, Value::Null)),
-    }
-}
-
 fn run_scene(s: &Scene, out: &Path, quiet: bool) -> Result<i32, String> {
     let sys = System::new(s.model().clone());
     super::model_check(&sys)?;
@@ -71,7 +54,7 @@ fn run_scene(s: &Scene, out: &Path, quiet: bool) -> Result<i32, String> {
         }
     }
     let opts = s.solver_for(&sys);
-    let (start, start_report) = start_state(s, &opts)?;
+    let (start, start_report) = crate::scene::exec::start(s, &opts)?;
     let pb = super::progress((s.duration * s.sample_rate).round() as u64, quiet);
     let res = simulate(
         &sys,

@@ -194,17 +194,3 @@ pub fn standard(v: &Vehicle) -> (Vec<Output>, Vec<Channel>) {
         .collect();
     (out, channels)
 }
-
-/// Channel names kept for the system-level outputs of this vehicle.
-pub fn reserved(v: &Vehicle) -> Vec<String> {
-    let mut r = Vec::new();
-    for w in &v.handles.wheels {
-        r.push(format!("tyre_{}_fz", w.name));
-        r.push(format!("tyre_{}_contact", w.name));
-    }
-    if let Some(h) = &v.handles.hitch {
-        r.extend((1..=h.modes).map(|k| format!("hitch_eta_{k}")));
-        r.push("hitch_strain_energy".into());
-    }
-    r
-}

@@ -34,14 +34,7 @@ pub fn run(
     let mut opts = scene.solver_for(&sys);
     tune(&mut opts);
     opts.validate(sys.size()).map_err(|e| e.to_string())?;
-    let start = match scene.start {
-        Start::EquilibriumAtSpeed => {
-            let (y, yp, _) =
-                crate::model::start::at_speed(scene.model(), scene.speed, scene.settle, &opts)?;
-            Some((y, yp))
-        }
-        Start::Assembly => None,
-    };
+    let (start, _) = start(&scene, &opts)?;
     let result = simulate(
         &sys,
         0.0,
@@ -58,6 +51,23 @@ pub fn run(
         result,
         wall_s: wall.elapsed().as_secs_f64(),
     })
+}
+
+/// A consistent (y, y') to start from; `None`: the model's initial values.
+pub type StartState = Option<(Vec<f64>, Vec<f64>)>;
+
+/// The state at t = 0 by the scene's start mode, and what the start did.
+pub fn start(
+    s: &Scene,
+    opts: &SolverOptions,
+) -> Result<(StartState, Option<crate::model::start::StartReport>), String> {
+    match s.start {
+        Start::EquilibriumAtSpeed => {
+            let (y, yp, rep) = crate::model::start::at_speed(s.model(), s.speed, s.settle, opts)?;
+            Ok((Some((y, yp)), Some(rep)))
+        }
+        Start::Assembly => Ok((None, None)),
+    }
 }
 
 impl SceneRun {

@@ -132,9 +132,6 @@ pub struct Scene {
     pub atol_scale: Option<f64>,
     /// The output channels, in CSV order.
     pub channels: Vec<Channel>,
-    /// Names kept for channels that need the assembled system (tyre forces and contact,
-    /// the hitch's modal coordinates and strain energy).
-    pub reserved: Vec<String>,
     pub road_file: PathBuf,
 }
 
@@ -271,10 +268,9 @@ pub fn load_with(path: &Path, o: &Overrides) -> Result<Scene, InputError> {
     };
     v.handles.sensors.extend(extra);
     let (outputs, channels) = channels::standard(&v);
-    let reserved = channels::reserved(&v);
     for (k, c) in channels.iter().enumerate() {
         if channels[..k].iter().any(|d| d.name == c.name) {
-            return Err(src.error(&path!["sensor"], format!("channel '{}' is defined twice (sensor names must differ from the vehicle's and from the reserved channels)", c.name)));
+            return Err(src.error(&path!["sensor"], format!("channel '{}' is defined twice (sensor names must differ from the vehicle's channels)", c.name)));
         }
     }
     v.model.outputs = outputs;
@@ -291,7 +287,6 @@ pub fn load_with(path: &Path, o: &Overrides) -> Result<Scene, InputError> {
         solver: f.solver,
         atol_scale,
         channels,
-        reserved,
         road_file,
     })
 }

@@ -17,12 +17,6 @@ impl System {
         y
     }
 
-    /// Iteration matrix entries at (t, y, y').
-    pub fn jacobian_full(&self, t: f64, y: &[f64], yp: &[f64], cj: f64, jac: &mut JacobianSink) {
-        self.jacobian_entries(t, y, cj, jac, false);
-        let _ = yp;
-    }
-
     /// Iteration matrix entries; with `structural`, every possible non-zero is emitted
     /// (values meaningless) so the pattern does not depend on the state.
     pub fn jacobian_entries(

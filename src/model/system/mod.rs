@@ -460,8 +460,8 @@ impl DaeProblem for System {
         Some(p)
     }
 
-    fn jacobian(&self, t: f64, y: &[f64], yp: &[f64], cj: f64, jac: &mut JacobianSink) -> bool {
-        self.jacobian_full(t, y, yp, cj, jac);
+    fn jacobian(&self, t: f64, y: &[f64], _yp: &[f64], cj: f64, jac: &mut JacobianSink) -> bool {
+        self.jacobian_entries(t, y, cj, jac, false);
         true
     }
 
