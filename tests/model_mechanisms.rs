@@ -449,3 +449,37 @@ free_angle_rad = -{th0}
         st.report
     );
 }
+
+/// The bob's acceleration from the acceleration-level solve against the pendulum's own
+/// kinematics: centripetal v^2/L (from energy, v^2 = -2 g z) plus the tangential part of
+/// gravity. The centripetal part comes entirely from the constraint acceleration term.
+#[test]
+fn pendulum_acceleration_has_the_centripetal_term() {
+    let text = std::fs::read_to_string("scenes/examples/pendulum.toml")
+        .unwrap()
+        .replace(
+            "[[output]]\nmarker = \"bob.cm\"\nquantity = \"position\"",
+            "[[output]]\nmarker = \"bob.cm\"\nquantity = \"position\"\n\n[[output]]\nmarker = \"bob.cm\"\nquantity = \"acceleration\"",
+        );
+    let m = from_text("pendulum_acc.toml", &text).unwrap();
+    let (_, r) = run(&m, 200.0);
+    let ch = |n: &str| r.channel(n).unwrap_or_else(|| panic!("no channel {n}"));
+    let (x, z) = (ch("bob.cm.position.x"), ch("bob.cm.position.z"));
+    let (ax, az) = (ch("bob.cm.acceleration.x"), ch("bob.cm.acceleration.z"));
+    let g = 9.81;
+    let mut worst = 0.0f64;
+    for k in 1..x.len() {
+        let l = (x[k] * x[k] + z[k] * z[k]).sqrt();
+        let (rx, rz) = (x[k] / l, z[k] / l);
+        let centripetal = -2.0 * g * z[k] / l;
+        let g_radial = -g * rz;
+        let want = [
+            -centripetal * rx - g_radial * rx,
+            -centripetal * rz - g - g_radial * rz,
+        ];
+        worst = worst
+            .max((ax[k] - want[0]).abs())
+            .max((az[k] - want[1]).abs());
+    }
+    assert!(worst < 1e-5 * g, "largest acceleration error {worst} m/s^2");
+}

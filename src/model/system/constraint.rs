@@ -17,6 +17,9 @@ use crate::model::math::{cst3, cst33, mm, mvc, qmul, quat_from_matrix, rot, Q4, 
 
 type T1 = Dual<f64, 13>;
 type T2 = Dual<T1, 15>;
+/// One direction inside one direction: the constraint acceleration term.
+type G1 = Dual<f64, 1>;
+type G2 = Dual<G1, 1>;
 
 /// Constraint rows of one element with their first derivatives.
 pub struct ConEval {
@@ -288,32 +291,44 @@ impl System {
             let b = bv(&self.con_eval(e, t - h, &qm));
             return a.iter().zip(&b).map(|(x, y)| (x - y) / (2.0 * h)).collect();
         }
-        let ev = self.con_eval2(e, t, q);
-        let dbq = ev.dbq.as_ref().expect("rigid element");
+        // Second directional derivative with a dual of duals in one direction each:
+        // inner along (v, 1) gives B v + g_t, outer along (q', 1) differentiates it.
         let qd = self.qdot_of(q, v);
-        (0..ev.first.g.len())
-            .map(|r| {
-                let dtotal = |l: usize| {
-                    let mut s = dbq[r][12][l];
-                    for (side, body) in bodies.iter().enumerate() {
-                        if let Some(b) = body {
-                            for c in 0..6 {
-                                s += dbq[r][6 * side + c][l] * v[self.vo[*b] + c];
-                            }
-                        }
-                    }
-                    s
-                };
-                let mut gamma = dtotal(14);
-                for (side, body) in bodies.iter().enumerate() {
-                    if let Some(b) = body {
-                        for l in 0..7 {
-                            gamma += dtotal(7 * side + l) * qd[self.qo[*b] + l];
-                        }
-                    }
+        let mut frames = Vec::with_capacity(2);
+        for (mk, b) in [e.mi, e.mj].into_iter().zip(bodies) {
+            frames.push(match b {
+                None => self.ground_frame::<G2>(mk),
+                Some(b) => {
+                    let (o, w) = (self.qo[b], self.vo[b]);
+                    let r: V3<G2> = std::array::from_fn(|c| G2 {
+                        v: G1 {
+                            v: q[o + c],
+                            d: [v[w + c]],
+                        },
+                        d: [G1::cst(qd[o + c])],
+                    });
+                    let p0: Q4<G2> = std::array::from_fn(|c| G2 {
+                        v: G1::cst(q[o + 3 + c]),
+                        d: [G1::cst(qd[o + 3 + c])],
+                    });
+                    let dth = |c: usize| {
+                        G2::constant(G1 {
+                            v: 0.0,
+                            d: [v[w + 3 + c]],
+                        }) * 0.5
+                    };
+                    let dp: Q4<G2> = [G2::cst(1.0), dth(0), dth(1), dth(2)];
+                    self.frame_of(mk, &r, &qmul(&p0, &dp))
                 }
-                gamma
-            })
+            });
+        }
+        let tt = G2 {
+            v: G1 { v: t, d: [1.0] },
+            d: [G1::cst(1.0)],
+        };
+        self.rows_of(e, tt, &frames[0], &frames[1])
+            .iter()
+            .map(|x| x.d[0].d[0])
             .collect()
     }
 
