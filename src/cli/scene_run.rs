@@ -91,6 +91,7 @@ fn run_scene(s: &Scene, out: &Path, quiet: bool) -> Result<i32, String> {
         "load_case": s.vehicle.design.trailer.as_ref().map(|t| t.load_case.clone()),
         "hitch_variant": s.vehicle.handles.hitch.as_ref().map(|h| h.variant),
         "equations": sys.size(),
+        "unknowns": {"positions": sys.nq, "velocities": sys.nv, "multipliers": sys.m, "extension_states": sys.ne},
         "warnings": warnings,
         "start": start_report,
         "design": s.vehicle.design,

@@ -109,6 +109,12 @@ pub struct SolverOptions {
     /// Row equilibration and h^(k-1) column scaling of the Newton matrix for index-k
     /// unknowns (keeps its condition number bounded as h -> 0 on index-3 problems).
     pub scale_newton_matrix: bool,
+    /// Error weights of the problem's vector-valued unknowns (`magnitude_groups`: a
+    /// rotation quaternion, an angular velocity in body axes) take their relative part from
+    /// the vector's length, not from each component: the accuracy asked of a vector then
+    /// does not depend on the frame it is resolved in, and does not tighten a thousandfold
+    /// each time a component of a spinning wheel's quaternion passes through zero.
+    pub vector_error_weights: bool,
 }
 
 impl Default for SolverOptions {
@@ -134,6 +140,7 @@ impl Default for SolverOptions {
             max_jacobian_age: 0,
             eta_fixed_max: 2.0,
             scale_newton_matrix: true,
+            vector_error_weights: true,
         }
     }
 }

@@ -70,6 +70,12 @@ pub trait DaeProblem {
         None
     }
 
+    /// Unknowns that are the components of one vector whose resolution in components is a
+    /// matter of frame (see `SolverOptions::vector_error_weights`). Default: none.
+    fn magnitude_groups(&self) -> Vec<std::ops::Range<usize>> {
+        Vec::new()
+    }
+
     /// The kind of each unknown. Defaults to all differential (an implicit ODE).
     fn var_kinds(&self) -> Vec<VarKind> {
         vec![VarKind::Differential; self.size()]

@@ -387,6 +387,16 @@ impl DaeProblem for System {
         System::size(self)
     }
 
+    /// Each body's rotation quaternion and its angular velocity in body axes.
+    fn magnitude_groups(&self) -> Vec<std::ops::Range<usize>> {
+        let mut g = Vec::new();
+        for b in 0..self.nb() {
+            g.push(self.qo[b] + 3..self.qo[b] + 7);
+            g.push(self.nq + self.vo[b] + 3..self.nq + self.vo[b] + 6);
+        }
+        g
+    }
+
     fn residual(&self, t: f64, y: &[f64], yp: &[f64], res: &mut [f64]) {
         let (_, ov, ol, om) = self.offsets();
         let oe = self.oe();

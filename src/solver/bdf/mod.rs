@@ -77,6 +77,8 @@ pub struct Bdf<'a, P: DaeProblem + ?Sized> {
     tstop: Option<f64>,
     // Work vectors.
     ewt: Vec<f64>,
+    /// Vector-valued unknowns weighted by their length (empty when the option is off).
+    groups: Vec<std::ops::Range<usize>>,
     wt_err: Vec<f64>,
     wt_newton: Vec<f64>,
     col_scale: Vec<f64>,
@@ -194,6 +196,11 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
             started: false,
             tstop: None,
             ewt: vec![0.0; n],
+            groups: if opts.vector_error_weights {
+                prob.magnitude_groups()
+            } else {
+                Vec::new()
+            },
             wt_err: vec![0.0; n],
             wt_newton: vec![0.0; n],
             col_scale: vec![1.0; n],
@@ -371,6 +378,16 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
     fn set_ewt(&mut self) {
         for i in 0..self.n {
             self.ewt[i] = 1.0 / (self.opts.rtol * self.phi[0][i].abs() + self.opts.atol_of(i));
+        }
+        for g in &self.groups {
+            let len = self.phi[0][g.clone()]
+                .iter()
+                .map(|y| y * y)
+                .sum::<f64>()
+                .sqrt();
+            for i in g.clone() {
+                self.ewt[i] = 1.0 / (self.opts.rtol * len + self.opts.atol_of(i));
+            }
         }
     }
 
