@@ -183,8 +183,8 @@ impl FullTensors {
         }
         let gb = a.transpose() * g;
         let hu = a * (om.cross(&om.cross(&d.s)) + 2.0 * om.cross(&i3z));
-        let hw = om.cross(&(d.j * om)) + 2.0 * (om * c.trace() - c.transpose() * om)
-            - d.s.cross(&gb);
+        let hw =
+            om.cross(&(d.j * om)) + 2.0 * (om * c.trace() - c.transpose() * om) - d.s.cross(&gb);
         let mut out = vec![0.0; 6 + n];
         for r in 0..3 {
             out[r] = hu[r];
@@ -196,8 +196,7 @@ impl FullTensors {
             for (l, z) in zeta.iter().enumerate() {
                 vk += self.q[l][k] * *z;
             }
-            out[6 + k] = om.dot(&(d.r[k] * om)) - w2 * d.r[k].trace()
-                + 2.0 * om.dot(&axial(&vk))
+            out[6 + k] = om.dot(&(d.r[k] * om)) - w2 * d.r[k].trace() + 2.0 * om.dot(&axial(&vk))
                 - self.i3[k].dot(&gb);
         }
         out
@@ -205,7 +204,11 @@ impl FullTensors {
 }
 
 impl System {
-    fn full_parts<'a>(&'a self, k: usize, q: &'a [f64]) -> (&'a FullTensors, Matrix3<f64>, &'a [f64]) {
+    fn full_parts<'a>(
+        &'a self,
+        k: usize,
+        q: &'a [f64],
+    ) -> (&'a FullTensors, Matrix3<f64>, &'a [f64]) {
         let t = self.full[k].as_ref().expect("a full-coupling body");
         let o = self.qo[k];
         let a = m3(&rot(&[q[o + 3], q[o + 4], q[o + 5], q[o + 6]]));
