@@ -24,7 +24,8 @@
 //! mu terms make position and velocity constraints hold together (Gear, Gupta &
 //! Leimkuhler 1985); mu = 0 on the exact solution, so its O(mu) second-derivative terms are
 //! left out of the iteration matrix. Modal bodies: unit modal mass, modal stiffness and
-//! damping, mass coupling per [`crate::model::desc::Coupling`] (see `modal.rs`).
+//! damping, mass coupling per [`crate::model::desc::Coupling`] (see `modal.rs`); a body
+//! at the `full` level has M(q) v' over its whole velocity block (`full.rs`).
 
 use super::desc::{Force, Model};
 use super::joint::{rows, Row};
