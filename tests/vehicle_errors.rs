@@ -172,3 +172,27 @@ fn unknown_load_case_and_bad_scene_values() {
         "run.speed_km_h",
     );
 }
+
+#[test]
+fn unknown_inertia_coupling_and_the_full_level() {
+    let root = scratch("coupling");
+    let f = "vehicles/fabia/hitch.toml";
+    let line = break_file(
+        &root,
+        f,
+        "inertia_coupling = \"constant\"",
+        "inertia_coupling = \"complete\"",
+    );
+    let e = vehicle_error(&root);
+    check(&e, f, line, "hitch.inertia_coupling");
+    assert!(e.message.contains("constant, partial or full"), "{e}");
+    break_file(&root, f, "\"complete\"", "\"full\"");
+    let v = vehicle::load(
+        &root.join("vehicles/fabia_trailer.toml"),
+        &Options::default(),
+    )
+    .unwrap();
+    let hb = v.handles.hitch.as_ref().unwrap().body;
+    let m = v.model.bodies[hb].modal.as_ref().unwrap();
+    assert_eq!(m.coupling, towride::model::desc::Coupling::Full);
+}

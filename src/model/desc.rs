@@ -43,6 +43,10 @@ pub enum Coupling {
     /// modes (omega^T I8_j omega), the one zero-order coupling term that survives
     /// mass-orthogonality.
     Partial,
+    /// The floating-frame equations without truncation: deformation-dependent mass
+    /// matrix (first moment, inertia tensor and rotation-modal coupling as functions of
+    /// eta) and the quadratic-velocity vector that belongs to it (`modal.rs`).
+    Full,
 }
 
 impl Coupling {
@@ -50,9 +54,13 @@ impl Coupling {
         Some(match s {
             "constant" => Coupling::Constant,
             "partial" => Coupling::Partial,
+            "full" => Coupling::Full,
             _ => return None,
         })
     }
+
+    /// The accepted names, for messages.
+    pub const NAMES: &'static str = "constant, partial or full";
 }
 
 /// The elastic part of a modal body: the selected modes of a Craig-Bampton reduction.

@@ -112,7 +112,7 @@ pub fn accelerations(
     };
     let mut rhs = sys.loads(t, q, v, x, None);
     rhs.resize(n + m, 0.0);
-    for (r, c, val) in sys.mass_entries() {
+    for (r, c, val) in sys.mass_entries_at(q) {
         put(a, r, c, val);
     }
     for e in &sys.cons {

@@ -51,9 +51,9 @@ pub struct Linearisation {
 }
 
 /// Velocity-space mass matrix.
-fn mass(sys: &System) -> DMatrix<f64> {
+fn mass(sys: &System, q: &[f64]) -> DMatrix<f64> {
     let mut m = DMatrix::zeros(sys.nv, sys.nv);
-    for (r, c, v) in sys.mass_entries() {
+    for (r, c, v) in sys.mass_entries_at(q) {
         m[(r, c)] += v;
     }
     m
@@ -109,7 +109,7 @@ pub fn linearise(sys: &System, t: f64, y: &[f64]) -> Result<Linearisation, Strin
         .view((oe, oe), (ne, ne))
         .into_owned()
         - &fe;
-    let m = mass(sys);
+    let m = mass(sys, &y[..sys.nq]);
     let nmat = null_space(&b);
     let nd = nmat.ncols();
     let mr = nmat.transpose() * &m * &nmat;
@@ -187,7 +187,7 @@ pub fn linearise(sys: &System, t: f64, y: &[f64]) -> Result<Linearisation, Strin
             .map(|(bk, body)| {
                 let mut mb = DMatrix::zeros(nv, nv);
                 let range = sys.vo[bk]..sys.vo[bk] + 6 + sys.nm[bk];
-                for (r, c, v) in sys.mass_entries() {
+                for (r, c, v) in sys.mass_entries_at(&y[..sys.nq]) {
                     if range.contains(&r) {
                         mb[(r, c)] += v;
                     }

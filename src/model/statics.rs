@@ -252,7 +252,7 @@ impl DaeProblem for Relaxed<'_> {
     fn residual(&self, t: f64, y: &[f64], yp: &[f64], res: &mut [f64]) {
         self.sys.residual(t, y, yp, res);
         let ov = self.sys.offsets().1;
-        for (r, c, m) in self.sys.mass_entries() {
+        for (r, c, m) in self.sys.mass_entries_at(&y[..ov]) {
             res[ov + r] += self.rate * m * y[ov + c];
         }
     }
@@ -265,7 +265,7 @@ impl DaeProblem for Relaxed<'_> {
     fn jacobian(&self, t: f64, y: &[f64], yp: &[f64], cj: f64, jac: &mut JacobianSink) -> bool {
         self.sys.jacobian(t, y, yp, cj, jac);
         let ov = self.sys.offsets().1;
-        for (r, c, m) in self.sys.mass_entries() {
+        for (r, c, m) in self.sys.mass_entries_at(&y[..ov]) {
             jac.add(ov + r, ov + c, self.rate * m);
         }
         true

@@ -37,7 +37,7 @@ struct Hitch {
     /// Where the FE file's origin lies in vehicle coordinates [m] (its axes are the
     /// vehicle's).
     fe_origin_m: [f64; 3],
-    /// Inertia coupling of the modal body: constant or partial.
+    /// Inertia coupling of the modal body: constant, partial or full.
     inertia_coupling: String,
     bracket_nodes: [String; 2],
     ball_node: String,
@@ -103,7 +103,7 @@ pub fn build(
     let coupling = Coupling::parse(&h.inertia_coupling).ok_or_else(|| {
         src.error(
             &path!["hitch", "inertia_coupling"],
-            format!("'{}': use constant or partial", h.inertia_coupling),
+            format!("'{}': use {}", h.inertia_coupling, Coupling::NAMES),
         )
     })?;
     let fe = file.parent().unwrap_or(Path::new(".")).join(&h.fe_file);

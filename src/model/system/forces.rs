@@ -214,7 +214,12 @@ impl System {
             let w = self.vo[k];
             let om = [v[w + 3], v[w + 4], v[w + 5]];
             let jw = mvc(&cst33::<f64>(&b.inertia), &om);
-            let gyro = cross(&om, &jw);
+            // A `full` modal body's gyroscopic term uses its deformed inertia (modal.rs).
+            let gyro = if self.full[k].is_some() {
+                [0.0; 3]
+            } else {
+                cross(&om, &jw)
+            };
             for c in 0..3 {
                 f[w + c] += b.mass * g[c];
                 f[w + 3 + c] -= gyro[c];

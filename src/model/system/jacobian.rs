@@ -74,10 +74,13 @@ impl System {
         for (k, body) in self.model.bodies.iter().enumerate() {
             let (o, w) = (self.qo[k], self.vo[k]);
             let (qr, qp, vu, vw) = (o, o + 3, ov + w, ov + w + 3);
+            let full = self.full[k].is_some();
             for c in 0..3 {
                 jac.add(qr + c, qr + c, cj);
                 jac.add(qr + c, vu + c, -1.0);
-                jac.add(vu + c, vu + c, cj * body.mass);
+                if !full {
+                    jac.add(vu + c, vu + c, cj * body.mass);
+                }
             }
             let p = [q[qp], q[qp + 1], q[qp + 2], q[qp + 3]];
             let om = [v[w + 3], v[w + 4], v[w + 5]];
@@ -100,6 +103,9 @@ impl System {
                     jac.add(qp + a, vw + c, pick(-0.5 * qm[a][c]));
                 }
             }
+            if full {
+                self.full_blocks(k, q, v, cj, jac, structural);
+            }
             // J w' + w x J w: d(w x Jw)/dw = [w]x J - [Jw]x
             let jm = body.inertia;
             let jw = mvc(&cst33::<f64>(&jm), &om);
@@ -112,7 +118,9 @@ impl System {
                     for l in 0..3 {
                         val += sw[r][l] * jm[l][c];
                     }
-                    jac.add(vw + r, vw + c, pick(val));
+                    if !full {
+                        jac.add(vw + r, vw + c, pick(val));
+                    }
                 }
             }
             let Some(m) = &body.modal else { continue };
@@ -121,7 +129,8 @@ impl System {
                 jac.add(qe, qe, cj);
                 jac.add(qe, ve, -1.0);
                 let wn = mode.stiffness.max(0.0).sqrt();
-                jac.add(ve, ve, pick(cj + 2.0 * mode.damping_ratio * wn));
+                let mass = if full { 0.0 } else { cj };
+                jac.add(ve, ve, pick(mass + 2.0 * mode.damping_ratio * wn));
                 jac.add(ve, qe, pick(mode.stiffness));
                 if m.coupling == crate::model::desc::Coupling::Partial {
                     let i8 = &m.data.invariants.i8[j];
@@ -130,6 +139,60 @@ impl System {
                         jac.add(ve, vw + a, pick(-d));
                     }
                 }
+            }
+        }
+    }
+
+    /// A `full` modal body: cj M(q) over its velocity block, and the derivatives of its
+    /// quadratic-velocity terms by finite differences over omega, zeta and eta. The
+    /// terms dM/d(eta, p) v' are left out (modified Newton; the residual is exact).
+    fn full_blocks(
+        &self,
+        k: usize,
+        q: &[f64],
+        v: &[f64],
+        cj: f64,
+        jac: &mut JacobianSink,
+        structural: bool,
+    ) {
+        let (ov, o, w, n) = (self.nq, self.qo[k], self.vo[k], 6 + self.nm[k]);
+        let cols: Vec<(bool, usize)> = (3..n)
+            .map(|c| (false, w + c))
+            .chain((0..self.nm[k]).map(|j| (true, o + 7 + j)))
+            .collect();
+        if structural {
+            for r in 0..n {
+                for c in 0..n {
+                    jac.add(ov + w + r, ov + w + c, 1.0);
+                }
+                for &(is_q, i) in &cols {
+                    jac.add(ov + w + r, if is_q { i } else { ov + i }, 1.0);
+                }
+            }
+            return;
+        }
+        let mb = self.full_mass(k, q).expect("a full body");
+        for r in 0..n {
+            for c in 0..n {
+                jac.add(ov + w + r, ov + w + c, cj * mb[(r, c)]);
+            }
+        }
+        let base = self.full_velocity_terms(k, q, v);
+        let (mut qq, mut vv) = (q.to_vec(), v.to_vec());
+        for (is_q, i) in cols {
+            let x = if is_q { &mut qq } else { &mut vv };
+            let x0 = x[i];
+            let h = 1e-7 * (1.0 + x0.abs());
+            x[i] += h;
+            let pert = self.full_velocity_terms(k, &qq, &vv);
+            if is_q {
+                qq[i] = x0;
+            } else {
+                vv[i] = x0;
+            }
+            let col = if is_q { i } else { ov + i };
+            for r in 0..n {
+                jac.add(ov + w + r, col, (pert[r] - base[r]) / h);
             }
         }
     }

@@ -24,7 +24,8 @@
 //! mu terms make position and velocity constraints hold together (Gear, Gupta &
 //! Leimkuhler 1985); mu = 0 on the exact solution, so its O(mu) second-derivative terms are
 //! left out of the iteration matrix. Modal bodies: unit modal mass, modal stiffness and
-//! damping, mass coupling per [`crate::model::desc::Coupling`] (see `modal.rs`).
+//! damping, mass coupling per [`crate::model::desc::Coupling`] (see `modal.rs`); a body
+//! at the `full` level has M(q) v' over its whole velocity block (`full.rs`).
 
 use super::desc::{Force, Model};
 use super::joint::{rows, Row};
@@ -35,6 +36,7 @@ mod constraint;
 pub mod ext;
 pub mod flexmarker;
 mod forces;
+mod full;
 mod jacobian;
 mod modal;
 
@@ -110,6 +112,8 @@ pub struct System {
     mquat: Vec<[f64; 4]>,
     /// Force elements: (index in model.forces, marker i, marker j or None).
     felems: Vec<(usize, usize, Option<usize>)>,
+    /// Per body: the mass-matrix tensors of a modal body at the `full` coupling level.
+    full: Vec<Option<full::FullTensors>>,
 }
 
 impl System {
@@ -165,6 +169,7 @@ impl System {
             nv += 6 + n;
         }
         let (ext, ne) = ext::layout(&model);
+        let full = model.bodies.iter().map(full::FullTensors::of).collect();
         let mut sys = System {
             model,
             cons,
@@ -181,6 +186,7 @@ impl System {
             accel: std::cell::RefCell::new(None),
             mquat,
             felems,
+            full,
         };
         let (q, _) = sys.initial_q_v();
         let (kept, redundant) = super::redundancy::select_rows(&sys, 0.0, &q);
@@ -312,12 +318,27 @@ impl System {
         out
     }
 
-    /// The constant velocity-space mass matrix (block diagonal: m I, J, identity modal
-    /// mass) as (row, column, value) triplets.
+    /// The velocity-space mass matrix at the initial positions (see
+    /// [`System::mass_entries_at`]).
     pub fn mass_entries(&self) -> Vec<(usize, usize, f64)> {
+        self.mass_entries_at(&self.initial_q_v().0)
+    }
+
+    /// The velocity-space mass matrix at positions `q` as (row, column, value) triplets:
+    /// block diagonal (m I, J, identity modal mass) except for `full` modal bodies, whose
+    /// whole block depends on q (same entries at every q).
+    pub fn mass_entries_at(&self, q: &[f64]) -> Vec<(usize, usize, f64)> {
         let mut out = Vec::new();
         for (k, b) in self.model.bodies.iter().enumerate() {
             let w = self.vo[k];
+            if let Some(mb) = self.full_mass(k, q) {
+                for r in 0..mb.nrows() {
+                    for c in 0..mb.ncols() {
+                        out.push((w + r, w + c, mb[(r, c)]));
+                    }
+                }
+                continue;
+            }
             for c in 0..3 {
                 out.push((w + c, w + c, b.mass));
                 for d in 0..3 {
@@ -432,6 +453,19 @@ impl DaeProblem for System {
             for c in 0..4 {
                 res[o + 3 + c] = yp[o + 3 + c] - pd[c];
             }
+            for j in 0..self.nm[k] {
+                res[o + 7 + j] = yp[o + 7 + j] - v[w + 6 + j] + btmu[w + 6 + j];
+            }
+            if let Some(mb) = self.full_mass(k, q) {
+                // M(q) v' over the whole block of a `full` modal body.
+                let n = 6 + self.nm[k];
+                let vd = &yp[ov + w..ov + w + n];
+                for r in 0..n {
+                    let mv: f64 = (0..n).map(|c| mb[(r, c)] * vd[c]).sum();
+                    res[ov + w + r] = mv - f[w + r] + btl[w + r];
+                }
+                continue;
+            }
             let vd = &yp[ov + w..ov + w + 6];
             let jwd = mvc(&cst33::<f64>(&body.inertia), &[vd[3], vd[4], vd[5]]);
             for c in 0..3 {
@@ -439,7 +473,6 @@ impl DaeProblem for System {
                 res[ov + w + 3 + c] = jwd[c] - f[w + 3 + c] + btl[w + 3 + c];
             }
             for j in 0..self.nm[k] {
-                res[o + 7 + j] = yp[o + 7 + j] - v[w + 6 + j] + btmu[w + 6 + j];
                 res[ov + w + 6 + j] = yp[ov + w + 6 + j] - f[w + 6 + j] + btl[w + 6 + j];
             }
         }

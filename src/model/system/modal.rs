@@ -8,7 +8,8 @@
 //! Q_j = -int rho phi_j . (omega x (omega x s)) dV = omega^T I8_j omega (body axes), the
 //! only coupling term that does not vanish at eta = 0. Terms of first order in eta (the
 //! deformation-dependent inertia, Coriolis coupling through I5) are left out at both
-//! levels: for the hitch they are below 1e-6 of the elastic forces (docs/flex.md).
+//! levels: for the hitch they are below 1e-6 of the elastic forces (docs/flex.md). The
+//! `full` level keeps them all (`full.rs`): its quadratic-velocity terms are added here.
 
 use super::System;
 use crate::model::desc::{Coupling, Modal};
@@ -32,6 +33,11 @@ impl System {
                 }
             }
             f[w + 6 + j] += load;
+        }
+        if m.coupling == Coupling::Full {
+            for (r, h) in self.full_velocity_terms(k, q, v).iter().enumerate() {
+                f[w + r] -= h;
+            }
         }
     }
 
