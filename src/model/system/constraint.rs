@@ -17,6 +17,28 @@ use crate::model::math::{cst3, cst33, mm, mvc, qmul, quat_from_matrix, rot, Q4, 
 
 type T1 = Dual<f64, 13>;
 type T2 = Dual<T1, 15>;
+/// One side's virtual motions, and those inside its seven position unknowns.
+type S1 = Dual<f64, 6>;
+type S2 = Dual<S1, 7>;
+
+/// A 6-wide dual placed at `off` in a 13-wide one.
+fn widen(x: &S1, off: usize) -> T1 {
+    let mut d = [0.0; 13];
+    d[off..off + 6].copy_from_slice(&x.d);
+    T1 { v: x.v, d }
+}
+
+fn map_frame<A: Scalar, B: Scalar>(f: &MFrame<A>, m: impl Fn(&A) -> B) -> MFrame<B> {
+    MFrame {
+        origin: std::array::from_fn(|c| m(&f.origin[c])),
+        axes: std::array::from_fn(|r| std::array::from_fn(|c| m(&f.axes[r][c]))),
+    }
+}
+
+/// The quaternion (1, theta/2) of a small body-axes rotation theta.
+fn half_turn<T: Scalar>(theta: impl Fn(usize) -> T) -> Q4<T> {
+    [T::cst(1.0), theta(0) * 0.5, theta(1) * 0.5, theta(2) * 0.5]
+}
 /// One direction inside one direction: the constraint acceleration term.
 type G1 = Dual<f64, 1>;
 type G2 = Dual<G1, 1>;
@@ -100,40 +122,32 @@ impl System {
     pub fn con_eval(&self, e: &ConElem, t: f64, q: &[f64]) -> ConEval {
         let bodies = self.bodies_of(e.mi, e.mj);
         let w = [self.width(bodies[0]), self.width(bodies[1])];
+        // Each side's frame depends on that side's six virtual motions only: computed in
+        // 6-wide duals and placed into the 13-wide ones the rows need.
         let mut frames = Vec::with_capacity(2);
         let mut maps = [None, None];
         for (side, (mk, b)) in [e.mi, e.mj].into_iter().zip(bodies).enumerate() {
-            frames.push(match b {
-                None => self.ground_frame::<T1>(mk),
+            let local: MFrame<S1> = match b {
+                None => self.ground_frame::<S1>(mk),
                 Some(_) if self.is_flex_marker(mk) => {
                     // The marker as a frame of its own: virtual translation (world) and
                     // rotation (marker axes).
                     let ff = self.flex_frame(q, mk);
-                    let o: V3<T1> = std::array::from_fn(|c| T1::var(ff.origin[c], 6 * side + c));
-                    let pq = quat_from_matrix(&ff.axes).map(T1::cst);
-                    let dp: Q4<T1> = [
-                        T1::cst(1.0),
-                        T1::var(0.0, 6 * side + 3) * 0.5,
-                        T1::var(0.0, 6 * side + 4) * 0.5,
-                        T1::var(0.0, 6 * side + 5) * 0.5,
-                    ];
-                    let axes = rot(&qmul(&pq, &dp));
+                    let o: V3<S1> = std::array::from_fn(|c| S1::var(ff.origin[c], c));
+                    let pq = quat_from_matrix(&ff.axes).map(S1::cst);
+                    let axes = rot(&qmul(&pq, &half_turn::<S1>(|c| S1::var(0.0, 3 + c))));
                     maps[side] = Some(ff);
                     MFrame { origin: o, axes }
                 }
                 Some(b) => {
                     let o = self.qo[b];
-                    let r: V3<T1> = std::array::from_fn(|c| T1::var(q[o + c], 6 * side + c));
-                    let p0: Q4<T1> = std::array::from_fn(|c| T1::cst(q[o + 3 + c]));
-                    let dp: Q4<T1> = [
-                        T1::cst(1.0),
-                        T1::var(0.0, 6 * side + 3) * 0.5,
-                        T1::var(0.0, 6 * side + 4) * 0.5,
-                        T1::var(0.0, 6 * side + 5) * 0.5,
-                    ];
+                    let r: V3<S1> = std::array::from_fn(|c| S1::var(q[o + c], c));
+                    let p0: Q4<S1> = std::array::from_fn(|c| S1::cst(q[o + 3 + c]));
+                    let dp = half_turn::<S1>(|c| S1::var(0.0, 3 + c));
                     self.frame_of(mk, &r, &qmul(&p0, &dp))
                 }
-            });
+            };
+            frames.push(map_frame(&local, |x| widen(x, 6 * side)));
         }
         let vals = self.rows_of(e, T1::var(t, 12), &frames[0], &frames[1]);
         let b = vals
@@ -177,29 +191,36 @@ impl System {
             return self.con_eval2_flex(e, t, q);
         }
         let bodies = self.bodies_of(e.mi, e.mj);
+        // Per side: 6 virtual motions inside 7 position unknowns, placed into the
+        // 13-inside-15 duals of the rows (a quarter of the work on the frames).
         let mut frames = Vec::with_capacity(2);
         for (side, (mk, b)) in [e.mi, e.mj].into_iter().zip(bodies).enumerate() {
-            frames.push(match b {
-                None => self.ground_frame::<T2>(mk),
+            let local: MFrame<S2> = match b {
+                None => self.ground_frame::<S2>(mk),
                 Some(b) => {
                     let o = self.qo[b];
-                    let r: V3<T2> = std::array::from_fn(|c| T2 {
-                        v: T1::var(q[o + c], 6 * side + c),
-                        d: std::array::from_fn(|l| {
-                            T1::cst(if l == 7 * side + c { 1.0 } else { 0.0 })
-                        }),
+                    let r: V3<S2> = std::array::from_fn(|c| S2 {
+                        v: S1::var(q[o + c], c),
+                        d: std::array::from_fn(|l| S1::cst(if l == c { 1.0 } else { 0.0 })),
                     });
-                    let p0: Q4<T2> = std::array::from_fn(|c| T2 {
-                        v: T1::cst(q[o + 3 + c]),
-                        d: std::array::from_fn(|l| {
-                            T1::cst(if l == 7 * side + 3 + c { 1.0 } else { 0.0 })
-                        }),
+                    let p0: Q4<S2> = std::array::from_fn(|c| S2 {
+                        v: S1::cst(q[o + 3 + c]),
+                        d: std::array::from_fn(|l| S1::cst(if l == 3 + c { 1.0 } else { 0.0 })),
                     });
-                    let dth = |c: usize| T2::constant(T1::var(0.0, 6 * side + 3 + c)) * 0.5;
-                    let dp: Q4<T2> = [T2::cst(1.0), dth(0), dth(1), dth(2)];
+                    let dp = half_turn::<S2>(|c| S2::constant(S1::var(0.0, 3 + c)));
                     self.frame_of(mk, &r, &qmul(&p0, &dp))
                 }
-            });
+            };
+            frames.push(map_frame(&local, |x| T2 {
+                v: widen(&x.v, 6 * side),
+                d: std::array::from_fn(|l| {
+                    if (7 * side..7 * side + 7).contains(&l) {
+                        widen(&x.d[l - 7 * side], 6 * side)
+                    } else {
+                        T1::cst(0.0)
+                    }
+                }),
+            }));
         }
         let tt = T2 {
             v: T1::var(t, 12),
