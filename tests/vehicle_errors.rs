@@ -41,6 +41,7 @@ fn scratch(tag: &str) -> Scratch {
         "vehicles/tyres/car_185_60r14.tir",
         "vehicles/tyres/trailer_155_80r13.tir",
         "flex/hitch_crossbeam.toml",
+        "flex/twist_beam.toml",
         "roads/ramp_thesis.toml",
         "scenes/default.toml",
     ] {
@@ -171,4 +172,37 @@ fn unknown_load_case_and_bad_scene_values() {
         line,
         "run.speed_km_h",
     );
+}
+
+#[test]
+fn bad_cross_member_kind_and_node() {
+    let root = scratch("cross_member");
+    let f = "vehicles/fabia/rear_twist_beam.toml";
+    let line = break_file(&root, f, "kind = \"rigid\"", "kind = \"flexibel\"");
+    let e = vehicle_error(&root);
+    check(&e, f, line, "cross_member.kind");
+    assert!(e.message.contains("flexibel"), "{e}");
+    break_file(&root, f, "kind = \"flexibel\"", "kind = \"flexible\"");
+    let line = break_file(&root, f, "[\"arm_left\", ", "[\"arm_lft\", ");
+    let e = vehicle_error(&root);
+    check(&e, f, line, "cross_member.interface_nodes[0]");
+    assert!(
+        e.message.contains("arm_lft") && e.message.contains("arm_left"),
+        "{e}"
+    );
+}
+
+#[test]
+fn bad_section_in_the_cross_member_fe_file() {
+    let root = scratch("cross_member_fe");
+    let rear = "vehicles/fabia/rear_twist_beam.toml";
+    break_file(&root, rear, "kind = \"rigid\"", "kind = \"flexible\"");
+    let f = "flex/twist_beam.toml";
+    let line = break_file(
+        &root,
+        f,
+        "torsion_constant_m4 = 2.6624e-8",
+        "torsion_constant_m4 = -2.6624e-8",
+    );
+    check(&vehicle_error(&root), f, line, "section[0]");
 }

@@ -307,3 +307,52 @@ fn flexible_scene_runs_over_the_ramp_like_the_rigid_one() {
     let fx = flex.peak("hitch_fx").unwrap();
     assert!((5e3..=10e3).contains(&fx.abs()), "peak hitch_fx {fx} N");
 }
+
+#[test]
+fn first_modes_match_beam_theory_and_the_modes_command_reads_the_file() {
+    // Free-free uniform beam (the file's section and material, weld-to-weld length):
+    // first torsion f = c / 2L, c = sqrt(G J / rho I_p), I_p = I_y + I_z (the element's
+    // rotary inertia); first bending f = 4.730^2 / (2 pi L^2) sqrt(E I / rho A).
+    let fe = table(FE);
+    let mat = &fe["material"][0];
+    let (e, nu, rho) = (
+        num(&mat["youngs_modulus_pa"]),
+        num(&mat["poissons_ratio"]),
+        num(&mat["density_kg_m3"]),
+    );
+    let s = &fe["section"][0];
+    let (a, iy, iz, j) = (
+        num(&s["area_m2"]),
+        num(&s["iy_m4"]),
+        num(&s["iz_m4"]),
+        num(&s["torsion_constant_m4"]),
+    );
+    let length = 1.2;
+    let g = e / (2.0 * (1.0 + nu));
+    let torsion = (g * j / (rho * (iy + iz))).sqrt() / (2.0 * length);
+    let bending = |i: f64| {
+        4.730f64.powi(2) / (2.0 * std::f64::consts::PI * length * length)
+            * (e * i / (rho * a)).sqrt()
+    };
+    let b = FlexBody::load(Path::new(FE), None, &Options::default()).unwrap();
+    let f: Vec<f64> = b.modal.modes.iter().map(|m| m.frequency_hz).collect();
+    for (what, got, want) in [
+        ("torsion", f[0], torsion),
+        ("vertical bending", f[1], bending(iy)),
+        ("fore-aft bending", f[3], bending(iz)),
+    ] {
+        println!("first {what}: {got:.2} Hz, beam theory {want:.2} Hz");
+        assert!((got / want - 1.0).abs() < 0.02, "{what}");
+    }
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_towride"))
+        .args(["modes", FE])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("arm_left") && text.contains("arm_right") && text.contains("selection"));
+}

@@ -58,7 +58,7 @@ pub fn is_flexible(src: &Source, p: &[Seg], kind: &str) -> Result<bool, InputErr
 
 enum Mount {
     Fixed,
-    Bushing(BushingLaws),
+    Bushing(Box<BushingLaws>),
 }
 
 /// The flexible cross member, checked and reduced.
@@ -113,11 +113,11 @@ pub fn read(
     }
     let mount = match c.mount.as_str() {
         "fixed" => Mount::Fixed,
-        "bushing" => Mount::Bushing(c.mount_bushing.check(
+        "bushing" => Mount::Bushing(Box::new(c.mount_bushing.check(
             src,
             &at(p, "mount_bushing"),
             [0.0, 1.0, 0.0],
-        )?),
+        )?)),
         other => return Err(src.error(&at(p, "mount"), format!("'{other}': use fixed or bushing"))),
     };
     Ok(Flexible {
