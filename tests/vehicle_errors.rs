@@ -206,3 +206,19 @@ fn bad_section_in_the_cross_member_fe_file() {
     );
     check(&vehicle_error(&root), f, line, "section[0]");
 }
+
+#[test]
+fn bad_selection_override_of_the_cross_member() {
+    let root = scratch("cross_member_selection");
+    let f = "vehicles/fabia/rear_twist_beam.toml";
+    break_file(&root, f, "kind = \"rigid\"", "kind = \"flexible\"");
+    let line = break_file(
+        &root,
+        f,
+        "mount = \"fixed\"\n",
+        "mount = \"fixed\"\nselection = { rule = \"load_path\", band_hz = [0.0, 100.0], load_interfaces = [\"arm_middle\"] }\n",
+    ) + 1;
+    let e = vehicle_error(&root);
+    check(&e, f, line, "cross_member.selection.load_interfaces[0]");
+    assert!(e.message.contains("arm_middle"), "{e}");
+}

@@ -263,6 +263,30 @@ fn car_with_the_flexible_cross_member_rests_on_its_weight_at_the_rigid_ride_heig
 }
 
 #[test]
+fn property_file_selection_replaces_the_fe_files() {
+    let modes = |props: &[Override]| {
+        let v = overrides::with(props, || {
+            vehicle::load(Path::new("vehicles/fabia.toml"), &Default::default())
+        })
+        .unwrap();
+        let cm = v.handles.bodies["cross_member"];
+        let md = &v.model.bodies[cm].modal.as_ref().unwrap().data;
+        md.modes.iter().map(|m| m.number).collect::<Vec<_>>()
+    };
+    let mut props = flexible("fixed");
+    let file_rule = modes(&props);
+    props.push(Override {
+        file: REAR.into(),
+        path: "cross_member.selection".into(),
+        value: "{ rule = \"list\", modes = [7, 8] }".into(),
+    });
+    assert_eq!(modes(&props), vec![7, 8]);
+    // The FE file's load-path rule keeps 11 of the 14 elastic modes, the twist among them.
+    assert_eq!(file_rule.len(), 11);
+    assert!(file_rule.contains(&7));
+}
+
+#[test]
 fn flexible_scene_runs_over_the_ramp_like_the_rigid_one() {
     let mut runs = Vec::new();
     for file in ["scenes/default.toml", "scenes/flexible_twist_beam.toml"] {
