@@ -41,6 +41,7 @@ fn scratch(tag: &str) -> Scratch {
         "vehicles/tyres/car_185_60r14.tir",
         "vehicles/tyres/trailer_155_80r13.tir",
         "flex/hitch_crossbeam.toml",
+        "flex/twist_beam.toml",
         "roads/ramp_thesis.toml",
         "scenes/default.toml",
     ] {
@@ -195,4 +196,53 @@ fn unknown_inertia_coupling_and_the_full_level() {
     let hb = v.handles.hitch.as_ref().unwrap().body;
     let m = v.model.bodies[hb].modal.as_ref().unwrap();
     assert_eq!(m.coupling, towride::model::desc::Coupling::Full);
+}
+
+#[test]
+fn bad_cross_member_kind_and_node() {
+    let root = scratch("cross_member");
+    let f = "vehicles/fabia/rear_twist_beam.toml";
+    let line = break_file(&root, f, "kind = \"rigid\"", "kind = \"flexibel\"");
+    let e = vehicle_error(&root);
+    check(&e, f, line, "cross_member.kind");
+    assert!(e.message.contains("flexibel"), "{e}");
+    break_file(&root, f, "kind = \"flexibel\"", "kind = \"flexible\"");
+    let line = break_file(&root, f, "[\"arm_left\", ", "[\"arm_lft\", ");
+    let e = vehicle_error(&root);
+    check(&e, f, line, "cross_member.interface_nodes[0]");
+    assert!(
+        e.message.contains("arm_lft") && e.message.contains("arm_left"),
+        "{e}"
+    );
+}
+
+#[test]
+fn bad_section_in_the_cross_member_fe_file() {
+    let root = scratch("cross_member_fe");
+    let rear = "vehicles/fabia/rear_twist_beam.toml";
+    break_file(&root, rear, "kind = \"rigid\"", "kind = \"flexible\"");
+    let f = "flex/twist_beam.toml";
+    let line = break_file(
+        &root,
+        f,
+        "torsion_constant_m4 = 2.6624e-8",
+        "torsion_constant_m4 = -2.6624e-8",
+    );
+    check(&vehicle_error(&root), f, line, "section[0]");
+}
+
+#[test]
+fn bad_selection_override_of_the_cross_member() {
+    let root = scratch("cross_member_selection");
+    let f = "vehicles/fabia/rear_twist_beam.toml";
+    break_file(&root, f, "kind = \"rigid\"", "kind = \"flexible\"");
+    let line = break_file(
+        &root,
+        f,
+        "mount = \"fixed\"\n",
+        "mount = \"fixed\"\nselection = { rule = \"load_path\", band_hz = [0.0, 100.0], load_interfaces = [\"arm_middle\"] }\n",
+    ) + 1;
+    let e = vehicle_error(&root);
+    check(&e, f, line, "cross_member.selection.load_interfaces[0]");
+    assert!(e.message.contains("arm_middle"), "{e}");
 }

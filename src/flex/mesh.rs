@@ -554,7 +554,7 @@ fn build(src: &Source, f: &FlexFile, variant: Option<u32>) -> Result<Mesh, Input
 
     let interface_names: Vec<String> = interfaces.iter().map(|i| i.name.clone()).collect();
     let selection = match &f.selection {
-        Some(s) => Rule::from_input(src, s, &interface_names)?,
+        Some(s) => Rule::from_input(src, &path!["selection"], s, &interface_names)?,
         None => Rule::All,
     };
     let damping = match &f.damping {

@@ -28,8 +28,7 @@ use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 
 use super::input::{RuleIn, SelectionIn};
 use super::modal::{ModalData, NodeKind};
-use crate::input::{InputError, Source};
-use crate::path;
+use crate::input::{InputError, Seg, Source};
 
 /// Default strain-energy share for the load-path rule.
 pub const DEFAULT_MIN_ENERGY_SHARE: f64 = 0.01;
@@ -61,57 +60,55 @@ pub struct LoadPath {
 }
 
 impl Rule {
-    /// Reads the `[selection]` table.
+    /// Reads a selection table found at `base` of `src` (`[selection]` in a flex file).
     pub fn from_input(
         src: &Source,
+        base: &[Seg],
         s: &SelectionIn,
         interfaces: &[String],
     ) -> Result<Rule, InputError> {
+        let at = |k: &str| {
+            let mut v = base.to_vec();
+            v.push(Seg::from(k));
+            v
+        };
         match s.rule {
             RuleIn::All => Ok(Rule::All),
             RuleIn::Cutoff => {
-                let c = s.cutoff_hz.ok_or_else(|| {
-                    src.error(
-                        &path!["selection", "cutoff_hz"],
-                        "missing for rule = \"cutoff\"",
-                    )
-                })?;
+                let c = s
+                    .cutoff_hz
+                    .ok_or_else(|| src.error(&at("cutoff_hz"), "missing for rule = \"cutoff\""))?;
                 Ok(Rule::Cutoff {
-                    max_hz: src.positive(&path!["selection", "cutoff_hz"], c)?,
+                    max_hz: src.positive(&at("cutoff_hz"), c)?,
                 })
             }
             RuleIn::List => {
-                let modes = s.modes.clone().ok_or_else(|| {
-                    src.error(&path!["selection", "modes"], "missing for rule = \"list\"")
-                })?;
+                let modes = s
+                    .modes
+                    .clone()
+                    .ok_or_else(|| src.error(&at("modes"), "missing for rule = \"list\""))?;
                 if let Some(j) = modes.iter().position(|&m| m <= 6) {
                     return Err(src.error(
-                        &path!["selection", "modes", j],
+                        &[at("modes"), vec![Seg::from(j)]].concat(),
                         "modes 1..6 are the rigid-body modes; elastic modes start at 7",
                     ));
                 }
                 Ok(Rule::List { modes })
             }
             RuleIn::LoadPath => {
-                let band = s.band_hz.ok_or_else(|| {
-                    src.error(
-                        &path!["selection", "band_hz"],
-                        "missing for rule = \"load_path\"",
-                    )
-                })?;
-                src.non_negative(&path!["selection", "band_hz"], band[0])?;
-                src.finite(&path!["selection", "band_hz"], band[1])?;
+                let band = s
+                    .band_hz
+                    .ok_or_else(|| src.error(&at("band_hz"), "missing for rule = \"load_path\""))?;
+                src.non_negative(&at("band_hz"), band[0])?;
+                src.finite(&at("band_hz"), band[1])?;
                 if band[1] <= band[0] {
-                    return Err(src.error(
-                        &path!["selection", "band_hz"],
-                        "must be [low, high] with low < high",
-                    ));
+                    return Err(src.error(&at("band_hz"), "must be [low, high] with low < high"));
                 }
                 let share = s.min_energy_share.unwrap_or(DEFAULT_MIN_ENERGY_SHARE);
-                let share = src.positive(&path!["selection", "min_energy_share"], share)?;
+                let share = src.positive(&at("min_energy_share"), share)?;
                 if share >= 1.0 {
                     return Err(src.error(
-                        &path!["selection", "min_energy_share"],
+                        &at("min_energy_share"),
                         "is a fraction of the strain energy, below 1",
                     ));
                 }
@@ -119,17 +116,17 @@ impl Rule {
                 for (j, n) in load_interfaces.iter().enumerate() {
                     if !interfaces.contains(n) {
                         return Err(src.error(
-                            &path!["selection", "load_interfaces", j],
+                            &[at("load_interfaces"), vec![Seg::from(j)]].concat(),
                             format!("names a missing interface `{n}`"),
                         ));
                     }
                 }
                 if let Some(l) = s.load_n {
                     for (c, x) in l.iter().enumerate() {
-                        src.finite(&path!["selection", "load_n", c], *x)?;
+                        src.finite(&[at("load_n"), vec![Seg::from(c)]].concat(), *x)?;
                     }
                     if l.iter().all(|x| *x == 0.0) {
-                        return Err(src.error(&path!["selection", "load_n"], "is all zero"));
+                        return Err(src.error(&at("load_n"), "is all zero"));
                     }
                 }
                 Ok(Rule::LoadPath(LoadPath {

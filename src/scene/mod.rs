@@ -8,6 +8,7 @@
 //! hitch_variant = 5
 //! tyre_model = "rigid-ring"
 //! ball_coupling = "spherical"
+//! rear_cross_member = "rigid"  # or "flexible" (the twist beam's modal cross member)
 //!
 //! [road]
 //! file = "../roads/ramp_thesis.toml"
@@ -72,6 +73,7 @@ struct SceneSec {
     tyre_model: Option<TyreKind>,
     ball_coupling: Option<String>,
     joints_as_bushings: Option<JointBushing>,
+    rear_cross_member: Option<String>,
 }
 
 #[derive(Deserialize, Debug)]
@@ -228,6 +230,14 @@ pub fn load_with(path: &Path, o: &Overrides) -> Result<Scene, InputError> {
             ));
         }
     }
+    if let Some(k) = &f.scene.rear_cross_member {
+        if k != "rigid" && k != "flexible" {
+            return Err(src.error(
+                &path!["scene", "rear_cross_member"],
+                format!("'{k}': use rigid or flexible"),
+            ));
+        }
+    }
     if let Some(jb) = &f.scene.joints_as_bushings {
         vehicle::props::joint_bushing(
             &src,
@@ -260,6 +270,7 @@ pub fn load_with(path: &Path, o: &Overrides) -> Result<Scene, InputError> {
         tyre_kind: f.scene.tyre_model,
         joints_as_bushings: f.scene.joints_as_bushings.clone(),
         ball_coupling: f.scene.ball_coupling.clone(),
+        rear_cross_member: f.scene.rear_cross_member.clone(),
     };
     let mut v = vehicle::load(&vehicle_file, &opts)?;
     let extra = {

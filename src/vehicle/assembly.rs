@@ -181,6 +181,7 @@ pub fn load(path: &Path, opts: &Options) -> Result<Vehicle, InputError> {
         &part(&src, dir, &path!["car", "rear"], &c.rear, "twist_beam")?,
         car_body,
         &tr,
+        opts.rear_cross_member.as_deref(),
     )?;
     let hitch = match &c.hitch {
         Some(h) => {

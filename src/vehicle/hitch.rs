@@ -11,10 +11,10 @@ use serde::Deserialize;
 
 use super::build::{Builder, Link};
 use super::geom::{IDENTITY, V};
-use super::props::{joint_bushing, point, BushingProps, Mass};
-use crate::flex::FlexError;
+use super::modal_body;
+use super::props::{joint_bushing, point, BushingProps};
 use crate::input::{InputError, Source};
-use crate::model::desc::{Coupling, Force, JointKind, Modal};
+use crate::model::desc::JointKind;
 use crate::model::math::add;
 use crate::model::spec::JointBushing;
 use crate::path;
@@ -100,43 +100,28 @@ pub fn build(
     let h = &f.hitch;
     let origin = point(&src, &path!["hitch", "fe_origin_m"], &h.fe_origin_m)?;
     let variant = variant.unwrap_or(h.variant);
-    let coupling = Coupling::parse(&h.inertia_coupling).ok_or_else(|| {
-        src.error(
-            &path!["hitch", "inertia_coupling"],
-            format!("'{}': use {}", h.inertia_coupling, Coupling::NAMES),
-        )
-    })?;
+    let coupling = modal_body::coupling(
+        &src,
+        &path!["hitch", "inertia_coupling"],
+        &h.inertia_coupling,
+    )?;
     let fe = file.parent().unwrap_or(Path::new(".")).join(&h.fe_file);
-    let data = crate::flex::modal_data(&fe, Some(variant))
-        .map_err(|e| match e {
-            FlexError::Input(e) => e,
-            FlexError::Model { file, message } => {
-                src.error(&path!["hitch", "fe_file"], format!("{file}: {message}"))
-            }
-        })?
-        .selected();
-    let node = |k: &str, name: &str| -> Result<usize, InputError> {
-        data.nodes
-            .iter()
-            .position(|n| n.name == name)
-            .ok_or_else(|| {
-                let names: Vec<&str> = data.nodes.iter().map(|n| n.name.as_str()).collect();
-                src.error(
-                    &path!["hitch", k],
-                    format!(
-                        "no node '{name}' in {} (nodes: {})",
-                        fe.display(),
-                        names.join(", ")
-                    ),
-                )
-            })
-    };
-    let brackets = [
-        node("bracket_nodes", &h.bracket_nodes[0])?,
-        node("bracket_nodes", &h.bracket_nodes[1])?,
-    ];
-    let ball_node = node("ball_node", &h.ball_node)?;
-    let sensor_node = node("sensor_node", &h.sensor_node)?;
+    let data = modal_body::load(&src, &path!["hitch", "fe_file"], &fe, Some(variant), None)?;
+    let brackets = modal_body::nodes(
+        &src,
+        &path!["hitch", "bracket_nodes"],
+        &data,
+        &fe,
+        &h.bracket_nodes,
+    )?;
+    let ball_node = modal_body::node(&src, &path!["hitch", "ball_node"], &data, &fe, &h.ball_node)?;
+    let sensor_node = modal_body::node(
+        &src,
+        &path!["hitch", "sensor_node"],
+        &data,
+        &fe,
+        &h.sensor_node,
+    )?;
     let bushing = f
         .bracket_bushing
         .check(&src, &path!["bracket_bushing"], [0.0, 1.0, 0.0])?;
@@ -163,12 +148,6 @@ pub fn build(
         }
     };
     let at = |p: &[f64; 3]| add(&origin, p);
-    let mass = Mass {
-        mass: data.mass_kg,
-        cm: at(&data.com_m),
-        inertia: data.inertia_com_kg_m2,
-    };
-    let hb = b.body("hitch", &mass);
     let fixed = match h.bracket_mount.as_deref() {
         None | Some("bushing") => false,
         Some("fixed") => true,
@@ -179,52 +158,49 @@ pub fn build(
             ))
         }
     };
+    let (ball, sensor) = (
+        at(&data.nodes[ball_node].position_m),
+        at(&data.nodes[sensor_node].position_m),
+    );
+    let modes = data.modes.len();
+    let hb = modal_body::add_body(b, "hitch", data, origin, coupling);
     for (k, &n) in brackets.iter().enumerate() {
-        let p = at(&data.nodes[n].position_m);
+        let p = modal_body::node_position(b, hb, origin, n);
         let name = format!("hitch_bracket_{}", ["left", "right"][k]);
-        if fixed {
-            let link = b.ideal_joint(
+        let link = if fixed {
+            b.ideal_joint(
                 &name,
                 JointKind::Fixed,
                 Some(hb),
                 Some(body),
                 p,
                 &bushing.axes,
-            );
-            if let Link::Joint(j) = link {
-                let i = b.model.joints[j].i;
-                b.model.markers[i].node = Some(n);
-            }
-            continue;
-        }
-        let f = b.bushing(
-            &name,
-            Some(hb),
-            Some(body),
-            p,
-            &bushing.axes,
-            &bushing,
-            [0.0; 6],
-        );
-        if let Force::Bushing(bu) = &b.model.forces[f] {
-            let i = bu.i;
-            b.model.markers[i].node = Some(n);
-        }
+            )
+        } else {
+            Link::Bushing(b.bushing(
+                &name,
+                Some(hb),
+                Some(body),
+                p,
+                &bushing.axes,
+                &bushing,
+                [0.0; 6],
+            ))
+        };
+        modal_body::pin(b, link, true, n);
     }
-    let handle = HitchHandle {
+    Ok(HitchHandle {
         body: hb,
-        ball: at(&data.nodes[ball_node].position_m),
+        ball,
         ball_node,
         sensor_node,
-        sensor: at(&data.nodes[sensor_node].position_m),
+        sensor,
         ball_kind,
         fe_origin: origin,
         variant,
-        modes: data.modes.len(),
+        modes,
         origin_complaint: src.error(&path!["hitch", "fe_origin_m"], ""),
-    };
-    b.model.bodies[hb].modal = Some(Box::new(Modal { data, coupling }));
-    Ok(handle)
+    })
 }
 
 /// The ball coupling between the hitch ball node and the trailer body `drawbar` (the
@@ -249,10 +225,7 @@ pub fn couple(b: &mut Builder, h: &HitchHandle, drawbar: usize) -> (Link, BallKi
                 &IDENTITY,
                 None,
             );
-            if let Link::Joint(j) = link {
-                let i = b.model.joints[j].i;
-                b.model.markers[i].node = Some(h.ball_node);
-            }
+            modal_body::pin(b, link, true, h.ball_node);
             link
         }
         BallKind::Bushing(jb) => {
@@ -265,12 +238,7 @@ pub fn couple(b: &mut Builder, h: &HitchHandle, drawbar: usize) -> (Link, BallKi
                 &IDENTITY,
                 Some(jb),
             );
-            if let Link::Bushing(f) = link {
-                if let Force::Bushing(bu) = &b.model.forces[f] {
-                    let j = bu.j;
-                    b.model.markers[j].node = Some(h.ball_node);
-                }
-            }
+            modal_body::pin(b, link, false, h.ball_node);
             link
         }
     };

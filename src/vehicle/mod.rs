@@ -12,11 +12,13 @@
 //! the trailer's is on the ground under its coupling's ball centre. Hardpoints are given
 //! at the design position; left-side values are mirrored for the right side.
 //!
-//! Templates: [`body`] (lumped body), [`mcpherson`] (front), [`twist_beam`] (rear),
+//! Templates: [`body`] (lumped body), [`mcpherson`] (front), [`twist_beam`] (rear, its
+//! cross member rigid or flexible: [`twist_flex`]),
 //! [`driveline`] (speed control), [`hitch`] (modal crossbeam and ball coupling),
 //! [`trailer`] (box trailer with rubber torsion axle); shared pieces in [`wheel`],
 //! [`swing`], [`design`] (spring preloads by virtual work), [`build`], [`props`],
-//! [`geom`], [`sensors`], [`strut`] (McPherson kinematics).
+//! [`geom`], [`sensors`], [`strut`] (McPherson kinematics), [`modal_body`] (modal bodies
+//! of the hitch and the cross member).
 
 pub mod assembly;
 pub mod body;
@@ -26,12 +28,14 @@ pub mod driveline;
 pub mod geom;
 pub mod hitch;
 pub mod mcpherson;
+pub mod modal_body;
 pub mod props;
 pub mod sensors;
 pub mod strut;
 pub mod swing;
 pub mod trailer;
 pub mod twist_beam;
+pub mod twist_flex;
 pub mod wheel;
 
 use std::collections::BTreeMap;
@@ -70,6 +74,9 @@ pub struct Options {
     /// Ball coupling, "spherical" or "bushing" (hitch file: `ball_coupling.kind`; the
     /// bushing's properties always come from the hitch file).
     pub ball_coupling: Option<String>,
+    /// Rear axle cross member, "rigid" or "flexible" (rear axle file:
+    /// `cross_member.kind`).
+    pub rear_cross_member: Option<String>,
 }
 
 /// A vehicle ready for a scene.

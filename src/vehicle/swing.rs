@@ -49,6 +49,8 @@ pub struct Built {
     pub bushing_rates: [f64; 2],
 }
 
+/// The halves on their bushings with their wheels; [`join`] adds the centre joint (a
+/// flexible cross member joins them otherwise).
 pub fn build(b: &mut Builder, s: &Spec, tyre: &Tyre) -> Built {
     let y = [0.0, 1.0, 0.0];
     let belt = wheel::tyre_own_mass(tyre);
@@ -88,7 +90,17 @@ pub fn build(b: &mut Builder, s: &Spec, tyre: &Tyre) -> Built {
         bushings[k] = bu;
         wheels.push(wh);
     }
-    // The centre joint turns about y.
+    Built {
+        halves,
+        wheels,
+        bushings,
+        rates,
+        bushing_rates,
+    }
+}
+
+/// Joins the halves on the centreline: a revolute joint about y with the torsion element.
+pub fn join(b: &mut Builder, s: &Spec, halves: [usize; 2]) {
     let axes = Z_ALONG_Y;
     let centre = [s.pivot[0], 0.0, s.pivot[2]];
     b.joint(
@@ -109,13 +121,6 @@ pub fn build(b: &mut Builder, s: &Spec, tyre: &Tyre) -> Built {
         s.torsion.0.clone(),
         s.torsion.1.clone(),
     );
-    Built {
-        halves,
-        wheels,
-        bushings,
-        rates,
-        bushing_rates,
-    }
 }
 
 fn col(a: &Axes, k: usize) -> V {

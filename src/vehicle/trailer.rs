@@ -203,22 +203,20 @@ pub fn build(b: &mut Builder, t: &TrailerFile, tyre: &Tyre) -> Result<Trailer, I
         None => t.box_mass.clone(),
     };
     let body = b.body("trailer_box", &loaded);
-    let built = swing::build(
-        b,
-        &Spec {
-            prefix: "trailer_arm",
-            wheels: ["tl", "tr"],
-            centre: "trailer_axle",
-            carrier: body,
-            pivot: t.pivot,
-            half: t.half.clone(),
-            rim: rim.clone(),
-            bushing: t.bushing.clone(),
-            torsion: t.torsion.clone(),
-            joints_as_bushings: t.joints_as_bushings.clone(),
-        },
-        tyre,
-    );
+    let spec = Spec {
+        prefix: "trailer_arm",
+        wheels: ["tl", "tr"],
+        centre: "trailer_axle",
+        carrier: body,
+        pivot: t.pivot,
+        half: t.half.clone(),
+        rim: rim.clone(),
+        bushing: t.bushing.clone(),
+        torsion: t.torsion.clone(),
+        joints_as_bushings: t.joints_as_bushings.clone(),
+    };
+    let built = swing::build(b, &spec, tyre);
+    swing::join(b, &spec, built.halves);
     // Design statics of the empty trailer: ball and axle share its weight.
     let belt = wheel::tyre_own_mass(tyre);
     let mut parts = vec![(t.box_mass.mass, t.box_mass.cm)];

@@ -1,7 +1,12 @@
-//! Twist-beam rear axle, rigid variant (the thesis's rigid model): two trailing-arm
-//! halves on body bushings joined by a torsion element about the pivot axis, coil
-//! springs and dampers between arms and body, wheels and tyres. One property set
+//! Twist-beam rear axle: two trailing arms on body bushings joined by the cross member,
+//! coil springs and dampers between arms and body, wheels and tyres. One property set
 //! describes the left side; the right side is mirrored.
+//!
+//! The cross member (`[cross_member] kind`): "rigid" (default, the thesis's rigid model):
+//! two halves, each an arm with half the cross member (`[half]`), joined by a revolute
+//! joint and a torsion element about the pivot axis (`[torsion]`); "flexible": the arms
+//! alone (`[cross_member.arm]`) and the cross member as a modal body fixed to them
+//! ([`super::twist_flex`]).
 
 use serde::Deserialize;
 
@@ -13,6 +18,7 @@ use super::props::{
     WheelProps,
 };
 use super::swing::{self, Spec};
+use super::twist_flex::{self, CrossMemberProps};
 use super::wheel::{self, WheelHandle};
 use crate::input::{InputError, Source};
 use crate::model::spec::StopSpec;
@@ -32,6 +38,7 @@ struct File {
     pivot_bushing: BushingProps,
     torsion: TorsionProps,
     joints: JointsProps,
+    cross_member: Option<CrossMemberProps>,
 }
 
 /// Left-side hardpoints, vehicle coordinates at the design position [m].
@@ -57,17 +64,37 @@ pub struct Rear {
     pub corners: Vec<Corner>,
     /// Upper spring seats (left, right), vehicle coordinates: where the body sensors sit.
     pub spring_tops: Vec<V>,
+    /// The flexible cross member's body and its number of selected modes.
+    pub cross_member: Option<(usize, usize)>,
 }
 
-/// Reads `file` and adds the axle to the car body `body`.
+/// Reads `file` and adds the axle to the car body `body`; `kind` ("rigid" or
+/// "flexible") overrides the file's cross member.
 pub fn build(
     b: &mut Builder,
     file: &std::path::Path,
     body: usize,
     tyre: &Tyre,
+    kind: Option<&str>,
 ) -> Result<Rear, InputError> {
     let src = Source::read(file)?;
     let f: File = src.parse()?;
+    let cp = path!["cross_member"];
+    let flexible = match (&f.cross_member, kind) {
+        (Some(c), _) => {
+            let k = kind.unwrap_or(&c.kind);
+            twist_flex::is_flexible(&src, &at(&cp, "kind"), k)?
+                .then(|| twist_flex::read(&src, &cp, file, c))
+                .transpose()?
+        }
+        (None, None | Some("rigid")) => None,
+        (None, Some(k)) => {
+            return Err(src.error(
+                &cp,
+                format!("cross member '{k}' asked for: it needs a [cross_member] table"),
+            ))
+        }
+    };
     let h = &f.hardpoints;
     let hp = |k: &str, v: &[f64; 3]| point(&src, &path!["hardpoints", k], v);
     let w = hp("wheel_centre_m", &h.wheel_centre_m)?;
@@ -84,7 +111,10 @@ pub fn build(
             ));
         }
     }
-    let half = f.half.check(&src, &path!["half"])?;
+    let half = match &flexible {
+        Some(x) => x.arm.clone(),
+        None => f.half.check(&src, &path!["half"])?,
+    };
     let rim = wheel::rim_mass(&src, &path!["wheel"], &f.wheel, tyre, w)?;
     let k_spring = src.positive(&path!["spring", "stiffness_n_m"], f.spring.stiffness_n_m)?;
     let damper_law = f.damper.check(&src, &path!["damper"])?;
@@ -107,23 +137,36 @@ pub fn build(
         )?,
     );
     let jb = joints(&src, &path!["joints"], &f.joints)?;
-    let built = swing::build(
-        b,
-        &Spec {
-            prefix: "arm",
-            wheels: ["rl", "rr"],
-            centre: "twist_beam",
-            carrier: body,
-            pivot,
-            half,
-            rim,
-            bushing,
-            torsion,
-            joints_as_bushings: jb,
-        },
-        tyre,
-    );
+    let spec = Spec {
+        prefix: "arm",
+        wheels: ["rl", "rr"],
+        centre: "twist_beam",
+        carrier: body,
+        pivot,
+        half,
+        rim,
+        bushing,
+        torsion,
+        joints_as_bushings: jb,
+    };
+    let mut built = swing::build(b, &spec, tyre);
     let y = [0.0, 1.0, 0.0];
+    let cross_member = match flexible {
+        None => {
+            swing::join(b, &spec, built.halves);
+            None
+        }
+        Some(x) => {
+            let j = twist_flex::join(b, x, built.halves, spec.joints_as_bushings.as_ref());
+            // Heave turns both arms alike, so the cross member turns with them about
+            // the pivot axis: half its mass rides on each corner.
+            for (k, r) in built.rates.iter_mut().enumerate() {
+                let piv = if k == 1 { mirror(pivot) } else { pivot };
+                r.masses.push((0.5 * j.mass, turning(&piv, &y, &j.cm)));
+            }
+            Some((j.body, j.modes))
+        }
+    };
     let mut corners = Vec::new();
     let mut spring_tops = Vec::new();
     for (k, side) in [false, true].into_iter().enumerate() {
@@ -159,5 +202,6 @@ pub fn build(
         wheels: built.wheels,
         corners,
         spring_tops,
+        cross_member,
     })
 }
