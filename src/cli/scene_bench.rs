@@ -76,6 +76,17 @@ impl Reference {
                 .map(|c| (c.name.clone(), r.channel(&c.name).unwrap_or_default()))
                 .collect(),
         }
+        .without_silent_sensors()
+    }
+
+    /// Drops sensors whose reference RMS is below 1 % of the loudest one's (the lateral
+    /// axes of a straight, symmetric crossing): their relative error measures rounding
+    /// noise, not the integration.
+    fn without_silent_sensors(mut self) -> Self {
+        let rms = |v: &[f64]| (v.iter().map(|x| x * x).sum::<f64>() / v.len().max(1) as f64).sqrt();
+        let loudest = self.sensors.iter().map(|(_, v)| rms(v)).fold(0.0, f64::max);
+        self.sensors.retain(|(_, v)| rms(v) >= 0.01 * loudest);
+        self
     }
 
     /// Peak, peak error, hitch RMS error and mean sensor RMS error of run `r`.

@@ -114,6 +114,7 @@ pub struct SolverOptions {
     /// the vector's length, not from each component: the accuracy asked of a vector then
     /// does not depend on the frame it is resolved in, and does not tighten a thousandfold
     /// each time a component of a spinning wheel's quaternion passes through zero.
+    /// Variable-coefficient method only.
     pub vector_error_weights: bool,
 }
 
