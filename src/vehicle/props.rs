@@ -263,3 +263,13 @@ pub struct TorsionProps {
     pub stiffness_n_m_rad: LawSpec,
     pub damping_n_m_s_rad: LawSpec,
 }
+
+impl TorsionProps {
+    /// Stiffness and damping laws, errors at `p`.`stiffness_n_m_rad` / `damping_n_m_s_rad`.
+    pub fn laws(&self, src: &Source, p: &[Seg]) -> Result<(Law, Law), InputError> {
+        Ok((
+            law(src, &at(p, "stiffness_n_m_rad"), &self.stiffness_n_m_rad)?,
+            law(src, &at(p, "damping_n_m_s_rad"), &self.damping_n_m_s_rad)?,
+        ))
+    }
+}

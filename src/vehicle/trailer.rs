@@ -17,7 +17,7 @@ use super::build::Builder;
 use super::design::{self, centre_of_mass, Corner, CornerDesign, Preloaded};
 use super::geom::{mirror, Placement, V};
 use super::props::{
-    at, joints, law, point, BushingProps, JointsProps, Mass, MassProps, TorsionProps, WheelProps,
+    joints, point, BushingProps, JointsProps, Mass, MassProps, TorsionProps, WheelProps,
 };
 use super::swing::{self, Spec};
 use super::wheel::{self, WheelHandle};
@@ -128,7 +128,6 @@ pub fn read(file: &Path, case: Option<&str>) -> Result<TrailerFile, InputError> 
             payload = m;
         }
     }
-    let tp = path!["torsion"];
     Ok(TrailerFile {
         coupling,
         wheel_centre: wc,
@@ -140,18 +139,7 @@ pub fn read(file: &Path, case: Option<&str>) -> Result<TrailerFile, InputError> 
         bushing: f
             .pivot_bushing
             .check(&src, &path!["pivot_bushing"], [0.0, 1.0, 0.0])?,
-        torsion: (
-            law(
-                &src,
-                &at(&tp, "stiffness_n_m_rad"),
-                &f.torsion.stiffness_n_m_rad,
-            )?,
-            law(
-                &src,
-                &at(&tp, "damping_n_m_s_rad"),
-                &f.torsion.damping_n_m_s_rad,
-            )?,
-        ),
+        torsion: f.torsion.laws(&src, &path!["torsion"])?,
         joints_as_bushings: joints(&src, &path!["joints"], &f.joints)?,
         wheel: f.wheel.clone(),
         src_path: file.to_path_buf(),

@@ -14,7 +14,7 @@ use super::build::{Builder, Line};
 use super::design::{Corner, Preloaded};
 use super::geom::{length_rate, mirror, turning, V};
 use super::props::{
-    at, joints, law, point, stop, BushingProps, DamperProps, JointsProps, MassProps, TorsionProps,
+    at, joints, point, stop, BushingProps, DamperProps, JointsProps, MassProps, TorsionProps,
     WheelProps,
 };
 use super::swing::{self, Spec};
@@ -123,19 +123,7 @@ pub fn build(
     let bushing = f
         .pivot_bushing
         .check(&src, &path!["pivot_bushing"], [0.0, 1.0, 0.0])?;
-    let tp = path!["torsion"];
-    let torsion = (
-        law(
-            &src,
-            &at(&tp, "stiffness_n_m_rad"),
-            &f.torsion.stiffness_n_m_rad,
-        )?,
-        law(
-            &src,
-            &at(&tp, "damping_n_m_s_rad"),
-            &f.torsion.damping_n_m_s_rad,
-        )?,
-    );
+    let torsion = f.torsion.laws(&src, &path!["torsion"])?;
     let jb = joints(&src, &path!["joints"], &f.joints)?;
     let spec = Spec {
         prefix: "arm",
