@@ -12,8 +12,9 @@
 //!
 //! The maximisation is exact: the road reports where it has kinks or jumps along the line
 //! ([`Road::kinks_along`]); between them the road is linear or concave and the cam contour
-//! is concave (c_e >= 1), so the sum is concave and a golden-section search finds its
-//! maximum, while kinks are evaluated directly (with the higher of the two one-sided road
+//! is concave (c_e >= 1), so the sum is concave: on a linear piece its maximum is where the
+//! contour's slope cancels the road's (closed form), on a curved one a golden-section
+//! search finds it, while kinks are evaluated directly (with the higher of the two one-sided road
 //! heights at a jump). The result is therefore continuous in the wheel position, without
 //! the stair-steps of a sampled road. Derivatives come from the envelope theorem,
 //! dw/ds = -z_c'(xi*) at the maximiser xi*, so the slope rate needs no differencing.
@@ -75,6 +76,9 @@ impl Clone for LastQuery {
 /// Tolerance of the golden-section search on the cam position [m].
 const XI_TOL: f64 = 1e-10;
 
+/// Largest departure of a road piece from its chord for which it counts as linear [m].
+const LINEAR_TOL: f64 = 1e-12;
+
 impl TandemCams {
     pub fn new(p: &TyreParams) -> TandemCams {
         let (a, b, c) = (p.d.a_e, p.d.b_e, p.d.c_e);
@@ -124,6 +128,40 @@ impl TandemCams {
             * (1.0 - u.powf(self.c)).powf(1.0 / self.c - 1.0)
     }
 
+    /// Maximum of h(eta) + z_c(eta - s) over a piece [lo, hi] on which the road is linear,
+    /// in closed form: the contour's slope equals minus the road's, z_c'(xi) = -m, at
+    /// xi = sgn(m) a r / (1 + r^c)^(1/c) with r = (|m| a / b)^(1/(c-1)); the sum is concave,
+    /// so the maximiser clamped to the piece is the piece's maximum. `None` when the piece
+    /// is curved or the contour is not strictly convex (c <= 1): the caller searches.
+    fn linear_piece_max(
+        &self,
+        h_at: &impl Fn(f64) -> f64,
+        s: f64,
+        lo: f64,
+        hi: f64,
+    ) -> Option<(f64, f64)> {
+        if self.c <= 1.0 {
+            return None;
+        }
+        // Interior points only: the ends may sit on a jump. A concave piece that meets
+        // its chord at the midpoint is linear (pieces are smooth: lines or arcs).
+        let len = hi - lo;
+        let (q1, q3) = (lo + 0.25 * len, lo + 0.75 * len);
+        let (h1, hm, h3) = (h_at(q1), h_at(lo + 0.5 * len), h_at(q3));
+        if (hm - 0.5 * (h1 + h3)).abs() > LINEAR_TOL {
+            return None;
+        }
+        let m = (h3 - h1) / (q3 - q1);
+        let xi = if m == 0.0 {
+            0.0
+        } else {
+            let r = (m.abs() * self.a / self.b).powf(1.0 / (self.c - 1.0));
+            m.signum() * self.a * r / (1.0 + r.powf(self.c)).powf(1.0 / self.c)
+        };
+        let eta = (s + xi).clamp(lo, hi);
+        Some((eta, h1 + m * (eta - q1) + self.contour(eta - s)))
+    }
+
     /// Lowest point w of one cam centred at p + s d, and dw/ds.
     pub fn cam(
         &self,
@@ -164,7 +202,9 @@ impl TandemCams {
         pieces.push(s1);
         for &hi in &pieces {
             if hi - lo > 2.0 * XI_TOL {
-                let (eta, v) = golden_max(&g, lo, hi);
+                let (eta, v) = self
+                    .linear_piece_max(&h_at, s, lo, hi)
+                    .unwrap_or_else(|| golden_max(&g, lo, hi));
                 consider(eta, v, &mut best, &mut best_eta);
             }
             lo = hi;
@@ -270,5 +310,41 @@ fn golden_max(f: &impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> (f64, f64) {
         (x1, f1)
     } else {
         (x2, f2)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The closed-form maximiser on a linear piece against a golden-section search of the
+    /// same function, for flat, gentle, steep and clamped cases on both sides.
+    #[test]
+    fn closed_form_matches_search_on_linear_pieces() {
+        let cams = TandemCams {
+            a: 0.2,
+            b: 0.18,
+            c: 1.8,
+            l_s: 0.15,
+            xi_max: 0.12,
+            offsets: vec![0.0],
+            last: Box::default(),
+        };
+        for m in [0.0, 0.05, -0.3, 1.0, -1.0, 4.0] {
+            for (lo, hi) in [(-0.12, 0.12), (0.02, 0.1), (-0.1, -0.03)] {
+                let h = |eta: f64| 0.01 + m * eta;
+                let g = |eta: f64| h(eta) + cams.contour(eta - 0.01);
+                let (e1, v1) = cams.linear_piece_max(&h, 0.01, lo, hi).unwrap();
+                let (e2, v2) = golden_max(&g, lo, hi);
+                // The search stops within XI_TOL of a clamped maximiser, where the sum
+                // still has a slope: the closed form is never lower, and higher by at most
+                // that slope times XI_TOL.
+                assert!(v1 >= v2 - 1e-15 && v1 - v2 < 1e-9, "m {m}: {v1} vs {v2}");
+                assert!((e1 - e2).abs() < 1e-6, "m {m}: at {e1} vs {e2}");
+            }
+        }
+        // A curved piece is left to the search.
+        let arc = |eta: f64| (0.25 - eta * eta).sqrt();
+        assert!(cams.linear_piece_max(&arc, 0.0, -0.1, 0.1).is_none());
     }
 }
