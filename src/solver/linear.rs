@@ -52,6 +52,14 @@ pub(crate) struct NewtonMatrix {
     row_scale: Vec<f64>,
     col_scale: Vec<f64>,
     work: Vec<f64>,
+    /// Where each `add` since the last `clear` landed, (r, c, index into the values): an
+    /// assembly repeats its sequence of entries, so the next entry is looked up here
+    /// before its column is searched.
+    trail: Vec<(usize, usize, usize)>,
+    cursor: usize,
+    /// The trail is being written (first assembly, or after too many misses).
+    recording: bool,
+    misses: usize,
 }
 
 impl NewtonMatrix {
@@ -121,6 +129,10 @@ impl NewtonMatrix {
             row_scale: vec![1.0; n],
             col_scale: vec![1.0; n],
             work: vec![0.0; n],
+            trail: Vec::new(),
+            cursor: 0,
+            recording: true,
+            misses: 0,
         })
     }
 
@@ -138,6 +150,15 @@ impl NewtonMatrix {
     }
 
     pub fn clear(&mut self) {
+        // Re-record when the last assembly followed another order.
+        if self.recording {
+            self.recording = self.trail.is_empty();
+        } else if 8 * self.misses > self.trail.len() {
+            self.trail.clear();
+            self.recording = true;
+        }
+        self.cursor = 0;
+        self.misses = 0;
         match &mut self.storage {
             Storage::Dense { a, .. } => a.fill(0.0),
             Storage::Sparse { values, .. } => values.fill(0.0),
@@ -155,11 +176,24 @@ impl NewtonMatrix {
                 Ok(())
             }
             Storage::Sparse { values, .. } => {
+                // Entries skipped as zero this time: look a few places ahead.
+                let ahead = &self.trail[self.cursor.min(self.trail.len())..];
+                if let Some(j) = ahead.iter().take(4).position(|e| (e.0, e.1) == (r, c)) {
+                    values[ahead[j].2] += v;
+                    self.cursor += j + 1;
+                    return Ok(());
+                }
                 let lo = self.col_ptr[c];
                 let rows = &self.row_idx[lo..self.col_ptr[c + 1]];
                 match rows.binary_search(&r) {
                     Ok(k) => {
                         values[lo + k] += v;
+                        if self.recording {
+                            self.trail.push((r, c, lo + k));
+                            self.cursor = self.trail.len();
+                        } else {
+                            self.misses += 1;
+                        }
                         Ok(())
                     }
                     Err(_) => Err((r, c)),
