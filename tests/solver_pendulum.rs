@@ -199,6 +199,19 @@ fn events_find_the_passes_under_the_pivot() {
     // The event times carry the solution's own global (phase) error, ~1e-6 s here.
     assert!((roots[0] - PERIOD / 4.0).abs() < 1e-5, "{roots:?}");
     assert!((roots[1] - 0.75 * PERIOD).abs() < 1e-5, "{roots:?}");
+    // Every matrix build has one recorded reason; the step limiters are named unknowns
+    // and account for at most the accepted steps.
+    let st = bdf.stats();
+    let why = &st.matrix_rebuilds;
+    assert_eq!(
+        why.invalid + why.step_change + why.convergence + why.age,
+        st.jacobian_evals,
+        "{why:?}"
+    );
+    let lim = bdf.step_limiters(5);
+    assert!(!lim.is_empty() && lim.len() <= 5, "{lim:?}");
+    assert!(lim.iter().map(|l| l.1).sum::<usize>() <= st.steps);
+    assert!(lim.windows(2).all(|w| w[0].1 >= w[1].1), "{lim:?}");
 }
 
 #[test]

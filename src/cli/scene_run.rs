@@ -86,6 +86,8 @@ fn run_scene(s: &Scene, out: &Path, quiet: bool) -> Result<i32, String> {
         "rejected_steps": st.rejected_steps,
         "newton_iterations": st.newton_iterations,
         "jacobian_evals": st.jacobian_evals,
+        "matrix_rebuilds": st.matrix_rebuilds,
+        "step_limiters": st.step_limiters.iter().map(|(u, n)| json!({"unknown": u, "steps": n})).collect::<Vec<_>>(),
         "speed_m_s": s.speed,
         "road": s.road_file.display().to_string(),
         "load_case": s.vehicle.design.trailer.as_ref().map(|t| t.load_case.clone()),

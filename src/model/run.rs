@@ -109,6 +109,7 @@ pub fn simulate(
     }
     unwrap_angles(&mut res);
     res.stats = bdf.stats().clone();
+    res.stats.step_limiters = bdf.step_limiters(5);
     if let Some(&t) = res.times.last() {
         if res.error.is_none() {
             res.last = Some((t, y.clone(), yp.clone()));

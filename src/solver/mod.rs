@@ -16,7 +16,9 @@ pub mod problem;
 pub use bdf::{Advance, Bdf};
 pub use error::SolverError;
 pub use ggl::{Ggl, MechanicalDae};
-pub use options::{AlgebraicControl, JacobianSource, LinearSolver, Method, SolverOptions, Stats};
+pub use options::{
+    AlgebraicControl, JacobianSource, LinearSolver, MatrixRebuilds, Method, SolverOptions, Stats,
+};
 pub use problem::{DaeProblem, JacobianSink, VarKind};
 
 use std::time::Instant;

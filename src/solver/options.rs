@@ -256,4 +256,22 @@ pub struct Stats {
     pub last_step: f64,
     /// Accepted steps per order 1..=5.
     pub order_counts: [usize; 5],
+    /// Why the iteration matrix was rebuilt.
+    pub matrix_rebuilds: MatrixRebuilds,
+    /// The unknowns whose error estimate dominated the most accepted steps, with the
+    /// number of steps (the five most frequent; filled by [`super::Bdf::step_limiters`]).
+    pub step_limiters: Vec<(String, usize)>,
+}
+
+/// Reasons for rebuilding the Newton iteration matrix (IDA's rules).
+#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
+pub struct MatrixRebuilds {
+    /// The first step, or after a failed step or a singular factorisation.
+    pub invalid: usize,
+    /// The leading coefficient drifted outside [0.6, 5/3] of the matrix's (a step change).
+    pub step_change: usize,
+    /// Newton did not converge on a matrix kept from earlier steps.
+    pub convergence: usize,
+    /// `max_jacobian_age` reached.
+    pub age: usize,
 }

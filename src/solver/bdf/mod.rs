@@ -103,6 +103,8 @@ pub struct Bdf<'a, P: DaeProblem + ?Sized> {
     t_lo: f64,
     g_hi: Vec<f64>,
     stats: Stats,
+    /// Accepted steps in which each unknown dominated the error estimate.
+    limiter_counts: Vec<usize>,
 }
 
 impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
@@ -227,6 +229,7 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
             t_lo: t0,
             g_hi: vec![0.0; n_roots],
             stats: Stats::default(),
+            limiter_counts: vec![0; n],
             opts,
         };
         s.set_ewt();
@@ -251,6 +254,30 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
 
     pub fn stats(&self) -> &Stats {
         &self.stats
+    }
+
+    /// The `k` unknowns that dominated the error estimate in the most accepted steps, by
+    /// name, with their step counts: what sets the step size.
+    pub fn step_limiters(&self, k: usize) -> Vec<(String, usize)> {
+        let mut idx: Vec<usize> = (0..self.n)
+            .filter(|&i| self.limiter_counts[i] > 0)
+            .collect();
+        idx.sort_by_key(|&i| std::cmp::Reverse(self.limiter_counts[i]));
+        idx.iter()
+            .take(k)
+            .map(|&i| (self.prob.var_name(i), self.limiter_counts[i]))
+            .collect()
+    }
+
+    fn count_limiter(&mut self) {
+        let worst = (0..self.n).max_by(|&a, &b| {
+            (self.ee[a] * self.wt_err[a])
+                .abs()
+                .total_cmp(&(self.ee[b] * self.wt_err[b]).abs())
+        });
+        if let Some(i) = worst {
+            self.limiter_counts[i] += 1;
+        }
     }
 
     pub fn options(&self) -> &SolverOptions {
@@ -506,6 +533,7 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
                         self.hh *= rr;
                         None
                     } else {
+                        self.count_limiter();
                         self.complete_step();
                         return Ok(());
                     }

@@ -14,7 +14,16 @@ impl<P: DaeProblem + ?Sized> Bdf<'_, P> {
         };
         let age_limit =
             self.opts.max_jacobian_age > 0 && self.jac_age >= self.opts.max_jacobian_age;
-        let mut setup = !self.jac_valid || !(0.6..=5.0 / 3.0).contains(&self.cjratio) || age_limit;
+        let drifted = !(0.6..=5.0 / 3.0).contains(&self.cjratio);
+        let mut setup = !self.jac_valid || drifted || age_limit;
+        let why = &mut self.stats.matrix_rebuilds;
+        if !self.jac_valid {
+            why.invalid += 1;
+        } else if drifted {
+            why.step_change += 1;
+        } else if age_limit {
+            why.age += 1;
+        }
         if self.cj != self.cjlast {
             self.ss = 100.0;
         }
@@ -29,7 +38,11 @@ impl<P: DaeProblem + ?Sized> Bdf<'_, P> {
                     return Ok(());
                 }
                 Err(StepFail::Convergence(w)) if fresh => return Err(StepFail::Convergence(w)),
-                Err(StepFail::Convergence(_)) => setup = true, // retry once with a fresh matrix
+                Err(StepFail::Convergence(_)) => {
+                    // Retry once with a fresh matrix.
+                    self.stats.matrix_rebuilds.convergence += 1;
+                    setup = true;
+                }
                 Err(e) => return Err(e),
             }
         }
