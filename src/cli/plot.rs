@@ -82,6 +82,8 @@ fn draw<DB: DrawingBackend>(
             .configure_mesh()
             .x_desc(&panel.x_label)
             .y_desc(&panel.y_label)
+            // Few labels: plotters' log axes otherwise crowd 2e-k .. 9e-k together.
+            .x_labels(5)
             .x_label_formatter(&|v| format!("{v:.0e}"))
             .y_label_formatter(&|v| format!("{v:.0e}"))
             .label_style(("sans-serif", 11))
