@@ -3,7 +3,7 @@
 
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 
-use super::system::System;
+use super::system::{MassBlock, System};
 use crate::solver::linear::NewtonMatrix;
 
 /// What the initial-state analysis did.
@@ -142,8 +142,8 @@ fn kept_rows(sys: &System, t: f64, q: &[f64], v: &[f64]) -> (Rows, Vec<f64>) {
     (rows, rhs_c)
 }
 
-/// M^-1 of one body: m, J and the unit modal mass where the mass matrix is block
-/// diagonal; a Cholesky factor where it depends on the deformation (`full` coupling).
+/// M^-1 of one body ([`MassBlock`]): 1/m, J^-1 and the unit modal mass, or a Cholesky
+/// factor where the block depends on the deformation (`full` coupling).
 enum BodyInverse {
     Diagonal { inv_mass: f64, inv_j: Matrix3<f64> },
     Full(nalgebra::Cholesky<f64, nalgebra::Dyn>),
@@ -204,17 +204,12 @@ fn schur_solve(
     let mut parts: Vec<(Vec<f64>, Vec<f64>)> = Vec::with_capacity(nb);
     for b in 0..nb {
         let (w, o) = (sys.width(Some(b)), sys.vo[b]);
-        let inv = match sys.full_mass(b, q) {
-            Some(mb) => BodyInverse::Full(mb.cholesky()?),
-            None => {
-                let body = &sys.model.bodies[b];
-                let j = Matrix3::from_fn(|r, c| body.inertia[r][c]);
-                let inv_j = j.cholesky()?.inverse();
-                BodyInverse::Diagonal {
-                    inv_mass: 1.0 / body.mass,
-                    inv_j,
-                }
-            }
+        let inv = match sys.mass_block(b, q) {
+            MassBlock::Full(mb) => BodyInverse::Full(mb.cholesky()?),
+            MassBlock::Diagonal { mass, inertia } => BodyInverse::Diagonal {
+                inv_mass: 1.0 / mass,
+                inv_j: Matrix3::from_fn(|r, c| inertia[r][c]).cholesky()?.inverse(),
+            },
         };
         inv.apply(&mut acc[o..o + w]);
         let rk = &touching[b];

@@ -216,7 +216,7 @@ impl System {
     }
 
     /// The velocity-space mass block of body `k` at `q` when it is a `full` modal body.
-    pub(crate) fn full_mass(&self, k: usize, q: &[f64]) -> Option<DMatrix<f64>> {
+    pub(super) fn full_mass(&self, k: usize, q: &[f64]) -> Option<DMatrix<f64>> {
         self.full[k].as_ref()?;
         let (t, a, eta) = self.full_parts(k, q);
         Some(t.mass(&a, eta))

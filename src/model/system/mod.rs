@@ -27,6 +27,8 @@
 //! damping, mass coupling per [`crate::model::desc::Coupling`] (see `modal.rs`); a body
 //! at the `full` level has M(q) v' over its whole velocity block (`full.rs`).
 
+use nalgebra::DMatrix;
+
 use super::desc::{Force, Model};
 use super::joint::{rows, Row};
 use super::math::{cst33, mvc, qdot, quat_from_matrix, rot};
@@ -76,6 +78,15 @@ pub struct Redundant {
     pub row: usize,
     /// (element, row, coefficient) of the kept rows that reproduce it.
     pub depends_on: Vec<(usize, usize, f64)>,
+}
+
+/// One body's block of the velocity-space mass matrix.
+pub enum MassBlock {
+    /// m I, the inertia J (body axes) and the unit modal mass: rigid bodies and modal
+    /// bodies without deformation-dependent inertia coupling.
+    Diagonal { mass: f64, inertia: [[f64; 3]; 3] },
+    /// The whole (6 + modes) block of a `full` modal body.
+    Full(DMatrix<f64>),
 }
 
 /// How far ahead (in travel time) the road is checked for obstacles before a step [s]:
@@ -329,27 +340,44 @@ impl System {
     /// whole block depends on q (same entries at every q).
     pub fn mass_entries_at(&self, q: &[f64]) -> Vec<(usize, usize, f64)> {
         let mut out = Vec::new();
-        for (k, b) in self.model.bodies.iter().enumerate() {
+        for k in 0..self.nb() {
             let w = self.vo[k];
-            if let Some(mb) = self.full_mass(k, q) {
-                for r in 0..mb.nrows() {
-                    for c in 0..mb.ncols() {
-                        out.push((w + r, w + c, mb[(r, c)]));
+            match self.mass_block(k, q) {
+                MassBlock::Full(mb) => {
+                    for r in 0..mb.nrows() {
+                        for c in 0..mb.ncols() {
+                            out.push((w + r, w + c, mb[(r, c)]));
+                        }
                     }
                 }
-                continue;
-            }
-            for c in 0..3 {
-                out.push((w + c, w + c, b.mass));
-                for d in 0..3 {
-                    out.push((w + 3 + c, w + 3 + d, b.inertia[c][d]));
+                MassBlock::Diagonal { mass, inertia } => {
+                    for c in 0..3 {
+                        out.push((w + c, w + c, mass));
+                        for d in 0..3 {
+                            out.push((w + 3 + c, w + 3 + d, inertia[c][d]));
+                        }
+                    }
+                    for j in 0..self.nm[k] {
+                        out.push((w + 6 + j, w + 6 + j, 1.0));
+                    }
                 }
-            }
-            for j in 0..self.nm[k] {
-                out.push((w + 6 + j, w + 6 + j, 1.0));
             }
         }
         out
+    }
+
+    /// Body `k`'s block of the velocity-space mass matrix at `q`.
+    pub fn mass_block(&self, k: usize, q: &[f64]) -> MassBlock {
+        match self.full_mass(k, q) {
+            Some(mb) => MassBlock::Full(mb),
+            None => {
+                let b = &self.model.bodies[k];
+                MassBlock::Diagonal {
+                    mass: b.mass,
+                    inertia: b.inertia,
+                }
+            }
+        }
     }
 
     /// World frame of marker `k` for given positions (f64).
