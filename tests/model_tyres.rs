@@ -46,25 +46,20 @@ fn marker(name: &str, body: Option<usize>, position: [f64; 3], axes: [[f64; 3]; 
     }
 }
 
-#[test]
-fn quarter_car_from_bodies_and_joints_rolls_as_the_tyre_rig() {
-    let file = Path::new("vehicles/tyres/car_185_60r14.tir");
-    let tyre = Tyre::from_file(file, TyreKind::RigidRing).unwrap();
-    let road = Road::from_file(Path::new("roads/bump_25mm.toml")).unwrap();
-    let speed = 40.0 / 3.6;
-    let (mass, rim_iyy, x0) = (300.0, 0.6, 0.0);
-    let rig = QuarterRig::new(tyre.clone(), road.clone(), speed, x0, mass, rim_iyy, 0.0);
-    let t_end = 0.4;
-    let dt = 1e-3;
-    let opts_rig = rig_options(&rig.tyre, 1e-6, &[1e-7, 1e-5, 1e-4]);
-    let reference = rig.run(None, t_end, dt, &opts_rig).unwrap();
-    let (y_rig, _) = rig.initial(None);
-    let n = tyre.n_states();
-    let (z0, omega0) = (y_rig[n], y_rig[n + 2]);
-
-    let g = tyre.params().gravity;
+/// A carriage driven along x at `speed`, a hub sliding vertically on it, and a wheel
+/// spinning at `omega0` on the hub, with the tyre on `road`.
+#[allow(clippy::too_many_arguments)]
+fn quarter_car(
+    tyre: &Tyre,
+    road: &Road,
+    speed: f64,
+    at: [f64; 3],
+    mass: f64,
+    rim_iyy: f64,
+    omega0: f64,
+    g: f64,
+) -> Model {
     let wheel_mass = 10.0;
-    let at = [x0, 0.0, z0];
     let mut m = Model {
         name: "quarter car".into(),
         gravity: [0.0, 0.0, g],
@@ -106,7 +101,7 @@ fn quarter_car_from_bodies_and_joints_rolls_as_the_tyre_rig() {
         marker: 6,
         tyre: tyre.clone(),
     });
-    m.road = Some(road);
+    m.road = Some(road.clone());
     m.outputs.push(Output::new(
         "wheel",
         Request::Marker {
@@ -115,6 +110,27 @@ fn quarter_car_from_bodies_and_joints_rolls_as_the_tyre_rig() {
             axes: Axes::World,
         },
     ));
+    m
+}
+
+#[test]
+fn quarter_car_from_bodies_and_joints_rolls_as_the_tyre_rig() {
+    let file = Path::new("vehicles/tyres/car_185_60r14.tir");
+    let tyre = Tyre::from_file(file, TyreKind::RigidRing).unwrap();
+    let road = Road::from_file(Path::new("roads/bump_25mm.toml")).unwrap();
+    let speed = 40.0 / 3.6;
+    let (mass, rim_iyy, x0) = (300.0, 0.6, 0.0);
+    let rig = QuarterRig::new(tyre.clone(), road.clone(), speed, x0, mass, rim_iyy, 0.0);
+    let t_end = 0.4;
+    let dt = 1e-3;
+    let opts_rig = rig_options(&rig.tyre, 1e-6, &[1e-7, 1e-5, 1e-4]);
+    let reference = rig.run(None, t_end, dt, &opts_rig).unwrap();
+    let (y_rig, _) = rig.initial(None);
+    let n = tyre.n_states();
+    let (z0, omega0) = (y_rig[n], y_rig[n + 2]);
+
+    let g = tyre.params().gravity;
+    let m = quarter_car(&tyre, &road, speed, [x0, 0.0, z0], mass, rim_iyy, omega0, g);
     let sys = System::new(m);
     let (mut q, mut v) = sys.initial_q_v();
     let x = y_rig[..n].to_vec();
@@ -148,4 +164,100 @@ fn quarter_car_from_bodies_and_joints_rolls_as_the_tyre_rig() {
     );
     assert!(travel > 5e-3);
     assert!(worst < 0.01 * travel);
+}
+
+/// The frame transport that lets a re-used iteration matrix follow a spinning wheel
+/// (`DaeProblem::transport`): after the wheel has turned 0.6 rad on its axle, the matrix
+/// built before the turn, applied through the transport, solves as the exact matrix at the
+/// new state does; the old matrix alone is off by tens of percent.
+#[test]
+fn iteration_matrix_transport_follows_the_wheel_spin() {
+    use nalgebra::{DMatrix, DVector};
+    use towride::model::math::{mtv, qmul, rot};
+    use towride::solver::problem::{DaeProblem, JacobianSink, Transport};
+
+    let tyre = Tyre::from_file(
+        Path::new("vehicles/tyres/car_185_60r14.tir"),
+        TyreKind::RigidRing,
+    )
+    .unwrap();
+    let road = Road::from_file(Path::new("roads/bump_25mm.toml")).unwrap();
+    let speed = 40.0 / 3.6;
+    let (mass, rim_iyy) = (300.0, 0.6);
+    let rig = QuarterRig::new(tyre.clone(), road.clone(), speed, 0.0, mass, rim_iyy, 0.0);
+    let (y_rig, _) = rig.initial(None);
+    let n = tyre.n_states();
+    let g = tyre.params().gravity;
+    let at = [0.0, 0.0, y_rig[n]];
+    let sys = System::new(quarter_car(
+        &tyre,
+        &road,
+        speed,
+        at,
+        mass,
+        rim_iyy,
+        y_rig[n + 2],
+        g,
+    ));
+    let (mut q, mut v) = sys.initial_q_v();
+    let (mut y0, yp0, _) =
+        towride::model::ic::initial_state(&sys, 0.0, &mut q, &mut v, &y_rig[..n]).unwrap();
+    // A camber and steer rate, so that the spin turns the wheel's body-axes components.
+    let (o, w) = (sys.qo[2] + 3, sys.nq + sys.vo[2] + 3);
+    y0[w] += 0.4;
+    y0[w + 2] -= 0.3;
+
+    // The same motion with the wheel turned by phi about its axle (body y).
+    let phi: f64 = 0.6;
+    let e = [(0.5 * phi).cos(), 0.0, (0.5 * phi).sin(), 0.0];
+    let dr = rot(&e);
+    let turn = |y: &[f64]| {
+        let mut y = y.to_vec();
+        let p = qmul(&[y[o], y[o + 1], y[o + 2], y[o + 3]], &e);
+        y[o..o + 4].copy_from_slice(&p);
+        let a = mtv(&dr, &[y[w], y[w + 1], y[w + 2]]);
+        y[w..w + 3].copy_from_slice(&a);
+        y
+    };
+    let (y1, yp1) = (turn(&y0), turn(&yp0));
+
+    let size = sys.size();
+    let cj = 1e3;
+    let matrix = |y: &[f64], yp: &[f64]| {
+        let mut entries = Vec::new();
+        assert!(sys.jacobian(0.0, y, yp, cj, &mut JacobianSink::new(&mut entries)));
+        let mut j = DMatrix::zeros(size, size);
+        for (r, c, val) in entries {
+            j[(r, c)] += val;
+        }
+        j
+    };
+    let (old, new) = (matrix(&y0, &yp0).lu(), matrix(&y1, &yp1).lu());
+    // A velocity-constraint violation to correct: what a Newton step on a spinning wheel
+    // meets (the bearing rows turn with the wheel).
+    let (_, _, _, om) = sys.offsets();
+    let b: Vec<f64> = (0..size)
+        .map(|i| {
+            if (om..sys.oe()).contains(&i) {
+                ((i * 7919 % 101) as f64 / 50.0) - 1.0
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let exact = new.solve(&DVector::from_vec(b.clone())).unwrap();
+    let stale = old.solve(&DVector::from_vec(b.clone())).unwrap();
+    let mut bt = b.clone();
+    sys.transport(&y0, &y1, &mut bt, Transport::Rows);
+    let mut moved = old.solve(&DVector::from_vec(bt)).unwrap();
+    sys.transport(&y0, &y1, moved.as_mut_slice(), Transport::Columns);
+    // Compared on the wheel's angular-velocity correction.
+    let rel = |x: &DVector<f64>| (x.rows(w, 3) - exact.rows(w, 3)).norm() / exact.rows(w, 3).norm();
+    println!(
+        "relative difference from the exact solve: transported {:.2e}, stale {:.2e}",
+        rel(&moved),
+        rel(&stale)
+    );
+    assert!(rel(&moved) < 1e-6, "transported {:.3e}", rel(&moved));
+    assert!(rel(&stale) > 1e-2, "stale {:.3e}", rel(&stale));
 }

@@ -116,6 +116,10 @@ pub struct SolverOptions {
     /// each time a component of a spinning wheel's quaternion passes through zero.
     /// Variable-coefficient method only.
     pub vector_error_weights: bool,
+    /// Carry a re-used iteration matrix to the current state by the problem's frame
+    /// transport (`DaeProblem::transport`: a spinning wheel's body axes), instead of
+    /// solving with the matrix as it was built.
+    pub matrix_transport: bool,
 }
 
 impl Default for SolverOptions {
@@ -142,6 +146,7 @@ impl Default for SolverOptions {
             eta_fixed_max: 2.0,
             scale_newton_matrix: true,
             vector_error_weights: true,
+            matrix_transport: true,
         }
     }
 }

@@ -55,6 +55,15 @@ impl<'a> JacobianSink<'a> {
     }
 }
 
+/// Which side of the iteration matrix a [`DaeProblem::transport`] acts on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Transport {
+    /// D_r^T applied to a residual before the solve with the old matrix.
+    Rows,
+    /// D_c applied to the solution of that solve.
+    Columns,
+}
+
 /// A differential-algebraic system F(t, y, y') = 0.
 pub trait DaeProblem {
     /// Number of unknowns (and of equations).
@@ -74,6 +83,18 @@ pub trait DaeProblem {
     /// matter of frame (see `SolverOptions::vector_error_weights`). Default: none.
     fn magnitude_groups(&self) -> Vec<std::ops::Range<usize>> {
         Vec::new()
+    }
+
+    /// Carries an iteration matrix built at `built` to the state `now` by orthogonal
+    /// changes of variables, J(now) ~ D_r J(built) D_c^T, so that a re-used matrix stays
+    /// accurate for unknowns expressed in frames that turn fast (a spinning wheel's body
+    /// axes turn half a radian over a matrix's life). `Rows` applies D_r^T to `v` in place,
+    /// `Columns` applies D_c. Default: the identity (see `has_transport`).
+    fn transport(&self, _built: &[f64], _now: &[f64], _v: &mut [f64], _side: Transport) {}
+
+    /// Whether [`DaeProblem::transport`] does anything (lets the solver skip it).
+    fn has_transport(&self) -> bool {
+        false
     }
 
     /// The kind of each unknown. Defaults to all differential (an implicit ODE).

@@ -41,6 +41,7 @@ mod forces;
 mod full;
 mod jacobian;
 mod modal;
+mod transport;
 
 pub use constraint::{ConEval, ConEval2};
 pub use ext::{Ext, ExtKind};
@@ -125,6 +126,8 @@ pub struct System {
     felems: Vec<(usize, usize, Option<usize>)>,
     /// Per body: the mass-matrix tensors of a modal body at the `full` coupling level.
     full: Vec<Option<full::FullTensors>>,
+    /// The wheels whose frames a re-used iteration matrix follows (`transport.rs`).
+    spinning: Vec<usize>,
 }
 
 impl System {
@@ -198,7 +201,9 @@ impl System {
             mquat,
             felems,
             full,
+            spinning: Vec::new(),
         };
+        sys.spinning = sys.spinning_bodies();
         let (q, _) = sys.initial_q_v();
         let (kept, redundant) = super::redundancy::select_rows(&sys, 0.0, &q);
         let mut m = 0;
@@ -542,5 +547,19 @@ impl DaeProblem for System {
 
     fn eq_name(&self, i: usize) -> String {
         self.equation_name(i)
+    }
+
+    fn transport(
+        &self,
+        built: &[f64],
+        now: &[f64],
+        v: &mut [f64],
+        side: crate::solver::problem::Transport,
+    ) {
+        self.transport_frames(built, now, v, side);
+    }
+
+    fn has_transport(&self) -> bool {
+        !self.spinning.is_empty()
     }
 }

@@ -97,6 +97,10 @@ pub struct Bdf<'a, P: DaeProblem + ?Sized> {
     jac_entries: Vec<(usize, usize, f64)>,
     jac_valid: bool,
     jac_age: usize,
+    /// The state the iteration matrix was built at (for the problem's frame transport).
+    y_built: Vec<f64>,
+    /// Whether the problem's frame transport is used.
+    transport: bool,
     analytic_ok: bool,
     // Events.
     g_lo: Vec<f64>,
@@ -224,6 +228,8 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
             jac_entries: Vec::new(),
             jac_valid: false,
             jac_age: 0,
+            y_built: vec![0.0; n],
+            transport: opts.matrix_transport && prob.has_transport(),
             analytic_ok,
             g_lo: vec![0.0; n_roots],
             t_lo: t0,

@@ -2,7 +2,7 @@
 //! test, and the matrix built analytically or by coloured finite differences.
 
 use super::{Bdf, StepFail, UROUND};
-use crate::solver::problem::{DaeProblem, JacobianSink};
+use crate::solver::problem::{DaeProblem, JacobianSink, Transport};
 
 impl<P: DaeProblem + ?Sized> Bdf<'_, P> {
     /// Modified Newton on the corrector (IDANls with IDA's convergence test).
@@ -57,6 +57,7 @@ impl<P: DaeProblem + ?Sized> Bdf<'_, P> {
                 self.jac_valid = false;
                 StepFail::Singular(s)
             })?;
+        self.y_built.copy_from_slice(&self.ypred);
         self.cjold = self.cj;
         self.cjratio = 1.0;
         self.ss = 20.0;
@@ -181,9 +182,17 @@ impl<P: DaeProblem + ?Sized> Bdf<'_, P> {
             for (d, r) in self.delta.iter_mut().zip(&self.res) {
                 *d = -r;
             }
+            if self.transport {
+                self.prob
+                    .transport(&self.y_built, &self.yy, &mut self.delta, Transport::Rows);
+            }
             self.jac
                 .solve(&mut self.delta)
                 .map_err(StepFail::Singular)?;
+            if self.transport {
+                self.prob
+                    .transport(&self.y_built, &self.yy, &mut self.delta, Transport::Columns);
+            }
             self.stats.newton_iterations += 1;
             if scale != 1.0 {
                 for d in self.delta.iter_mut() {
