@@ -49,7 +49,7 @@ impl System {
             let pn = [now[o + 3], now[o + 4], now[o + 5], now[o + 6]];
             let mut e = qmul(&[pb[0], -pb[1], -pb[2], -pb[3]], &pn);
             let n = e.iter().map(|x| x * x).sum::<f64>().sqrt();
-            if !(n > 0.0) {
+            if n.is_nan() || n <= 0.0 {
                 continue;
             }
             e.iter_mut().for_each(|x| *x /= n);
