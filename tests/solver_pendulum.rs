@@ -109,7 +109,8 @@ fn ggl_pendulum_is_accurate_at_every_setting() {
                     algebraic,
                     ..SolverOptions::with_tol(tol, tol)
                 };
-                let end = solve_to(&p, 0.0, &y0, &yp0, PERIOD, &opts).unwrap();
+                let end = solve_to(&p, 0.0, &y0, &yp0, PERIOD, &opts)
+                    .unwrap_or_else(|e| panic!("{method:?} {algebraic:?} {tol:e}: {e}"));
                 errs.push(((end.y[0] - L).powi(2) + end.y[1].powi(2)).sqrt());
                 // The position constraint holds to the Newton tolerance at every step.
                 let drift = (end.y[0].powi(2) + end.y[1].powi(2) - 1.0).abs();
@@ -154,9 +155,15 @@ fn index3_pendulum_returns_after_one_period_at_every_setting() {
                     end.stats.steps
                 );
                 // Tension at the horizontal is zero again (peak 3g/2 at the bottom); the
-                // multiplier is index 3, so it is only controlled to tol/h^2.
+                // multiplier is index 3, so it is only controlled to tol/h^2 (h the last
+                // step; measured 0.04 to 0.4 of that bound over these settings).
                 if algebraic == AlgebraicControl::Scaled {
-                    assert!(end.y[4].abs() < 1e-2, "lambda = {}", end.y[4]);
+                    let bound = 1e-8 / end.stats.last_step.powi(2);
+                    assert!(
+                        end.y[4].abs() < bound,
+                        "lambda = {} against tol/h^2 = {bound}",
+                        end.y[4]
+                    );
                 }
             }
         }
@@ -186,7 +193,11 @@ fn pendulum_error_falls_with_tolerance() {
 fn events_find_the_passes_under_the_pivot() {
     let (y0, yp0) = start();
     let p = Pendulum { analytic: true };
-    let mut bdf = Bdf::new(&p, 0.0, &y0, &yp0, SolverOptions::with_tol(1e-9, 1e-9)).unwrap();
+    let opts = SolverOptions {
+        jacobian_recombine: true,
+        ..SolverOptions::with_tol(1e-9, 1e-9)
+    };
+    let mut bdf = Bdf::new(&p, 0.0, &y0, &yp0, opts).unwrap();
     bdf.set_stop_time(0.9 * PERIOD);
     let mut roots = Vec::new();
     while let towride::solver::Advance::Root { t, .. } = bdf.advance(0.9 * PERIOD).unwrap() {
@@ -199,14 +210,23 @@ fn events_find_the_passes_under_the_pivot() {
     // The event times carry the solution's own global (phase) error, ~1e-6 s here.
     assert!((roots[0] - PERIOD / 4.0).abs() < 1e-5, "{roots:?}");
     assert!((roots[1] - 0.75 * PERIOD).abs() < 1e-5, "{roots:?}");
-    // Every matrix build has one recorded reason; the step limiters are named unknowns
-    // and account for at most the accepted steps.
+    // Every matrix build (a factorisation) has one recorded reason; builds for a new step
+    // size recombine the kept parts, the others evaluate the Jacobian; the step limiters
+    // are named unknowns and account for at most the accepted steps.
     let st = bdf.stats();
     let why = &st.matrix_rebuilds;
     assert_eq!(
         why.invalid + why.step_change + why.convergence + why.age,
-        st.jacobian_evals,
+        st.lu_factorizations,
         "{why:?}"
+    );
+    // Each evaluated build is followed by at most one evaluation of dF/dy' (at the first
+    // recombination on it).
+    let evaluated = st.lu_factorizations - st.matrix_recombinations;
+    assert!(st.matrix_recombinations > 0 && st.matrix_recombinations <= why.step_change);
+    assert!(
+        st.jacobian_evals >= evaluated && st.jacobian_evals <= 2 * evaluated,
+        "{st:?}"
     );
     let lim = bdf.step_limiters(5);
     assert!(!lim.is_empty() && lim.len() <= 5, "{lim:?}");

@@ -2,8 +2,8 @@
 //! from a solver state (y, y') and laid out as named channels with units.
 
 use super::desc::{
-    Axes, ElementQuantity, Force, JointQuantity, MarkerQuantity, ModalQuantity, Model, MotionDof,
-    Output, Request, TyreQuantity,
+    Accelerations, Axes, ElementQuantity, Force, JointQuantity, MarkerQuantity, ModalQuantity,
+    Model, MotionDof, Output, Request, TyreQuantity,
 };
 use super::joint::joint_coordinate;
 use super::math::{add, cross, mtv, mv, rot, sub};
@@ -177,22 +177,22 @@ pub fn evaluate(sys: &System, t: f64, y: &[f64], yp: &[f64]) -> Vec<f64> {
     let v = &y[ov..ol];
     let x = &y[sys.oe()..];
     let m = &sys.model;
-    // Accelerations and reactions from the acceleration-level equations at (q, v) rather
-    // than from the BDF's derivative of its interpolant (y') and its index-2 multipliers:
-    // these are consistent with the error-controlled positions and velocities, so they
-    // carry the integration tolerance instead of an amplified version of it.
-    let needs = m.outputs.iter().any(|o| {
-        matches!(
-            o.request,
-            Request::Marker {
-                quantity: MarkerQuantity::Acceleration | MarkerQuantity::AngularAcceleration,
-                ..
-            } | Request::Joint {
-                quantity: JointQuantity::Force | JointQuantity::Torque,
-                ..
-            }
-        )
-    });
+    // With `Accelerations::Solve`, accelerations and reactions come from the
+    // acceleration-level equations at (q, v) rather than from the integrator's
+    // interpolant (y') and its index-2 multipliers.
+    let needs = m.accelerations == Accelerations::Solve
+        && m.outputs.iter().any(|o| {
+            matches!(
+                o.request,
+                Request::Marker {
+                    quantity: MarkerQuantity::Acceleration | MarkerQuantity::AngularAcceleration,
+                    ..
+                } | Request::Joint {
+                    quantity: JointQuantity::Force | JointQuantity::Torque,
+                    ..
+                }
+            )
+        });
     let solved = if needs {
         super::ic::accelerations(sys, t, q, v, x).ok()
     } else {

@@ -11,8 +11,9 @@ use std::path::Path;
 use serde::Deserialize;
 
 use super::desc::{
-    Applied, Axes, Body, BodyId, Bushing, ElementQuantity, Force, Joint, JointKind, JointQuantity,
-    Law, MarkerQuantity, Model, Motion, MotionDof, Output, Request, RotSpring, SpringDamper, Stop,
+    Accelerations, Applied, Axes, Body, BodyId, Bushing, ElementQuantity, Force, Joint, JointKind,
+    JointQuantity, Law, MarkerQuantity, Model, Motion, MotionDof, Output, Request, RotSpring,
+    SpringDamper, Stop,
 };
 use super::function::{Spline, TimeFunction};
 use super::math::{dot, frame_from_axes, quat_from_matrix, sub};
@@ -76,6 +77,9 @@ pub struct RunSpec {
     pub sample_rate_hz: f64,
     #[serde(default)]
     pub start: Start,
+    /// Sampled accelerations and reactions: "interpolant" (default) or "solve".
+    #[serde(default)]
+    pub accelerations: Accelerations,
 }
 
 impl Default for RunSpec {
@@ -84,6 +88,7 @@ impl Default for RunSpec {
             end_time_s: 1.0,
             sample_rate_hz: 1000.0,
             start: Start::Assembly,
+            accelerations: Accelerations::Interpolant,
         }
     }
 }
@@ -314,6 +319,7 @@ pub fn build(src: &Source, f: File) -> Result<Mechanism, InputError> {
         src.finite(&path!["model", "gravity_m_s2", c], *g)?;
     }
     m.gravity = f.model.gravity_m_s2;
+    m.accelerations = f.run.accelerations;
     check_run(src, &f.run)?;
     f.solver
         .validate(1)

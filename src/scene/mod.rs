@@ -96,6 +96,10 @@ struct RunSec {
     /// this, unless `[solver]` gives `atol`.
     #[serde(default = "one")]
     atol_scale: f64,
+    /// Sampled accelerations and hitch forces: "interpolant" (default, the integrator's
+    /// own solution) or "solve" (the acceleration-level equations at every sample).
+    #[serde(default)]
+    accelerations: crate::model::desc::Accelerations,
 }
 
 fn one() -> f64 {
@@ -208,18 +212,26 @@ pub fn load_with(path: &Path, o: &Overrides) -> Result<Scene, InputError> {
     )?;
     let sample_rate = src.positive(&path!["run", "sample_rate_hz"], f.run.sample_rate_hz)?;
     let settle = src.non_negative(&path!["run", "settle_s"], f.run.settle_s)?;
-    let atol_given = src
-        .text()
-        .parse::<toml::Table>()
-        .ok()
-        .and_then(|t| t.get("solver").and_then(|s| s.get("atol")).map(|_| ()))
-        .is_some();
+    let solver_sets = |key: &str| {
+        src.text()
+            .parse::<toml::Table>()
+            .ok()
+            .and_then(|t| t.get("solver").and_then(|s| s.get(key)).map(|_| ()))
+            .is_some()
+    };
+    let atol_given = solver_sets("atol");
+    let mut solver = f.solver;
+    // A vehicle's Jacobian costs about 25 Newton iterations: rebuild the iteration matrix
+    // for a new step size from the kept parts unless the file says otherwise.
+    if !solver_sets("jacobian_recombine") {
+        solver.jacobian_recombine = true;
+    }
     let atol_scale = if atol_given {
         None
     } else {
         Some(src.positive(&path!["run", "atol_scale"], f.run.atol_scale)?)
     };
-    f.solver
+    solver
         .validate(1)
         .map_err(|e| src.error(&path!["solver"], e.to_string()))?;
     if let Some(b) = &f.scene.ball_coupling {
@@ -286,6 +298,7 @@ pub fn load_with(path: &Path, o: &Overrides) -> Result<Scene, InputError> {
     }
     v.model.outputs = outputs;
     v.model.road = Some(road);
+    v.model.accelerations = f.run.accelerations;
     Ok(Scene {
         name: o.name.clone().unwrap_or(f.scene.name.clone()),
         file: path.to_path_buf(),
@@ -295,7 +308,7 @@ pub fn load_with(path: &Path, o: &Overrides) -> Result<Scene, InputError> {
         sample_rate,
         start: f.run.start,
         settle,
-        solver: f.solver,
+        solver,
         atol_scale,
         channels,
         road_file,

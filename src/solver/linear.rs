@@ -60,6 +60,11 @@ pub(crate) struct NewtonMatrix {
     /// The trail is being written (first assembly, or after too many misses).
     recording: bool,
     misses: usize,
+    /// The matrix at the last evaluation, its leading coefficient, and dF/dy' once
+    /// known: J at another cj is `base + (cj - base_cj) yp_part`.
+    base: Vec<f64>,
+    base_cj: f64,
+    yp_part: Option<Vec<f64>>,
 }
 
 impl NewtonMatrix {
@@ -133,7 +138,70 @@ impl NewtonMatrix {
             cursor: 0,
             recording: true,
             misses: 0,
+            base: Vec::new(),
+            base_cj: 0.0,
+            yp_part: None,
         })
+    }
+
+    /// The stored values (column-major for the dense path, structure order otherwise).
+    fn values_mut(&mut self) -> &mut [f64] {
+        match &mut self.storage {
+            Storage::Dense { a, .. } => a.as_mut_slice(),
+            Storage::Sparse { values, .. } => values,
+        }
+    }
+
+    /// Keeps the matrix just assembled, J = dF/dy + cj dF/dy', as the base of later
+    /// recombinations; dF/dy' is not known yet.
+    pub fn keep_as_base(&mut self, cj: f64) {
+        let mut base = std::mem::take(&mut self.base);
+        base.clear();
+        base.extend_from_slice(self.values_mut());
+        self.base = base;
+        self.base_cj = cj;
+        self.yp_part = None;
+    }
+
+    /// Whether a base matrix is kept, and whether its dF/dy' part is known.
+    pub fn has_base(&self) -> bool {
+        !self.base.is_empty()
+    }
+
+    pub fn has_yp_part(&self) -> bool {
+        self.yp_part.is_some()
+    }
+
+    /// The matrix just assembled is dF/dy at the base's state (cj = 0): dF/dy' follows as
+    /// (base - it) / base_cj. Leaves the base in place.
+    pub fn take_yp_part(&mut self) {
+        let cj = self.base_cj;
+        let base = std::mem::take(&mut self.base);
+        let yp: Vec<f64> = self
+            .values_mut()
+            .iter()
+            .zip(&base)
+            .map(|(fy, b)| (b - fy) / cj)
+            .collect();
+        self.values_mut().copy_from_slice(&base);
+        self.base = base;
+        self.yp_part = Some(yp);
+    }
+
+    /// Sets the values to base + (cj - base_cj) dF/dy' (the matrix at a new leading
+    /// coefficient, same state); needs [`NewtonMatrix::take_yp_part`] first.
+    pub fn recombine(&mut self, cj: f64) {
+        let d = cj - self.base_cj;
+        let base = std::mem::take(&mut self.base);
+        let yp = self
+            .yp_part
+            .take()
+            .expect("dF/dy' part taken before recombining");
+        for ((v, b), p) in self.values_mut().iter_mut().zip(&base).zip(&yp) {
+            *v = b + d * p;
+        }
+        self.base = base;
+        self.yp_part = Some(yp);
     }
 
     pub fn is_dense(&self) -> bool {

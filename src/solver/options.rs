@@ -120,6 +120,15 @@ pub struct SolverOptions {
     /// transport (`DaeProblem::transport`: a spinning wheel's body axes), instead of
     /// solving with the matrix as it was built.
     pub matrix_transport: bool,
+    /// When only the step size has changed (the leading coefficient cj left
+    /// [0.6, 5/3] of the matrix's), rebuild J = dF/dy + cj dF/dy' from the parts of the
+    /// last evaluation, dF/dy' kept separately, and refactorise, instead of evaluating
+    /// the problem's Jacobian again (CVODE keeps dF/dy for the same purpose; IDA, whose
+    /// linear-solver interface only receives J, re-evaluates). A Newton failure on such
+    /// a matrix still triggers a full evaluation. Pays where an evaluation costs many
+    /// Newton iterations (the vehicle: 25; vehicle scenes turn it on); on the small test-set
+    /// problems it costs 5-20 % more steps, so it is off by default.
+    pub jacobian_recombine: bool,
 }
 
 impl Default for SolverOptions {
@@ -147,6 +156,7 @@ impl Default for SolverOptions {
             scale_newton_matrix: true,
             vector_error_weights: true,
             matrix_transport: true,
+            jacobian_recombine: false,
         }
     }
 }
@@ -251,8 +261,12 @@ pub struct Stats {
     pub convergence_failures: usize,
     /// Residual evaluations, including those spent on finite-difference Jacobians.
     pub residual_evals: usize,
-    /// Iteration-matrix evaluations (analytic or finite-difference).
+    /// Iteration-matrix evaluations (analytic or finite-difference), counting the
+    /// evaluation of dF/dy' that a first recombination needs.
     pub jacobian_evals: usize,
+    /// Iteration matrices rebuilt for a new step size from the kept parts of the last
+    /// evaluation (`jacobian_recombine`), without evaluating the problem's Jacobian.
+    pub matrix_recombinations: usize,
     pub lu_factorizations: usize,
     pub newton_iterations: usize,
     pub root_evals: usize,
@@ -268,7 +282,8 @@ pub struct Stats {
     pub step_limiters: Vec<(String, usize)>,
 }
 
-/// Reasons for rebuilding the Newton iteration matrix (IDA's rules).
+/// Reasons for rebuilding (and refactorising) the Newton iteration matrix (IDA's rules);
+/// they add up to the LU factorisations.
 #[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
 pub struct MatrixRebuilds {
     /// The first step, or after a failed step or a singular factorisation.

@@ -97,8 +97,11 @@ pub struct Bdf<'a, P: DaeProblem + ?Sized> {
     jac_entries: Vec<(usize, usize, f64)>,
     jac_valid: bool,
     jac_age: usize,
-    /// The state the iteration matrix was built at (for the problem's frame transport).
+    /// The state the iteration matrix was evaluated at (for the problem's frame
+    /// transport, and for dF/dy' when it is recombined).
     y_built: Vec<f64>,
+    yp_built: Vec<f64>,
+    t_built: f64,
     /// Whether the problem's frame transport is used.
     transport: bool,
     analytic_ok: bool,
@@ -229,6 +232,8 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
             jac_valid: false,
             jac_age: 0,
             y_built: vec![0.0; n],
+            yp_built: vec![0.0; n],
+            t_built: t0,
             transport: opts.matrix_transport && prob.has_transport(),
             analytic_ok,
             g_lo: vec![0.0; n_roots],

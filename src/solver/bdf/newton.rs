@@ -16,6 +16,13 @@ impl<P: DaeProblem + ?Sized> Bdf<'_, P> {
             self.opts.max_jacobian_age > 0 && self.jac_age >= self.opts.max_jacobian_age;
         let drifted = !(0.6..=5.0 / 3.0).contains(&self.cjratio);
         let mut setup = !self.jac_valid || drifted || age_limit;
+        // Only the step changed: the kept parts of the last evaluation give J at the new
+        // cj without evaluating the problem again.
+        let mut recombine = setup
+            && self.jac_valid
+            && !age_limit
+            && self.opts.jacobian_recombine
+            && self.jac.has_base();
         let why = &mut self.stats.matrix_rebuilds;
         if !self.jac_valid {
             why.invalid += 1;
@@ -28,8 +35,10 @@ impl<P: DaeProblem + ?Sized> Bdf<'_, P> {
             self.ss = 100.0;
         }
         loop {
-            let fresh = setup;
-            if setup {
+            let fresh = setup && !recombine;
+            if recombine {
+                self.recombine_matrix()?;
+            } else if setup {
                 self.setup_matrix()?;
             }
             match self.newton_iterate() {
@@ -39,9 +48,10 @@ impl<P: DaeProblem + ?Sized> Bdf<'_, P> {
                 }
                 Err(StepFail::Convergence(w)) if fresh => return Err(StepFail::Convergence(w)),
                 Err(StepFail::Convergence(_)) => {
-                    // Retry once with a fresh matrix.
+                    // Retry once with a freshly evaluated matrix.
                     self.stats.matrix_rebuilds.convergence += 1;
                     setup = true;
+                    recombine = false;
                 }
                 Err(e) => return Err(e),
             }
@@ -50,6 +60,36 @@ impl<P: DaeProblem + ?Sized> Bdf<'_, P> {
 
     fn setup_matrix(&mut self) -> Result<(), StepFail> {
         self.eval_jacobian(self.tn, &self.ypred.clone(), &self.yppred.clone(), self.cj)?;
+        if self.opts.jacobian_recombine {
+            self.jac.keep_as_base(self.cj);
+            self.t_built = self.tn;
+            self.yp_built.copy_from_slice(&self.yppred);
+        }
+        self.y_built.copy_from_slice(&self.ypred);
+        self.factor_matrix()?;
+        self.jac_age = 0;
+        Ok(())
+    }
+
+    /// J at the current cj from the last evaluation's parts, then its factorisation; the
+    /// first time after an evaluation, dF/dy' is evaluated at that evaluation's state.
+    fn recombine_matrix(&mut self) -> Result<(), StepFail> {
+        if !self.jac.has_yp_part() {
+            let (t, y, yp) = (self.t_built, self.y_built.clone(), self.yp_built.clone());
+            self.eval_jacobian(t, &y, &yp, 0.0)?;
+            self.jac.take_yp_part();
+        }
+        self.jac.recombine(self.cj);
+        self.stats.matrix_recombinations += 1;
+        self.factor_matrix()?;
+        // The matrix is as old in its state as before: no fresh-matrix rate assumed, the
+        // first correction alone does not pass the convergence test (IDA's value for a
+        // changed cj on a kept matrix).
+        self.ss = 100.0;
+        Ok(())
+    }
+
+    fn factor_matrix(&mut self) -> Result<(), StepFail> {
         self.stats.lu_factorizations += 1;
         self.jac
             .factor(&self.col_scale, self.opts.scale_newton_matrix)
@@ -57,12 +97,10 @@ impl<P: DaeProblem + ?Sized> Bdf<'_, P> {
                 self.jac_valid = false;
                 StepFail::Singular(s)
             })?;
-        self.y_built.copy_from_slice(&self.ypred);
         self.cjold = self.cj;
         self.cjratio = 1.0;
         self.ss = 20.0;
         self.jac_valid = true;
-        self.jac_age = 0;
         Ok(())
     }
 
