@@ -147,6 +147,7 @@ fn unwrap_angles(res: &mut RunResult) {
 impl RunResult {
     /// Writes the samples as CSV with units in the headers.
     pub fn write_csv(&self, path: &std::path::Path) -> std::io::Result<()> {
+        use std::io::Write;
         let mut w = csv::Writer::from_path(path)?;
         let mut head = vec!["time [s]".to_string()];
         head.extend(
@@ -155,12 +156,16 @@ impl RunResult {
                 .map(|c| format!("{} [{}]", c.name, c.unit)),
         );
         w.write_record(&head)?;
+        // Numbers need no quoting: written straight into the buffer, no string per value.
+        let mut out = std::io::BufWriter::new(w.into_inner().map_err(|e| e.into_error())?);
         for (t, row) in self.times.iter().zip(&self.rows) {
-            let mut rec = vec![format!("{t:.9e}")];
-            rec.extend(row.iter().map(|v| format!("{v:.9e}")));
-            w.write_record(&rec)?;
+            write!(out, "{t:.9e}")?;
+            for v in row {
+                write!(out, ",{v:.9e}")?;
+            }
+            out.write_all(b"\n")?;
         }
-        w.flush()
+        out.flush()
     }
 
     /// Per channel: (name, unit, min, max, time of the largest magnitude).

@@ -12,6 +12,7 @@ pub mod ic;
 pub mod linear;
 pub mod options;
 pub mod problem;
+mod sparse_lu;
 
 pub use bdf::{Advance, Bdf};
 pub use error::SolverError;
