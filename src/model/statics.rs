@@ -7,10 +7,11 @@
 //! artificial damping (dynamic relaxation) and Newton is tried again from where they
 //! settle.
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DMatrix;
 
 use super::ic::assemble;
 use super::system::System;
+use crate::solver::linear::NewtonMatrix;
 use crate::solver::problem::{DaeProblem, JacobianSink, VarKind};
 use crate::solver::SolverOptions;
 
@@ -48,12 +49,27 @@ pub fn tangent(sys: &System, t: f64, y: &[f64]) -> (DMatrix<f64>, DMatrix<f64>) 
 /// (velocity-space increments, lambda, extension states) at zero velocity and rates:
 /// square, nv + m + ne.
 pub fn state_jacobian(sys: &System, t: f64, y: &[f64]) -> DMatrix<f64> {
+    let n = sys.nv + sys.m + sys.ne;
+    let mut out = DMatrix::zeros(n, n);
+    for (r, c, v) in state_jacobian_entries(sys, t, y, false) {
+        out[(r, c)] += v;
+    }
+    out
+}
+
+/// [`state_jacobian`] as (row, column, value) triplets (repeated positions add up);
+/// `structural`: every structurally possible entry, value 1.
+fn state_jacobian_entries(
+    sys: &System,
+    t: f64,
+    y: &[f64],
+    structural: bool,
+) -> Vec<(usize, usize, f64)> {
     let (_, ov, ol, om) = sys.offsets();
     let oe = sys.oe();
-    let (nv, m, ne) = (sys.nv, sys.m, sys.ne);
-    let n = nv + m + ne;
+    let (nv, m) = (sys.nv, sys.m);
     let mut e = Vec::new();
-    sys.jacobian_entries(t, y, 0.0, &mut JacobianSink::new(&mut e), false);
+    sys.jacobian_entries(t, y, 0.0, &mut JacobianSink::new(&mut e), structural);
     let row_of = |r: usize| -> Option<usize> {
         if (ov..ol).contains(&r) {
             Some(r - ov)
@@ -65,24 +81,25 @@ pub fn state_jacobian(sys: &System, t: f64, y: &[f64]) -> DMatrix<f64> {
             None
         }
     };
-    let mut dq = DMatrix::zeros(n, sys.nq);
-    let mut out = DMatrix::zeros(n, n);
+    // Columns of q map to velocity-space increments through dq/dx (block diagonal per
+    // body): entry (r, q_c) contributes value * dq_c/dx_k to (r, x_k).
+    let mut qmap: Vec<Vec<(usize, f64)>> = vec![Vec::new(); sys.nq];
+    for (r, c, v) in sys.q_map(&y[..ov]) {
+        qmap[r].push((c, if structural { 1.0 } else { v }));
+    }
+    let mut out = Vec::with_capacity(2 * e.len());
     for &(r, c, v) in &e {
         let Some(rr) = row_of(r) else { continue };
         if c < ov {
-            dq[(rr, c)] += v;
+            for &(k, h) in &qmap[c] {
+                out.push((rr, k, v * h));
+            }
         } else if (ol..om).contains(&c) {
-            out[(rr, nv + c - ol)] += v;
+            out.push((rr, nv + c - ol, v));
         } else if c >= oe {
-            out[(rr, nv + m + c - oe)] += v;
+            out.push((rr, nv + m + c - oe, v));
         }
     }
-    let mut h = DMatrix::zeros(sys.nq, nv);
-    for (r, c, v) in sys.q_map(&y[..ov]) {
-        h[(r, c)] += v;
-    }
-    let kx = &dq * &h;
-    out.view_mut((0, 0), (n, nv)).copy_from(&kx);
     out
 }
 
@@ -176,23 +193,45 @@ fn newton(
         (rf, r[ol..om].to_vec())
     };
     let merit = |rf: &[f64], rg: &[f64]| inf(rf) / f_ref + inf(rg);
+    let n = nv + m + ne;
+    // Sparse LU on the structure of the state Jacobian (the vehicle: 261 unknowns, a
+    // dense LU per iteration cost 20 times as much).
+    let pattern: Vec<(usize, usize)> = state_jacobian_entries(sys, t, &state(sys, q, lam, x), true)
+        .into_iter()
+        .map(|(r, c, _)| (r, c))
+        .collect();
+    let Ok(mut a) = NewtonMatrix::new(n, Some(pattern), n < 40) else {
+        return false;
+    };
     for _ in 0..100 {
         let y = state(sys, q, lam, x);
         let (rf, rg) = resid(&y);
         rep.residual_force = inf(&rf);
         rep.residual_constraint = inf(&rg);
         let phi = merit(&rf, &rg);
-        let mut a = state_jacobian(sys, t, &y);
-        let n = nv + m + ne;
-        let big = (0..n).fold(0.0f64, |acc, i| acc.max(a[(i, i)].abs()));
-        for i in (0..nv).chain(nv + m..n) {
-            a[(i, i)] += 1e-10 * big;
+        a.clear();
+        let mut diag = vec![0.0f64; n];
+        for (r, c, v) in state_jacobian_entries(sys, t, &y, false) {
+            if a.add(r, c, v).is_err() {
+                return false;
+            }
+            if r == c {
+                diag[r] += v;
+            }
         }
-        let rhs =
-            DVector::from_iterator(n, rf[..nv].iter().chain(&rg).chain(&rf[nv..]).map(|x| -x));
-        let Some(d) = a.lu().solve(&rhs) else {
+        let big = diag.iter().fold(0.0f64, |acc, d| acc.max(d.abs()));
+        for i in (0..nv).chain(nv + m..n) {
+            a.add(i, i, 1e-10 * big).expect("diagonal in the structure");
+        }
+        let mut d: Vec<f64> = rf[..nv]
+            .iter()
+            .chain(&rg)
+            .chain(&rf[nv..])
+            .map(|x| -x)
+            .collect();
+        if a.factor(&vec![1.0; n], true).is_err() || a.solve(&mut d).is_err() {
             return false;
-        };
+        }
         rep.iterations += 1;
         // Step limits: 0.1 m and 0.2 rad per iteration.
         let mut scale = 1.0f64;

@@ -11,9 +11,10 @@
 //! and the constraint acceleration term is differentiated numerically along the motion.
 
 use super::{ConElem, ConRow, ConstraintSet, Owner, System};
+use crate::model::desc::MotionDof;
 use crate::model::dual::{Dual, Scalar};
-use crate::model::joint::{motion_value, row_value, MFrame};
-use crate::model::math::{cst3, cst33, mm, mvc, qmul, quat_from_matrix, rot, Q4, V3};
+use crate::model::joint::{motion_value, row_value, MFrame, Row};
+use crate::model::math::{cross, cst3, cst33, mm, mvc, qmul, rot, Q4, V3};
 
 type T1 = Dual<f64, 13>;
 type T2 = Dual<T1, 15>;
@@ -44,10 +45,12 @@ type G1 = Dual<f64, 1>;
 type G2 = Dual<G1, 1>;
 
 /// Constraint rows of one element with their first derivatives.
+#[derive(Default)]
 pub struct ConEval {
     pub g: Vec<f64>,
-    /// d g / d(v_a, v_b): per row, the velocity unknowns of side a then side b.
-    pub b: Vec<Vec<f64>>,
+    /// d g / d(v_a, v_b), row-major: per row the velocity unknowns of side a, then of
+    /// side b (see [`ConEval::at`]).
+    pub b: Vec<f64>,
     pub gt: Vec<f64>,
     /// Number of velocity unknowns of each side (6 + modes; 6 for ground).
     pub w: [usize; 2],
@@ -56,7 +59,88 @@ pub struct ConEval {
 impl ConEval {
     /// Entry of row r for velocity unknown c of `side`.
     pub fn at(&self, r: usize, side: usize, c: usize) -> f64 {
-        self.b[r][side * self.w[0] + c]
+        self.b[r * (self.w[0] + self.w[1]) + side * self.w[0] + c]
+    }
+}
+
+/// How a small motion of one side's marker frame (origin displacement and rotation,
+/// world axes) maps to that side's velocity unknowns.
+enum SideMap {
+    Ground,
+    /// Rigid body: virtual translation (world) and rotation (body axes) with the body's
+    /// rotation matrix and the marker origin relative to the centre of mass (world).
+    Rigid {
+        a: [[f64; 3]; 3],
+        rho: [f64; 3],
+    },
+    /// Marker on a modal body: its velocity Jacobian.
+    Flex(super::flexmarker::FlexFrame),
+}
+
+/// Value, time derivative and gradients of one row with respect to each side's frame
+/// motion: origin displacement (`go`) and small rotation of the axes (`gphi`), world.
+struct RowGrad {
+    g: f64,
+    gt: f64,
+    go: [[f64; 3]; 2],
+    gphi: [[f64; 3]; 2],
+}
+
+fn colf(a: &[[f64; 3]; 3], k: usize) -> [f64; 3] {
+    [a[0][k], a[1][k], a[2][k]]
+}
+
+/// Rows of the joint primitives (`joint.rs`) and motions with their exact gradients: for
+/// d = o_I - o_J and axis columns u of I and w of J, d . w varies by (d o_I - d o_J) . w
+/// + d phi_J . (w x d), and u . w by d phi_I . (u x w) + d phi_J . (w x u).
+fn row_grad(row: ConRow, drive: (f64, f64), fi: &MFrame<f64>, fj: &MFrame<f64>) -> RowGrad {
+    let z = [0.0; 3];
+    let d = crate::model::math::sub(&fi.origin, &fj.origin);
+    let along = |k: usize| {
+        let w = colf(&fj.axes, k);
+        RowGrad {
+            g: crate::model::math::dot(&d, &w),
+            gt: 0.0,
+            go: [w, [-w[0], -w[1], -w[2]]],
+            gphi: [z, cross(&w, &d)],
+        }
+    };
+    let about = |ki: usize, kj: usize, sign: f64| {
+        let (u, w) = (colf(&fi.axes, ki), colf(&fj.axes, kj));
+        let uw = cross(&u, &w);
+        RowGrad {
+            g: sign * crate::model::math::dot(&u, &w),
+            gt: 0.0,
+            go: [z, z],
+            gphi: [uw.map(|x| sign * x), uw.map(|x| -sign * x)],
+        }
+    };
+    match row {
+        ConRow::Prim(Row::AlongX) => along(0),
+        ConRow::Prim(Row::AlongY) => along(1),
+        ConRow::Prim(Row::AlongZ) => along(2),
+        ConRow::Prim(Row::AboutX) => about(2, 1, 1.0),
+        ConRow::Prim(Row::AboutY) => about(2, 0, -1.0),
+        ConRow::Prim(Row::AboutZ) => about(0, 1, 1.0),
+        ConRow::Prim(Row::Perpendicular) => about(2, 2, 1.0),
+        ConRow::Drive(MotionDof::Translation) => {
+            let mut r = along(2);
+            r.g -= drive.0;
+            r.gt = -drive.1;
+            r
+        }
+        ConRow::Drive(MotionDof::Rotation) => {
+            // (x_I . y_J) cos s - (x_I . x_J) sin s
+            let (c, sn) = (drive.0.cos(), drive.0.sin());
+            let (a, b) = (about(0, 1, 1.0), about(0, 0, 1.0));
+            let mix = |p: [f64; 3], q: [f64; 3]| std::array::from_fn(|k| c * p[k] - sn * q[k]);
+            RowGrad {
+                g: a.g * c - b.g * sn,
+                gt: -drive.1 * (a.g * sn + b.g * c),
+                go: [z, z],
+                gphi: [mix(a.gphi[0], b.gphi[0]), mix(a.gphi[1], b.gphi[1])],
+            }
+        }
     }
 }
 
@@ -120,68 +204,87 @@ impl System {
 
     /// Constraint rows of element `e` with B and g_t (all rows, kept or not).
     pub fn con_eval(&self, e: &ConElem, t: f64, q: &[f64]) -> ConEval {
+        let mut out = ConEval::default();
+        self.con_eval_into(e, t, q, &mut out);
+        out
+    }
+
+    /// One side's marker frame (world) and the map of its motion to the side's unknowns.
+    fn side(&self, mk: usize, body: Option<usize>, q: &[f64]) -> (MFrame<f64>, SideMap) {
+        match body {
+            None => (self.ground_frame::<f64>(mk), SideMap::Ground),
+            Some(_) if self.is_flex_marker(mk) => {
+                let ff = self.flex_frame(q, mk);
+                let f = MFrame {
+                    origin: ff.origin,
+                    axes: ff.axes,
+                };
+                (f, SideMap::Flex(ff))
+            }
+            Some(b) => {
+                let o = self.qo[b];
+                let a = rot(&[q[o + 3], q[o + 4], q[o + 5], q[o + 6]]);
+                let m = &self.model.markers[mk];
+                let rho = mvc(&a, &m.position);
+                let f = MFrame {
+                    origin: [q[o] + rho[0], q[o + 1] + rho[1], q[o + 2] + rho[2]],
+                    axes: mm(&a, &m.axes),
+                };
+                (f, SideMap::Rigid { a, rho })
+            }
+        }
+    }
+
+    /// [`System::con_eval`] into `out`, re-using its storage. The rows are written on
+    /// the marker frames with their gradients in closed form ([`row_grad`]), mapped to
+    /// the unknowns by each side's [`SideMap`]; the same B as the dual-number rows of
+    /// [`System::con_eval2`], without their cost in every residual.
+    pub fn con_eval_into(&self, e: &ConElem, t: f64, q: &[f64], out: &mut ConEval) {
         let bodies = self.bodies_of(e.mi, e.mj);
         let w = [self.width(bodies[0]), self.width(bodies[1])];
-        // Each side's frame depends on that side's six virtual motions only: computed in
-        // 6-wide duals and placed into the 13-wide ones the rows need.
-        let mut frames = Vec::with_capacity(2);
-        let mut maps = [None, None];
-        for (side, (mk, b)) in [e.mi, e.mj].into_iter().zip(bodies).enumerate() {
-            let local: MFrame<S1> = match b {
-                None => self.ground_frame::<S1>(mk),
-                Some(_) if self.is_flex_marker(mk) => {
-                    // The marker as a frame of its own: virtual translation (world) and
-                    // rotation (marker axes).
-                    let ff = self.flex_frame(q, mk);
-                    let o: V3<S1> = std::array::from_fn(|c| S1::var(ff.origin[c], c));
-                    let pq = quat_from_matrix(&ff.axes).map(S1::cst);
-                    let axes = rot(&qmul(&pq, &half_turn::<S1>(|c| S1::var(0.0, 3 + c))));
-                    maps[side] = Some(ff);
-                    MFrame { origin: o, axes }
-                }
-                Some(b) => {
-                    let o = self.qo[b];
-                    let r: V3<S1> = std::array::from_fn(|c| S1::var(q[o + c], c));
-                    let p0: Q4<S1> = std::array::from_fn(|c| S1::cst(q[o + 3 + c]));
-                    let dp = half_turn::<S1>(|c| S1::var(0.0, 3 + c));
-                    self.frame_of(mk, &r, &qmul(&p0, &dp))
-                }
-            };
-            frames.push(map_frame(&local, |x| widen(x, 6 * side)));
-        }
-        let vals = self.rows_of(e, T1::var(t, 12), &frames[0], &frames[1]);
-        let b = vals
-            .iter()
-            .map(|v| {
-                let mut row = vec![0.0; w[0] + w[1]];
-                for side in 0..2 {
-                    let d = &v.d[6 * side..6 * side + 6];
-                    let off = side * w[0];
-                    match &maps[side] {
-                        None => row[off..off + 6].copy_from_slice(d),
-                        Some(ff) => {
-                            // d_phi (marker axes) = X^T omega_world.
-                            let x = ff.axes;
-                            for (k, (jt, jw)) in ff.jt.iter().zip(&ff.jw).enumerate() {
-                                let mut s = 0.0;
-                                for c in 0..3 {
-                                    s += d[c] * jt[c];
-                                    let phi_c = x[0][c] * jw[0] + x[1][c] * jw[1] + x[2][c] * jw[2];
-                                    s += d[3 + c] * phi_c;
-                                }
-                                row[off + k] = s;
-                            }
+        let (fi, mi) = self.side(e.mi, bodies[0], q);
+        let (fj, mj) = self.side(e.mj, bodies[1], q);
+        let drive = match e.owner {
+            Owner::Motion(k) => {
+                let (s, ds, _) = self.model.motions[k].eval(t);
+                (s, ds)
+            }
+            Owner::Joint(_) => (0.0, 0.0),
+        };
+        let nr = e.rows.len();
+        let wt = w[0] + w[1];
+        out.w = w;
+        out.g.clear();
+        out.gt.clear();
+        out.b.clear();
+        out.b.resize(nr * wt, 0.0);
+        for (r, row) in e.rows.iter().enumerate() {
+            let rg = row_grad(*row, drive, &fi, &fj);
+            out.g.push(rg.g);
+            out.gt.push(rg.gt);
+            for (side, map) in [&mi, &mj].into_iter().enumerate() {
+                let dst = &mut out.b[r * wt + side * w[0]..r * wt + side * w[0] + w[side]];
+                let (go, gphi) = (rg.go[side], rg.gphi[side]);
+                match map {
+                    SideMap::Ground => {}
+                    SideMap::Rigid { a, rho } => {
+                        // d o = d r + d phi x rho, d phi = A d theta (body axes)
+                        dst[..3].copy_from_slice(&go);
+                        let m = crate::model::math::add(&cross(rho, &go), &gphi);
+                        dst[3..6].copy_from_slice(&crate::model::math::mtv(a, &m));
+                    }
+                    SideMap::Flex(ff) => {
+                        for (k, (jt, jw)) in ff.jt.iter().zip(&ff.jw).enumerate() {
+                            dst[k] = jt[0] * go[0]
+                                + jt[1] * go[1]
+                                + jt[2] * go[2]
+                                + jw[0] * gphi[0]
+                                + jw[1] * gphi[1]
+                                + jw[2] * gphi[2];
                         }
                     }
                 }
-                row
-            })
-            .collect();
-        ConEval {
-            g: vals.iter().map(|v| v.v).collect(),
-            b,
-            gt: vals.iter().map(|v| v.d[12]).collect(),
-            w,
+            }
         }
     }
 
@@ -230,7 +333,7 @@ impl System {
         ConEval2 {
             first: ConEval {
                 g: vals.iter().map(|v| v.v.v).collect(),
-                b: vals.iter().map(|v| v.v.d[..12].to_vec()).collect(),
+                b: vals.iter().flat_map(|v| v.v.d[..12].to_vec()).collect(),
                 gt: vals.iter().map(|v| v.v.d[12]).collect(),
                 w: [6, 6],
             },
@@ -252,7 +355,7 @@ impl System {
         let bodies = self.bodies_of(e.mi, e.mj);
         let gq = first
             .b
-            .iter()
+            .chunks(first.w[0] + first.w[1])
             .map(|row| {
                 let mut out = Vec::new();
                 for (side, body) in bodies.iter().enumerate() {
@@ -358,12 +461,13 @@ impl System {
     pub fn constraints(&self, t: f64, q: &[f64]) -> ConstraintSet {
         let mut g = vec![0.0; self.m];
         let mut gt = vec![0.0; self.m];
-        let mut b = Vec::new();
+        let mut b = Vec::with_capacity(24 * self.m);
+        let mut ev = ConEval::default();
         for e in &self.cons {
             if e.slot.iter().all(|s| s.is_none()) {
                 continue;
             }
-            let ev = self.con_eval(e, t, q);
+            self.con_eval_into(e, t, q, &mut ev);
             let bodies = self.bodies_of(e.mi, e.mj);
             for (r, slot) in e.slot.iter().enumerate() {
                 let Some(row) = *slot else { continue };

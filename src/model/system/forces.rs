@@ -7,6 +7,7 @@
 //! the body's unknowns (modal ones included) by the marker's velocity Jacobian; its
 //! iteration-matrix entries come from finite differences (`jacobian.rs`).
 
+use super::flexmarker::FlexFrame;
 use super::System;
 use crate::model::desc::Force;
 use crate::model::dual::{Dual, Scalar};
@@ -44,45 +45,50 @@ impl System {
         let (k, mi, mj) = self.felems[fe];
         let bi = self.model.markers[mi].body;
         let bj = mj.and_then(|m| self.model.markers[m].body);
-        let rate_frame = |mk: usize, side: usize, b: Option<usize>| -> RateFrame<S> {
-            let mq = self.mquat[mk];
-            match b {
-                None => (self.ground_frame::<Rate<S>>(mk), mq.map(Rate::<S>::cst)),
-                Some(b) if self.is_flex_marker(mk) => {
-                    let ff = self.flex_frame(q, mk);
-                    let vb = &v[self.vo[b]..self.vo[b] + 6 + self.nm[b]];
-                    let (vo, w) = ff.rates(vb);
-                    let pq = quat_from_matrix(&ff.axes);
-                    let wl = crate::model::math::mtv(&ff.axes, &w);
-                    let pd = qdot(&pq, &wl);
-                    let r: V3<Rate<S>> = std::array::from_fn(|c| Rate {
-                        v: S::cst(ff.origin[c]),
-                        d: [S::cst(vo[c])],
-                    });
-                    let p: Q4<Rate<S>> = std::array::from_fn(|c| Rate {
-                        v: S::cst(pq[c]),
-                        d: [S::cst(pd[c])],
-                    });
-                    let a = rot(&p);
-                    let f = MFrame { origin: r, axes: a };
-                    let _ = side;
-                    (f, p)
+        // The frame of a marker on a modal body comes with its velocity Jacobian, kept
+        // for mapping the load back.
+        let rate_frame =
+            |mk: usize, side: usize, b: Option<usize>| -> (RateFrame<S>, Option<FlexFrame>) {
+                let mq = self.mquat[mk];
+                match b {
+                    None => (
+                        (self.ground_frame::<Rate<S>>(mk), mq.map(Rate::<S>::cst)),
+                        None,
+                    ),
+                    Some(b) if self.is_flex_marker(mk) => {
+                        let ff = self.flex_frame(q, mk);
+                        let vb = &v[self.vo[b]..self.vo[b] + 6 + self.nm[b]];
+                        let (vo, w) = ff.rates(vb);
+                        let pq = quat_from_matrix(&ff.axes);
+                        let wl = crate::model::math::mtv(&ff.axes, &w);
+                        let pd = qdot(&pq, &wl);
+                        let r: V3<Rate<S>> = std::array::from_fn(|c| Rate {
+                            v: S::cst(ff.origin[c]),
+                            d: [S::cst(vo[c])],
+                        });
+                        let p: Q4<Rate<S>> = std::array::from_fn(|c| Rate {
+                            v: S::cst(pq[c]),
+                            d: [S::cst(pd[c])],
+                        });
+                        let a = rot(&p);
+                        ((MFrame { origin: r, axes: a }, p), Some(ff))
+                    }
+                    Some(b) => {
+                        let (r, p, u, w) = pose(b, side);
+                        let pd = qdot(&p, &w);
+                        let rr: V3<Rate<S>> = std::array::from_fn(|c| Rate { v: r[c], d: [u[c]] });
+                        let pp: Q4<Rate<S>> = std::array::from_fn(|c| Rate {
+                            v: p[c],
+                            d: [pd[c]],
+                        });
+                        let f = self.frame_of(mk, &rr, &pp);
+                        let mqs: Q4<Rate<S>> = mq.map(Rate::<S>::cst);
+                        ((f, qmul(&pp, &mqs)), None)
+                    }
                 }
-                Some(b) => {
-                    let (r, p, u, w) = pose(b, side);
-                    let pd = qdot(&p, &w);
-                    let rr: V3<Rate<S>> = std::array::from_fn(|c| Rate { v: r[c], d: [u[c]] });
-                    let pp: Q4<Rate<S>> = std::array::from_fn(|c| Rate {
-                        v: p[c],
-                        d: [pd[c]],
-                    });
-                    let f = self.frame_of(mk, &rr, &pp);
-                    let mqs: Q4<Rate<S>> = mq.map(Rate::<S>::cst);
-                    (f, qmul(&pp, &mqs))
-                }
-            }
-        };
-        let (fi, qi) = rate_frame(mi, 0, bi);
+            };
+        let ((fi, qi), ffi) = rate_frame(mi, 0, bi);
+        let mut ffj = None;
         let measures;
         let (force, torque);
         match &self.model.forces[k] {
@@ -107,7 +113,8 @@ impl System {
             }
             f => {
                 let mj = mj.expect("two-marker element");
-                let (fj, qj) = rate_frame(mj, 1, bj);
+                let ((fj, qj), ff) = rate_frame(mj, 1, bj);
+                ffj = ff;
                 let l = element_load(f, &fi, &fj, &qi, &qj);
                 force = l.force;
                 torque = l.torque;
@@ -115,12 +122,11 @@ impl System {
             }
         }
         let p: V3<S> = fi.origin.map(|x| x.v);
-        let on = |mk: usize, b: usize, side: usize, f: &V3<S>, tq: &V3<S>| -> Vec<S> {
-            if self.is_flex_marker(mk) {
+        let on = |ff: &Option<FlexFrame>, b: usize, side: usize, f: &V3<S>, tq: &V3<S>| -> Vec<S> {
+            if let Some(ff) = ff {
                 // J^T (f, tq) with the marker's velocity Jacobian; a two-marker element
                 // acts at marker i's origin, so marker j's side gets the moment of the
                 // offset as well (zero for coincident markers).
-                let ff = self.flex_frame(q, mk);
                 let arm: V3<S> = std::array::from_fn(|c| p[c] - S::cst(ff.origin[c]));
                 let m = cross(&arm, f);
                 ff.jt
@@ -143,12 +149,12 @@ impl System {
         };
         let mut out = [Vec::new(), Vec::new()];
         if let Some(b) = bi {
-            out[0] = on(mi, b, 0, &force, &torque);
+            out[0] = on(&ffi, b, 0, &force, &torque);
         }
-        if let (Some(b), Some(mj)) = (bj, mj) {
+        if let (Some(b), Some(_)) = (bj, mj) {
             let nf = force.map(|x| -x);
             let nt = torque.map(|x| -x);
-            out[1] = on(mj, b, 1, &nf, &nt);
+            out[1] = on(&ffj, b, 1, &nf, &nt);
         }
         ([bi, bj], out, measures)
     }
