@@ -565,3 +565,47 @@ fn constraint_jacobian_matches_differences_of_the_rows() {
         eprintln!("{file}: B and g_t agree with central differences to {worst:.1e}");
     }
 }
+
+/// The dF/dy' part the system reports with its iteration matrix (`add_scaled`, used to
+/// rebuild the matrix for a new step size) equals (J(cj) - J(0)) / cj: every cj term is
+/// reported, none twice.
+#[test]
+fn reported_yp_part_is_the_cj_part_of_the_matrix() {
+    let scene = towride::scene::load(Path::new("scenes/default.toml")).unwrap();
+    for sys in [
+        System::new(load("scenes/examples/elements.toml").model),
+        System::new(scene.model().clone()),
+    ] {
+        let n = sys.size();
+        let (q, v) = sys.initial_q_v();
+        let mut y = q.clone();
+        y.extend_from_slice(&v);
+        y.resize(n, 0.0);
+        let yp = vec![0.0; n];
+        let dense = |e: &[(usize, usize, f64)]| {
+            let mut a = vec![0.0; n * n];
+            for &(r, c, x) in e {
+                a[r * n + c] += x;
+            }
+            a
+        };
+        let cj = 1.7e3;
+        let (mut e1, mut yp_e, mut e0) = (Vec::new(), Vec::new(), Vec::new());
+        sys.jacobian(
+            0.0,
+            &y,
+            &yp,
+            cj,
+            &mut JacobianSink::with_yp(&mut e1, &mut yp_e),
+        );
+        sys.jacobian(0.0, &y, &yp, 0.0, &mut JacobianSink::new(&mut e0));
+        let (a1, a0, m) = (dense(&e1), dense(&e0), dense(&yp_e));
+        let scale = a1.iter().fold(0.0f64, |s, x| s.max(x.abs()));
+        let worst = (0..n * n).fold(0.0f64, |w, k| w.max((a1[k] - a0[k] - cj * m[k]).abs()));
+        assert!(!yp_e.is_empty());
+        assert!(
+            worst <= 1e-9 * scale,
+            "cj part differs by {worst:e} (scale {scale:e})"
+        );
+    }
+}

@@ -216,13 +216,7 @@ fn condition(sys: &System, y: &[f64], h: f64) -> Option<f64> {
         return None;
     }
     let mut e = Vec::new();
-    sys.jacobian_entries(
-        0.0,
-        y,
-        1.0 / h,
-        &mut JacobianSink { entries: &mut e },
-        false,
-    );
+    sys.jacobian_entries(0.0, y, 1.0 / h, &mut JacobianSink::new(&mut e), false);
     let mut a = DMatrix::<f64>::zeros(n, n);
     for (r, c, v) in e {
         a[(r, c)] += v;

@@ -160,6 +160,28 @@ impl NewtonMatrix {
         self.yp_part.is_some()
     }
 
+    /// dF/dy' at the base's state from its entries (r, c, value; repeats add up), as a
+    /// problem reports them with the evaluation.
+    pub fn set_yp_part(&mut self, entries: &[(usize, usize, f64)]) {
+        let mut yp = vec![0.0; self.base.len()];
+        for &(r, c, v) in entries {
+            let k = match &self.storage {
+                Storage::Dense { .. } => Some(c * self.n + r),
+                Storage::Sparse { .. } => {
+                    let lo = self.col_ptr[c];
+                    self.row_idx[lo..self.col_ptr[c + 1]]
+                        .binary_search(&r)
+                        .ok()
+                        .map(|k| lo + k)
+                }
+            };
+            if let Some(k) = k {
+                yp[k] += v;
+            }
+        }
+        self.yp_part = Some(yp);
+    }
+
     /// The matrix just assembled is dF/dy at the base's state (cj = 0): dF/dy' follows as
     /// (base - it) / base_cj. Leaves the base in place.
     pub fn take_yp_part(&mut self) {

@@ -129,6 +129,11 @@ pub struct SolverOptions {
     /// Newton iterations (the vehicle: 25; vehicle scenes turn it on); on the small test-set
     /// problems it costs 5-20 % more steps, so it is off by default.
     pub jacobian_recombine: bool,
+    /// A recombination uses a matrix evaluated at most this many steps ago; an older one
+    /// is evaluated anew (CVODE's MSBJ, 50 steps). Without the limit a matrix evaluated
+    /// before the trailer's impact was still recombined 112 steps later and the
+    /// fixed-coefficient run at rtol 3e-3 failed there.
+    pub recombine_max_age: usize,
 }
 
 impl Default for SolverOptions {
@@ -157,6 +162,7 @@ impl Default for SolverOptions {
             vector_error_weights: true,
             matrix_transport: true,
             jacobian_recombine: false,
+            recombine_max_age: 50,
         }
     }
 }

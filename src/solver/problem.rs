@@ -37,21 +37,46 @@ impl VarKind {
 
 /// Collects the non-zero entries of the iteration matrix dF/dy + cj dF/dy'.
 ///
-/// Entries may be added more than once for the same position; they are summed.
+/// Entries may be added more than once for the same position; they are summed. A problem
+/// that adds its cj terms with [`JacobianSink::add_scaled`] lets the solver keep dF/dy'
+/// apart and rebuild the matrix for another cj without evaluating it again (it must then
+/// add all of them that way).
 pub struct JacobianSink<'a> {
     pub(crate) entries: &'a mut Vec<(usize, usize, f64)>,
+    /// The dF/dy' coefficients added with `add_scaled`, when the caller keeps them.
+    pub(crate) yp: Option<&'a mut Vec<(usize, usize, f64)>>,
 }
 
 impl<'a> JacobianSink<'a> {
     /// A sink appending to `entries` (for callers outside the solver, e.g. analyses).
     pub fn new(entries: &'a mut Vec<(usize, usize, f64)>) -> Self {
-        JacobianSink { entries }
+        JacobianSink { entries, yp: None }
+    }
+
+    /// A sink that also keeps the dF/dy' coefficients reported by `add_scaled`.
+    pub fn with_yp(
+        entries: &'a mut Vec<(usize, usize, f64)>,
+        yp: &'a mut Vec<(usize, usize, f64)>,
+    ) -> Self {
+        JacobianSink {
+            entries,
+            yp: Some(yp),
+        }
     }
 
     /// Adds `value` at (`row`, `col`).
     #[inline]
     pub fn add(&mut self, row: usize, col: usize, value: f64) {
         self.entries.push((row, col, value));
+    }
+
+    /// Adds `cj * coeff` at (`row`, `col`), `coeff` being an entry of dF/dy'.
+    #[inline]
+    pub fn add_scaled(&mut self, row: usize, col: usize, cj: f64, coeff: f64) {
+        self.entries.push((row, col, cj * coeff));
+        if let Some(yp) = self.yp.as_mut() {
+            yp.push((row, col, coeff));
+        }
     }
 }
 

@@ -314,15 +314,7 @@ pub(crate) mod testutil {
     ) -> Vec<Vec<f64>> {
         let n = p.size();
         let mut entries = Vec::new();
-        let given = p.jacobian(
-            t,
-            y,
-            yp,
-            cj,
-            &mut JacobianSink {
-                entries: &mut entries,
-            },
-        );
+        let given = p.jacobian(t, y, yp, cj, &mut JacobianSink::new(&mut entries));
         assert!(given, "problem offers no analytic Jacobian");
         let mut a = vec![vec![0.0; n]; n];
         for (r, c, v) in entries {
@@ -412,15 +404,7 @@ pub(crate) mod testutil {
             assert!(r < n && c < n, "pattern entry ({r}, {c}) out of range");
         }
         let mut entries = Vec::new();
-        assert!(p.jacobian(
-            t,
-            y,
-            yp,
-            cj,
-            &mut JacobianSink {
-                entries: &mut entries
-            }
-        ));
+        assert!(p.jacobian(t, y, yp, cj, &mut JacobianSink::new(&mut entries)));
         for (r, c, _) in entries {
             assert!(
                 pattern.contains(&(r, c)),
@@ -514,15 +498,8 @@ mod tests {
         }
         fn jacobian(&self, t: f64, y: &[f64], yp: &[f64], cj: f64, jac: &mut JacobianSink) -> bool {
             let mut entries = Vec::new();
-            self.inner.jacobian(
-                t,
-                y,
-                yp,
-                cj,
-                &mut JacobianSink {
-                    entries: &mut entries,
-                },
-            );
+            self.inner
+                .jacobian(t, y, yp, cj, &mut JacobianSink::new(&mut entries));
             for (r, c, v) in entries {
                 if (r, c) != self.drop {
                     jac.add(r, c, v);

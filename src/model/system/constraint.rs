@@ -1,45 +1,24 @@
 //! Constraint rows with their derivatives.
 //!
-//! Rigid markers: rows are written once, generic over a scalar; dual numbers over the
-//! two bodies' virtual motions (translation, body-axes rotation) give B exactly, and duals
-//! of duals give d B / d q. A marker on a modal body is treated as a frame of its own
-//! (its world origin and axes): the rows are differentiated with respect to that frame's
-//! virtual motion and mapped to the body's unknowns (including modal coordinates) with
-//! the marker's velocity Jacobian ([`super::flexmarker`]). For such elements the second
-//! derivatives d B / d q are left out of the iteration matrix (they only speed up Newton
-//! by the geometric stiffness of the reaction, small against the body's own stiffness)
-//! and the constraint acceleration term is differentiated numerically along the motion.
+//! Each row is a dot product of the two marker frames' origins and axes (`joint.rs`), so
+//! its gradient with respect to a small motion of either frame (origin displacement and
+//! rotation, world axes) has a closed form ([`row_grad`]). A rigid side maps that to its
+//! body's virtual translation and body-axes rotation; a marker on a modal body maps it to
+//! all the body's unknowns (modal ones included) with the marker's velocity Jacobian
+//! ([`super::flexmarker`]). Written generic over the scalar, the same code in dual numbers
+//! over the positions gives the Newton matrix's d B / d q for rigid elements. For elements
+//! on modal markers d B / d q is left out of the iteration matrix (it only speeds up Newton
+//! by the geometric stiffness of the reaction, small against the body's own stiffness) and
+//! the constraint acceleration term is differentiated numerically along the motion.
 
 use super::{ConElem, ConRow, ConstraintSet, Owner, System};
 use crate::model::desc::MotionDof;
 use crate::model::dual::{Dual, Scalar};
 use crate::model::joint::{motion_value, row_value, MFrame, Row};
-use crate::model::math::{cross, cst3, cst33, mm, mvc, qmul, rot, Q4, V3};
+use crate::model::math::{
+    add, col, cross, cst3, cst33, dot, mm, mtv, mvc, qmul, rot, sub, M3, Q4, V3,
+};
 
-type T1 = Dual<f64, 13>;
-type T2 = Dual<T1, 15>;
-/// One side's virtual motions, and those inside its seven position unknowns.
-type S1 = Dual<f64, 6>;
-type S2 = Dual<S1, 7>;
-
-/// A 6-wide dual placed at `off` in a 13-wide one.
-fn widen(x: &S1, off: usize) -> T1 {
-    let mut d = [0.0; 13];
-    d[off..off + 6].copy_from_slice(&x.d);
-    T1 { v: x.v, d }
-}
-
-fn map_frame<A: Scalar, B: Scalar>(f: &MFrame<A>, m: impl Fn(&A) -> B) -> MFrame<B> {
-    MFrame {
-        origin: std::array::from_fn(|c| m(&f.origin[c])),
-        axes: std::array::from_fn(|r| std::array::from_fn(|c| m(&f.axes[r][c]))),
-    }
-}
-
-/// The quaternion (1, theta/2) of a small body-axes rotation theta.
-fn half_turn<T: Scalar>(theta: impl Fn(usize) -> T) -> Q4<T> {
-    [T::cst(1.0), theta(0) * 0.5, theta(1) * 0.5, theta(2) * 0.5]
-}
 /// One direction inside one direction: the constraint acceleration term.
 type G1 = Dual<f64, 1>;
 type G2 = Dual<G1, 1>;
@@ -79,40 +58,38 @@ enum SideMap {
 
 /// Value, time derivative and gradients of one row with respect to each side's frame
 /// motion: origin displacement (`go`) and small rotation of the axes (`gphi`), world.
-struct RowGrad {
-    g: f64,
-    gt: f64,
-    go: [[f64; 3]; 2],
-    gphi: [[f64; 3]; 2],
-}
-
-fn colf(a: &[[f64; 3]; 3], k: usize) -> [f64; 3] {
-    [a[0][k], a[1][k], a[2][k]]
+struct RowGrad<S: Scalar> {
+    g: S,
+    gt: S,
+    go: [V3<S>; 2],
+    gphi: [V3<S>; 2],
 }
 
 /// Rows of the joint primitives (`joint.rs`) and motions with their exact gradients: for
-/// d = o_I - o_J and axis columns u of I and w of J, d . w varies by (d o_I - d o_J) . w
-/// + d phi_J . (w x d), and u . w by d phi_I . (u x w) + d phi_J . (w x u).
-fn row_grad(row: ConRow, drive: (f64, f64), fi: &MFrame<f64>, fj: &MFrame<f64>) -> RowGrad {
-    let z = [0.0; 3];
-    let d = crate::model::math::sub(&fi.origin, &fj.origin);
+/// d = o_I - o_J and axis columns u of I and w of J, d . w varies by
+/// (d o_I - d o_J) . w + d phi_J . (w x d), and u . w by d phi_I . (u x w) +
+/// d phi_J . (w x u). Generic: in f64 for the residual, in duals over the positions for
+/// the Newton matrix's d B / d q.
+fn row_grad<S: Scalar>(row: ConRow, drive: (S, S), fi: &MFrame<S>, fj: &MFrame<S>) -> RowGrad<S> {
+    let z = [S::cst(0.0); 3];
+    let d = sub(&fi.origin, &fj.origin);
     let along = |k: usize| {
-        let w = colf(&fj.axes, k);
+        let w = col(&fj.axes, k);
         RowGrad {
-            g: crate::model::math::dot(&d, &w),
-            gt: 0.0,
-            go: [w, [-w[0], -w[1], -w[2]]],
+            g: dot(&d, &w),
+            gt: S::cst(0.0),
+            go: [w, w.map(|x| -x)],
             gphi: [z, cross(&w, &d)],
         }
     };
     let about = |ki: usize, kj: usize, sign: f64| {
-        let (u, w) = (colf(&fi.axes, ki), colf(&fj.axes, kj));
+        let (u, w) = (col(&fi.axes, ki), col(&fj.axes, kj));
         let uw = cross(&u, &w);
         RowGrad {
-            g: sign * crate::model::math::dot(&u, &w),
-            gt: 0.0,
+            g: dot(&u, &w) * sign,
+            gt: S::cst(0.0),
             go: [z, z],
-            gphi: [uw.map(|x| sign * x), uw.map(|x| -sign * x)],
+            gphi: [uw.map(|x| x * sign), uw.map(|x| x * -sign)],
         }
     };
     match row {
@@ -125,7 +102,7 @@ fn row_grad(row: ConRow, drive: (f64, f64), fi: &MFrame<f64>, fj: &MFrame<f64>) 
         ConRow::Prim(Row::Perpendicular) => about(2, 2, 1.0),
         ConRow::Drive(MotionDof::Translation) => {
             let mut r = along(2);
-            r.g -= drive.0;
+            r.g = r.g - drive.0;
             r.gt = -drive.1;
             r
         }
@@ -133,7 +110,7 @@ fn row_grad(row: ConRow, drive: (f64, f64), fi: &MFrame<f64>, fj: &MFrame<f64>) 
             // (x_I . y_J) cos s - (x_I . x_J) sin s
             let (c, sn) = (drive.0.cos(), drive.0.sin());
             let (a, b) = (about(0, 1, 1.0), about(0, 0, 1.0));
-            let mix = |p: [f64; 3], q: [f64; 3]| std::array::from_fn(|k| c * p[k] - sn * q[k]);
+            let mix = |p: V3<S>, q: V3<S>| std::array::from_fn(|k| c * p[k] - sn * q[k]);
             RowGrad {
                 g: a.g * c - b.g * sn,
                 gt: -drive.1 * (a.g * sn + b.g * c),
@@ -142,6 +119,14 @@ fn row_grad(row: ConRow, drive: (f64, f64), fi: &MFrame<f64>, fj: &MFrame<f64>) 
             }
         }
     }
+}
+
+/// A rigid side's row of B: d o = d r + d phi x rho, d phi = A d theta (body axes), so
+/// (go, A^T (rho x go + gphi)).
+fn rigid_b<S: Scalar>(a: &M3<S>, rho: &V3<S>, go: &V3<S>, gphi: &V3<S>) -> [S; 6] {
+    let m = add(&cross(rho, go), gphi);
+    let w = mtv(a, &m);
+    [go[0], go[1], go[2], w[0], w[1], w[2]]
 }
 
 /// Constraint rows with second derivatives (iteration matrix, accelerations).
@@ -244,13 +229,7 @@ impl System {
         let w = [self.width(bodies[0]), self.width(bodies[1])];
         let (fi, mi) = self.side(e.mi, bodies[0], q);
         let (fj, mj) = self.side(e.mj, bodies[1], q);
-        let drive = match e.owner {
-            Owner::Motion(k) => {
-                let (s, ds, _) = self.model.motions[k].eval(t);
-                (s, ds)
-            }
-            Owner::Joint(_) => (0.0, 0.0),
-        };
+        let drive = self.drive_rates(e, t);
         let nr = e.rows.len();
         let wt = w[0] + w[1];
         out.w = w;
@@ -268,10 +247,7 @@ impl System {
                 match map {
                     SideMap::Ground => {}
                     SideMap::Rigid { a, rho } => {
-                        // d o = d r + d phi x rho, d phi = A d theta (body axes)
-                        dst[..3].copy_from_slice(&go);
-                        let m = crate::model::math::add(&cross(rho, &go), &gphi);
-                        dst[3..6].copy_from_slice(&crate::model::math::mtv(a, &m));
+                        dst[..6].copy_from_slice(&rigid_b(a, rho, &go, &gphi));
                     }
                     SideMap::Flex(ff) => {
                         for (k, (jt, jw)) in ff.jt.iter().zip(&ff.jw).enumerate() {
@@ -288,64 +264,80 @@ impl System {
         }
     }
 
-    /// Constraint rows with second derivatives.
+    /// The drive value s and its rate s' of a motion's row as scalars of time `t`.
+    fn drive_rates<T: Scalar>(&self, e: &ConElem, t: T) -> (T, T) {
+        match e.owner {
+            Owner::Motion(k) => {
+                let (s, ds, d2s) = self.model.motions[k].eval(t.re());
+                (t.chain(s, ds, d2s), t.chain(ds, d2s, 0.0))
+            }
+            Owner::Joint(_) => (T::cst(0.0), T::cst(0.0)),
+        }
+    }
+
+    /// Constraint rows with second derivatives: the closed-form rows and B of
+    /// [`System::con_eval_into`] evaluated in duals over both sides' seven position
+    /// unknowns and time.
     pub fn con_eval2(&self, e: &ConElem, t: f64, q: &[f64]) -> ConEval2 {
         if self.has_flex(e) {
             return self.con_eval2_flex(e, t, q);
         }
+        type Q15 = Dual<f64, 15>;
+        /// A side's frame, and its body's rotation and marker offset (rigid sides).
+        type Side = (MFrame<Q15>, Option<(M3<Q15>, V3<Q15>)>);
         let bodies = self.bodies_of(e.mi, e.mj);
-        // Per side: 6 virtual motions inside 7 position unknowns, placed into the
-        // 13-inside-15 duals of the rows (a quarter of the work on the frames).
-        let mut frames = Vec::with_capacity(2);
-        for (side, (mk, b)) in [e.mi, e.mj].into_iter().zip(bodies).enumerate() {
-            let local: MFrame<S2> = match b {
-                None => self.ground_frame::<S2>(mk),
+        let side = |side: usize, mk: usize, b: Option<usize>| -> Side {
+            match b {
+                None => (self.ground_frame::<Q15>(mk), None),
                 Some(b) => {
                     let o = self.qo[b];
-                    let r: V3<S2> = std::array::from_fn(|c| S2 {
-                        v: S1::var(q[o + c], c),
-                        d: std::array::from_fn(|l| S1::cst(if l == c { 1.0 } else { 0.0 })),
-                    });
-                    let p0: Q4<S2> = std::array::from_fn(|c| S2 {
-                        v: S1::cst(q[o + 3 + c]),
-                        d: std::array::from_fn(|l| S1::cst(if l == 3 + c { 1.0 } else { 0.0 })),
-                    });
-                    let dp = half_turn::<S2>(|c| S2::constant(S1::var(0.0, 3 + c)));
-                    self.frame_of(mk, &r, &qmul(&p0, &dp))
+                    let r: V3<Q15> = std::array::from_fn(|c| Q15::var(q[o + c], 7 * side + c));
+                    let p: Q4<Q15> =
+                        std::array::from_fn(|c| Q15::var(q[o + 3 + c], 7 * side + 3 + c));
+                    let a = rot(&p);
+                    let m = &self.model.markers[mk];
+                    let rho = mvc(&a, &m.position);
+                    let f = MFrame {
+                        origin: add(&r, &rho),
+                        axes: mm(&a, &cst33(&m.axes)),
+                    };
+                    (f, Some((a, rho)))
                 }
-            };
-            frames.push(map_frame(&local, |x| T2 {
-                v: widen(&x.v, 6 * side),
-                d: std::array::from_fn(|l| {
-                    if (7 * side..7 * side + 7).contains(&l) {
-                        widen(&x.d[l - 7 * side], 6 * side)
-                    } else {
-                        T1::cst(0.0)
-                    }
-                }),
-            }));
-        }
-        let tt = T2 {
-            v: T1::var(t, 12),
-            d: std::array::from_fn(|l| T1::cst(if l == 14 { 1.0 } else { 0.0 })),
+            }
         };
-        let vals = self.rows_of(e, tt, &frames[0], &frames[1]);
+        let (fi, mi) = side(0, e.mi, bodies[0]);
+        let (fj, mj) = side(1, e.mj, bodies[1]);
+        let drive = self.drive_rates(e, Q15::var(t, 14));
+        let nr = e.rows.len();
+        let mut first = ConEval {
+            g: Vec::with_capacity(nr),
+            b: vec![0.0; nr * 12],
+            gt: Vec::with_capacity(nr),
+            w: [6, 6],
+        };
+        let mut gq = Vec::with_capacity(nr);
+        let mut dbq = Vec::with_capacity(nr);
+        for (r, row) in e.rows.iter().enumerate() {
+            let rg = row_grad(*row, drive, &fi, &fj);
+            first.g.push(rg.g.v);
+            first.gt.push(rg.gt.v);
+            gq.push(rg.g.d[..14].to_vec());
+            let mut d = [[0.0; 15]; 13];
+            for (s, map) in [&mi, &mj].into_iter().enumerate() {
+                let Some((a, rho)) = map else { continue };
+                let bs = rigid_b(a, rho, &rg.go[s], &rg.gphi[s]);
+                for (c, x) in bs.iter().enumerate() {
+                    first.b[r * 12 + 6 * s + c] = x.v;
+                    d[6 * s + c] = x.d;
+                }
+            }
+            d[12] = rg.gt.d;
+            dbq.push(d);
+        }
         ConEval2 {
-            first: ConEval {
-                g: vals.iter().map(|v| v.v.v).collect(),
-                b: vals.iter().flat_map(|v| v.v.d[..12].to_vec()).collect(),
-                gt: vals.iter().map(|v| v.v.d[12]).collect(),
-                w: [6, 6],
-            },
-            gq: vals
-                .iter()
-                .map(|v| (0..14).map(|l| v.d[l].v).collect())
-                .collect(),
-            dbq: Some(
-                vals.iter()
-                    .map(|v| std::array::from_fn(|k| std::array::from_fn(|l| v.d[l].d[k])))
-                    .collect(),
-            ),
+            first,
+            gq,
+            dbq: Some(dbq),
         }
     }
 

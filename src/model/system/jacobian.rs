@@ -75,11 +75,12 @@ impl System {
             let (o, w) = (self.qo[k], self.vo[k]);
             let (qr, qp, vu, vw) = (o, o + 3, ov + w, ov + w + 3);
             let full = self.full[k].is_some();
+            // cj terms through add_scaled: they are dF/dy' (identity, mass, inertia).
             for c in 0..3 {
-                jac.add(qr + c, qr + c, cj);
+                jac.add_scaled(qr + c, qr + c, cj, 1.0);
                 jac.add(qr + c, vu + c, -1.0);
                 if !full {
-                    jac.add(vu + c, vu + c, cj * body.mass);
+                    jac.add_scaled(vu + c, vu + c, cj, body.mass);
                 }
             }
             let p = [q[qp], q[qp + 1], q[qp + 2], q[qp + 3]];
@@ -94,11 +95,12 @@ impl System {
             let qm = qmat(&p);
             for a in 0..4 {
                 for bcol in 0..4 {
-                    let val = -0.5 * rw[a][bcol] + if a == bcol { cj } else { 0.0 };
+                    let val = -0.5 * rw[a][bcol];
                     if structural || val != 0.0 {
                         jac.add(qp + a, qp + bcol, pick(val));
                     }
                 }
+                jac.add_scaled(qp + a, qp + a, cj, 1.0);
                 for c in 0..3 {
                     jac.add(qp + a, vw + c, pick(-0.5 * qm[a][c]));
                 }
@@ -114,23 +116,26 @@ impl System {
             let sjw = skew(jw);
             for r in 0..3 {
                 for c in 0..3 {
-                    let mut val = cj * jm[r][c] - sjw[r][c];
+                    let mut val = -sjw[r][c];
                     for l in 0..3 {
                         val += sw[r][l] * jm[l][c];
                     }
                     if !full {
                         jac.add(vw + r, vw + c, pick(val));
+                        jac.add_scaled(vw + r, vw + c, cj, jm[r][c]);
                     }
                 }
             }
             let Some(m) = &body.modal else { continue };
             for (j, mode) in m.data.modes.iter().enumerate() {
                 let (qe, ve) = (o + 7 + j, ov + w + 6 + j);
-                jac.add(qe, qe, cj);
+                jac.add_scaled(qe, qe, cj, 1.0);
                 jac.add(qe, ve, -1.0);
                 let wn = mode.stiffness.max(0.0).sqrt();
-                let mass = if full { 0.0 } else { cj };
-                jac.add(ve, ve, pick(mass + 2.0 * mode.damping_ratio * wn));
+                if !full {
+                    jac.add_scaled(ve, ve, cj, 1.0);
+                }
+                jac.add(ve, ve, pick(2.0 * mode.damping_ratio * wn));
                 jac.add(ve, qe, pick(mode.stiffness));
                 if m.coupling == crate::model::desc::Coupling::Partial {
                     let i8 = &m.data.invariants.i8[j];
@@ -174,7 +179,7 @@ impl System {
         let mb = self.full_mass(k, q).expect("a full body");
         for r in 0..n {
             for c in 0..n {
-                jac.add(ov + w + r, ov + w + c, cj * mb[(r, c)]);
+                jac.add_scaled(ov + w + r, ov + w + c, cj, mb[(r, c)]);
             }
         }
         let base = self.full_velocity_terms(k, q, v);
@@ -389,18 +394,22 @@ impl System {
             (rows_f.iter().map(|&r| f[r]).collect(), res)
         };
         let (f0, r0) = eval(&yy, &xd);
-        let mut put = |col: usize, f1: &[f64], r1: &[f64], h: f64, scale: f64| {
-            for (k, &r) in rows_f.iter().enumerate() {
-                let d = -(f1[k] - f0[k]) / h * scale;
+        // Columns of the rates are dF/dy' entries: added as cj times their coefficient.
+        let mut put = |col: usize, f1: &[f64], r1: &[f64], h: f64, rates: bool| {
+            let mut one = |row: usize, d: f64| {
                 if d != 0.0 {
-                    jac.add(ov + r, col, d);
+                    if rates {
+                        jac.add_scaled(row, col, cj, d);
+                    } else {
+                        jac.add(row, col, d);
+                    }
                 }
+            };
+            for (k, &r) in rows_f.iter().enumerate() {
+                one(ov + r, -(f1[k] - f0[k]) / h);
             }
             for i in 0..e.n {
-                let d = (r1[i] - r0[i]) / h * scale;
-                if d != 0.0 {
-                    jac.add(oe + e.off + i, col, d);
-                }
+                one(oe + e.off + i, (r1[i] - r0[i]) / h);
             }
         };
         for &c in &cols {
@@ -409,7 +418,7 @@ impl System {
             yy[c] += h;
             let (f1, r1) = eval(&yy, &xd);
             yy[c] = x0;
-            put(c, &f1, &r1, h, 1.0);
+            put(c, &f1, &r1, h, false);
         }
         // Rates of the element's own states enter its residual only.
         for i in 0..e.n {
@@ -417,7 +426,7 @@ impl System {
             xd[i] += h;
             let (f1, r1) = eval(&yy, &xd);
             xd[i] = 0.0;
-            put(oe + e.off + i, &f1, &r1, h, cj);
+            put(oe + e.off + i, &f1, &r1, h, true);
         }
     }
 

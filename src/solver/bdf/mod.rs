@@ -95,6 +95,8 @@ pub struct Bdf<'a, P: DaeProblem + ?Sized> {
     backup_psi: [f64; MAXORD + 2],
     jac: NewtonMatrix,
     jac_entries: Vec<(usize, usize, f64)>,
+    /// The dF/dy' part of the last evaluation, when the problem reports it.
+    jac_yp_entries: Vec<(usize, usize, f64)>,
     jac_valid: bool,
     jac_age: usize,
     /// The state the iteration matrix was evaluated at (for the problem's frame
@@ -229,6 +231,7 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
             backup_psi: [0.0; MAXORD + 2],
             jac,
             jac_entries: Vec::new(),
+            jac_yp_entries: Vec::new(),
             jac_valid: false,
             jac_age: 0,
             y_built: vec![0.0; n],

@@ -22,7 +22,8 @@ impl<P: DaeProblem + ?Sized> Bdf<'_, P> {
             && self.jac_valid
             && !age_limit
             && self.opts.jacobian_recombine
-            && self.jac.has_base();
+            && self.jac.has_base()
+            && self.jac_age < self.opts.recombine_max_age;
         let why = &mut self.stats.matrix_rebuilds;
         if !self.jac_valid {
             why.invalid += 1;
@@ -62,6 +63,10 @@ impl<P: DaeProblem + ?Sized> Bdf<'_, P> {
         self.eval_jacobian(self.tn, &self.ypred.clone(), &self.yppred.clone(), self.cj)?;
         if self.opts.jacobian_recombine {
             self.jac.keep_as_base(self.cj);
+            // A problem that reported its dF/dy' part needs no second evaluation.
+            if self.analytic_ok && !self.jac_yp_entries.is_empty() {
+                self.jac.set_yp_part(&self.jac_yp_entries);
+            }
             self.t_built = self.tn;
             self.yp_built.copy_from_slice(&self.yppred);
         }
@@ -111,9 +116,12 @@ impl<P: DaeProblem + ?Sized> Bdf<'_, P> {
         self.jac.clear();
         if self.analytic_ok {
             self.jac_entries.clear();
+            self.jac_yp_entries.clear();
             let provided = {
-                let mut sink = JacobianSink {
-                    entries: &mut self.jac_entries,
+                let mut sink = if self.opts.jacobian_recombine {
+                    JacobianSink::with_yp(&mut self.jac_entries, &mut self.jac_yp_entries)
+                } else {
+                    JacobianSink::new(&mut self.jac_entries)
                 };
                 self.prob.jacobian(t, y, yp, cj, &mut sink)
             };
