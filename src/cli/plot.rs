@@ -64,10 +64,14 @@ fn draw<DB: DrawingBackend>(
         if pts.is_empty() {
             continue;
         }
+        // Drawn on log10 of the values with a linear axis: its ticks fall at round
+        // log10 steps whatever the range (plotters' log axis labels only decades, and a
+        // range inside one decade, such as wall times of 0.25-0.45 s, got none).
         let span = |v: Vec<f64>| {
-            let lo = v.iter().cloned().fold(f64::INFINITY, f64::min);
-            let hi = v.iter().cloned().fold(0.0, f64::max);
-            (lo / 2.0)..(hi * 2.0)
+            let lo = v.iter().cloned().fold(f64::INFINITY, f64::min).log10();
+            let hi = v.iter().cloned().fold(f64::NEG_INFINITY, f64::max).log10();
+            let pad = 0.08 * (hi - lo).max(0.5);
+            (lo - pad)..(hi + pad)
         };
         let xr = span(pts.iter().map(|p| p.0).collect());
         let yr = span(pts.iter().map(|p| p.1).collect());
@@ -76,16 +80,16 @@ fn draw<DB: DrawingBackend>(
             .margin(8)
             .x_label_area_size(36)
             .y_label_area_size(56)
-            .build_cartesian_2d(xr.log_scale(), yr.log_scale())
+            .build_cartesian_2d(xr, yr)
             .map_err(|x| e(&x))?;
         chart
             .configure_mesh()
-            .x_desc(&panel.x_label)
-            .y_desc(&panel.y_label)
-            // Few labels: plotters' log axes otherwise crowd 2e-k .. 9e-k together.
-            .x_labels(5)
-            .x_label_formatter(&|v| format!("{v:.0e}"))
-            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .x_desc(format!("{} (log scale)", panel.x_label))
+            .y_desc(format!("{} (log scale)", panel.y_label))
+            .x_labels(6)
+            .y_labels(6)
+            .x_label_formatter(&|v| sig2(10f64.powf(*v)))
+            .y_label_formatter(&|v| sig2(10f64.powf(*v)))
             .label_style(("sans-serif", 11))
             .light_line_style(TRANSPARENT)
             .draw()
@@ -97,6 +101,7 @@ fn draw<DB: DrawingBackend>(
                 .iter()
                 .copied()
                 .filter(|(x, y)| *x > 0.0 && *y > 0.0 && x.is_finite() && y.is_finite())
+                .map(|(x, y)| (x.log10(), y.log10()))
                 .collect();
             chart
                 .draw_series(LineSeries::new(pts.clone(), colour.stroke_width(2)))
@@ -111,6 +116,7 @@ fn draw<DB: DrawingBackend>(
         }
         chart
             .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
             .background_style(WHITE.mix(0.8))
             .border_style(BLACK)
             .label_font(("sans-serif", 11))
@@ -119,4 +125,19 @@ fn draw<DB: DrawingBackend>(
     }
     root.present().map_err(|x| e(&x))?;
     Ok(())
+}
+
+/// A tick label with two significant digits: 0.25, 3.5, 1.2e-5.
+fn sig2(x: f64) -> String {
+    if (1e-3..1e4).contains(&x) {
+        let digits = (1 - x.log10().floor() as i32).max(0) as usize;
+        let t = format!("{x:.digits$}");
+        if t.contains('.') {
+            t.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            t
+        }
+    } else {
+        format!("{x:.1e}")
+    }
 }

@@ -33,6 +33,10 @@ pub struct BenchSceneArgs {
     /// Parallel runs (1 keeps the timings undisturbed).
     #[arg(long, default_value_t = 1)]
     pub jobs: usize,
+    /// Runs of each setting; the fastest wall time is reported (the results of repeated
+    /// runs are identical, their wall times are not on a shared machine).
+    #[arg(long, default_value_t = 3)]
+    pub repeat: usize,
     /// Output folder.
     #[arg(long, default_value = "out/bench")]
     pub out: PathBuf,
@@ -219,7 +223,13 @@ pub fn run_bench(a: &BenchSceneArgs) -> Result<i32, String> {
         cases
             .par_iter()
             .map(|&(m, t)| {
-                let r = run(scene, &[], &Overrides::default(), &tuned(m, t));
+                let mut r = run(scene, &[], &Overrides::default(), &tuned(m, t));
+                for _ in 1..a.repeat.max(1) {
+                    let again = run(scene, &[], &Overrides::default(), &tuned(m, t));
+                    if let (Ok(best), Ok(x)) = (&mut r, again) {
+                        best.wall_s = best.wall_s.min(x.wall_s);
+                    }
+                }
                 pb.inc(1);
                 point(m, t, &r, &refdata)
             })
