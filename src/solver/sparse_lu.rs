@@ -95,12 +95,6 @@ impl SparseLu {
         self.factored
     }
 
-    /// Non-zeros of L and U (without L's unit diagonal).
-    #[cfg(test)]
-    pub fn nnz(&self) -> usize {
-        self.li.len() + self.ui.len() + self.n
-    }
-
     /// Factorises A (CSC: `col_ptr`, `row_idx`, `val`) with threshold partial pivoting,
     /// preferring the diagonal entry of the column (row `q[k]` for pivot column k).
     pub fn factor(
@@ -347,138 +341,102 @@ impl SparseLu {
 mod tests {
     use super::*;
 
-    /// Probe on a matrix file (development only).
-    #[test]
-    #[ignore]
-    fn probe_matrix_market() {
-        use faer::dyn_stack::{MemBuffer, MemStack};
-        let text = std::fs::read_to_string("/tmp/J.mtx").unwrap();
-        let kinds: Vec<i32> = std::fs::read_to_string("/tmp/J_kinds.txt")
-            .unwrap()
-            .lines()
-            .map(|l| l.trim().parse().unwrap())
-            .collect();
-        let mut lines = text.lines().filter(|l| !l.starts_with('%'));
-        let head: Vec<usize> = lines
-            .next()
-            .unwrap()
-            .split_whitespace()
-            .map(|x| x.parse().unwrap())
-            .collect();
-        let n = head[0];
+    /// A 6 x 6 unsymmetric test matrix in CSC with one declared entry that is zero.
+    fn matrix(extra: f64, pivot: f64) -> (Vec<usize>, Vec<usize>, Vec<f64>) {
+        // Dense description (row, col, value); (0, 5) is declared, value `extra`.
+        let entries = [
+            (0, 0, pivot),
+            (1, 0, 1.0),
+            (1, 1, 3.0),
+            (2, 1, -1.0),
+            (0, 2, 2.0),
+            (2, 2, 5.0),
+            (4, 2, 1.0),
+            (3, 3, 2.0),
+            (5, 3, -2.0),
+            (4, 4, 6.0),
+            (1, 4, 1.0),
+            (0, 5, extra),
+            (5, 5, 3.0),
+            (3, 5, 1.0),
+        ];
+        let n = 6;
         let mut cols: Vec<Vec<(usize, f64)>> = vec![Vec::new(); n];
-        let h = 1.0 / 2000.0;
-        for l in lines {
-            let v: Vec<&str> = l.split_whitespace().collect();
-            let (r, c, x): (usize, usize, f64) = (
-                v[0].parse().unwrap(),
-                v[1].parse().unwrap(),
-                v[2].parse().unwrap(),
-            );
-            let s = if kinds[c - 1] > 1 { 1.0 / h } else { 1.0 };
-            cols[c - 1].push((r - 1, x * s));
+        for &(r, c, v) in &entries {
+            cols[c].push((r, v));
         }
-        let mut col_ptr = vec![0];
-        let mut row_idx = Vec::new();
-        let mut val = Vec::new();
+        let (mut cp, mut ri, mut vals) = (vec![0], Vec::new(), Vec::new());
         for c in cols.iter_mut() {
-            if !c.iter().any(|e| e.0 == col_ptr.len() - 1) {
-                c.push((col_ptr.len() - 1, 0.0));
-            }
             c.sort_by_key(|e| e.0);
-            for &(r, x) in c.iter() {
-                row_idx.push(r);
-                val.push(x);
+            for &(r, v) in c.iter() {
+                ri.push(r);
+                vals.push(v);
             }
-            col_ptr.push(row_idx.len());
+            cp.push(ri.len());
         }
-        // row equilibration
-        let mut rmax = vec![0.0f64; n];
-        for c in 0..n {
-            for t in col_ptr[c]..col_ptr[c + 1] {
-                rmax[row_idx[t]] = rmax[row_idx[t]].max(val[t].abs());
-            }
-        }
-        for c in 0..n {
-            for t in col_ptr[c]..col_ptr[c + 1] {
-                val[t] /= rmax[row_idx[t]];
+        (cp, ri, vals)
+    }
+
+    fn residual(cp: &[usize], ri: &[usize], v: &[f64], x: &[f64], b: &[f64]) -> f64 {
+        let mut ax = vec![0.0; b.len()];
+        for c in 0..b.len() {
+            for t in cp[c]..cp[c + 1] {
+                ax[ri[t]] += v[t] * x[c];
             }
         }
-        let sym = faer::sparse::SymbolicSparseColMat::new_checked(
-            n,
-            n,
-            col_ptr.clone(),
-            None,
-            row_idx.clone(),
-        );
-        // COLAMD order
-        let mut perm = vec![0usize; n];
-        let mut pinv = vec![0usize; n];
-        let req = faer::sparse::linalg::colamd::order_scratch::<usize>(n, n, row_idx.len());
-        let mut mem = MemBuffer::new(req);
-        faer::sparse::linalg::colamd::order(
-            &mut perm,
-            &mut pinv,
-            sym.as_ref(),
-            Default::default(),
-            MemStack::new(&mut mem),
-        )
-        .unwrap();
-        let mut perm2 = vec![0usize; n];
-        let mut pinv2 = vec![0usize; n];
-        let req =
-            faer::sparse::linalg::amd::order_maybe_unsorted_scratch::<usize>(n, row_idx.len());
-        let mut mem = MemBuffer::new(req);
-        faer::sparse::linalg::amd::order_maybe_unsorted(
-            &mut perm2,
-            &mut pinv2,
-            sym.as_ref(),
-            Default::default(),
-            MemStack::new(&mut mem),
-        )
-        .unwrap();
-        let xs: Vec<f64> = (0..n).map(|i| ((i * 7 + 3) % 11) as f64 - 5.0).collect();
-        let mut b = vec![0.0; n];
-        for c in 0..n {
-            for t in col_ptr[c]..col_ptr[c + 1] {
-                b[row_idx[t]] += val[t] * xs[c];
-            }
+        ax.iter()
+            .zip(b)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max)
+    }
+
+    #[test]
+    fn factor_refactor_and_solve() {
+        let (cp, ri, v) = matrix(0.0, 4.0);
+        let mut lu = SparseLu::new(6, (0..6).collect());
+        lu.factor(&cp, &ri, &v).unwrap();
+        let b = [1.0, -2.0, 0.5, 3.0, 0.0, 1.5];
+        let mut x = b;
+        lu.solve(&mut x);
+        assert!(residual(&cp, &ri, &v, &x, &b) < 1e-14);
+        // Same structure, new values: a refactorisation on the kept pivots.
+        let v2: Vec<f64> = v.iter().map(|a| a * 1.5).collect();
+        assert_eq!(lu.refactor(&v2), Refactor::Done);
+        let mut x = b;
+        lu.solve(&mut x);
+        assert!(residual(&cp, &ri, &v2, &x, &b) < 1e-14);
+    }
+
+    #[test]
+    fn small_pivot_asks_for_pivoting() {
+        let (cp, ri, v) = matrix(0.0, 4.0);
+        let mut lu = SparseLu::new(6, (0..6).collect());
+        lu.factor(&cp, &ri, &v).unwrap();
+        // A declared entry turns non-zero: in the structure, refactorised.
+        let (_, _, v_extra) = matrix(2.0, 4.0);
+        assert_eq!(lu.refactor(&v_extra), Refactor::Done);
+        let b = [1.0, 0.0, 0.0, 0.0, 0.0, 2.0];
+        let mut x = b;
+        lu.solve(&mut x);
+        assert!(residual(&cp, &ri, &v_extra, &x, &b) < 1e-14);
+        // The (0, 0) pivot (the diagonal, chosen in the natural order) shrinks far below
+        // its column's other candidate.
+        let (_, _, v_small) = matrix(2.0, 1e-9);
+        assert_eq!(lu.refactor(&v_small), Refactor::NeedsPivoting);
+        lu.factor(&cp, &ri, &v_small).unwrap();
+        let mut x = b;
+        lu.solve(&mut x);
+        assert!(residual(&cp, &ri, &v_small, &x, &b) < 1e-12);
+    }
+
+    #[test]
+    fn zero_column_is_reported() {
+        let (cp, ri, mut v) = matrix(0.0, 4.0);
+        // Column 3: both entries zero.
+        for t in cp[3]..cp[4] {
+            v[t] = 0.0;
         }
-        for (name, q) in [
-            ("colamd", perm.clone()),
-            ("amd", perm2.clone()),
-            ("natural", (0..n).collect()),
-        ] {
-            let mut lu = SparseLu::new(n, q);
-            let t0 = std::time::Instant::now();
-            lu.factor(&col_ptr, &row_idx, &val).unwrap();
-            let tf = t0.elapsed().as_secs_f64();
-            let t0 = std::time::Instant::now();
-            let reps = 200;
-            for _ in 0..reps {
-                assert_eq!(lu.refactor(&val), Refactor::Done);
-            }
-            let tr = t0.elapsed().as_secs_f64() / reps as f64;
-            let mut x = b.clone();
-            let t0 = std::time::Instant::now();
-            for _ in 0..reps {
-                x.copy_from_slice(&b);
-                lu.solve(&mut x);
-            }
-            let ts = t0.elapsed().as_secs_f64() / reps as f64;
-            let err = x
-                .iter()
-                .zip(&xs)
-                .map(|(a, b)| (a - b).abs())
-                .fold(0.0, f64::max);
-            eprintln!(
-                "{name}: nnz(L+U) {} factor {:.0} us refactor {:.0} us solve {:.1} us err {:.1e}",
-                lu.nnz(),
-                tf * 1e6,
-                tr * 1e6,
-                ts * 1e6,
-                err
-            );
-        }
+        let mut lu = SparseLu::new(6, (0..6).collect());
+        assert_eq!(lu.factor(&cp, &ri, &v), Err(ZeroPivot { column: 3 }));
     }
 }
