@@ -318,10 +318,22 @@ impl NewtonMatrix {
         let n = self.n;
         self.col_scale.copy_from_slice(col_scale);
         let mut row_max = vec![0.0f64; n];
+        // The values in structure order (the dense path gathers them once).
+        let gathered;
+        let vals: &[f64] = match &self.storage {
+            Storage::Sparse { values, .. } => values,
+            Storage::Dense { .. } => {
+                gathered = (0..n)
+                    .flat_map(|c| (self.col_ptr[c]..self.col_ptr[c + 1]).map(move |k| (k, c)))
+                    .map(|(k, c)| self.value_at(k, c))
+                    .collect::<Vec<f64>>();
+                &gathered
+            }
+        };
         for c in 0..n {
             for k in self.col_ptr[c]..self.col_ptr[c + 1] {
                 let r = self.row_idx[k];
-                let v = (self.value_at(k, c) * col_scale[c]).abs();
+                let v = (vals[k] * col_scale[c]).abs();
                 if v.is_nan() || v.is_infinite() {
                     return Err(Singular {
                         columns: vec![c],
