@@ -98,7 +98,7 @@ fn run_scene(s: &Scene, out: &Path, quiet: bool) -> Result<i32, String> {
         "start": start_report,
         "design": s.vehicle.design,
         "lift_off": lift,
-        "skipped": skipped(&sys),
+        "skipped": skipped(&sys, st),
         "modal_energy": super::scene_report::energy(&sys, &res),
         "plots": plot_error.as_ref().map_or(Value::String(plot.display().to_string()), |e| Value::String(format!("not written: {e}"))),
         "channels": channel_summary(&res),
@@ -176,7 +176,7 @@ fn channel_summary(res: &RunResult) -> Map<String, Value> {
 }
 
 /// What the run did not compute, and why.
-fn skipped(sys: &System) -> Value {
+fn skipped(sys: &System, st: &crate::solver::Stats) -> Value {
     let mut q = [0u64; 3];
     for t in &sys.model.tyres {
         if let Some(c) = t.tyre.query_counts() {
@@ -195,6 +195,7 @@ fn skipped(sys: &System) -> Value {
                    "why": "modes outside the body file's selection rule are not integrated"})
         })
         .collect();
+    let solved = sys.model.accelerations == crate::model::desc::Accelerations::Solve;
     json!({
         "tyre_road_queries": q[0],
         "answered_from_memo": q[1],
@@ -202,5 +203,18 @@ fn skipped(sys: &System) -> Value {
         "enveloping_searches": q[0] - q[1] - q[2],
         "why": "no tandem-cam search where the road under a tyre is flat; the last query is memoised",
         "modal_bodies": modes,
+        "acceleration_solves": {
+            "skipped": !solved,
+            "why": if solved {
+                "[run] accelerations = \"solve\": solved at every sample"
+            } else {
+                "sampled accelerations and hitch forces from the integrator's interpolant; the per-sample acceleration-level solve took about 30 % of a default run (docs/performance.md)"
+            },
+        },
+        "jacobian_evaluations": {
+            "evaluated": st.jacobian_evals,
+            "matrices_recombined_without_evaluation": st.matrix_recombinations,
+            "why": "a step change rebuilds the iteration matrix from the kept dF/dy and dF/dy' (jacobian_recombine); one evaluation costs about 25 Newton iterations",
+        },
     })
 }
