@@ -212,12 +212,12 @@ pub fn load_with(path: &Path, o: &Overrides) -> Result<Scene, InputError> {
     )?;
     let sample_rate = src.positive(&path!["run", "sample_rate_hz"], f.run.sample_rate_hz)?;
     let settle = src.non_negative(&path!["run", "settle_s"], f.run.settle_s)?;
+    // Which [solver] keys the file itself sets (the parsed options carry defaults).
+    let raw: Option<toml::Table> = src.text().parse().ok();
     let solver_sets = |key: &str| {
-        src.text()
-            .parse::<toml::Table>()
-            .ok()
-            .and_then(|t| t.get("solver").and_then(|s| s.get(key)).map(|_| ()))
-            .is_some()
+        raw.as_ref()
+            .and_then(|t| t.get("solver"))
+            .is_some_and(|s| s.get(key).is_some())
     };
     let atol_given = solver_sets("atol");
     let mut solver = f.solver;

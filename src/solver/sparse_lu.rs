@@ -286,12 +286,7 @@ impl SparseLu {
             // (big NaN: the comparison fails too, and the pivoting factorisation reports it)
             let kept = piv.is_finite() && piv != 0.0 && piv.abs() >= KEEP_TOL * big;
             if !kept {
-                for s in lo..hi {
-                    x[self.li[s] as usize] = 0.0;
-                }
-                for v in x.iter_mut() {
-                    *v = 0.0;
-                }
+                x.fill(0.0);
                 self.factored = false;
                 return Refactor::NeedsPivoting;
             }

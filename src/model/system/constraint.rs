@@ -140,36 +140,33 @@ pub struct ConEval2 {
 }
 
 impl System {
-    /// Motion value s(t) as a scalar of time `t`.
-    fn drive<T: Scalar>(&self, e: &ConElem, t: T) -> T {
-        match e.owner {
-            Owner::Motion(k) => {
-                let (s, ds, d2s) = self.model.motions[k].eval(t.re());
-                t.chain(s, ds, d2s)
-            }
-            Owner::Joint(_) => T::cst(0.0),
-        }
-    }
-
     fn rows_of<T: Scalar>(&self, e: &ConElem, t: T, fi: &MFrame<T>, fj: &MFrame<T>) -> Vec<T> {
         e.rows
             .iter()
             .map(|r| match r {
                 ConRow::Prim(p) => row_value(*p, fi, fj),
-                ConRow::Drive(d) => motion_value(*d, self.drive(e, t), fi, fj),
+                ConRow::Drive(d) => motion_value(*d, self.drive_rates(e, t).0, fi, fj),
             })
             .collect()
     }
 
     /// Marker frame from a body pose in any scalar (rigid markers).
     pub(super) fn frame_of<T: Scalar>(&self, k: usize, r: &V3<T>, p: &Q4<T>) -> MFrame<T> {
+        self.rigid_frame(k, r, p).0
+    }
+
+    /// [`System::frame_of`] with the body's rotation matrix A and the marker origin
+    /// relative to the centre of mass, A s (world): what maps a frame motion to the
+    /// body's virtual translation and rotation ([`rigid_b`]).
+    fn rigid_frame<T: Scalar>(&self, k: usize, r: &V3<T>, p: &Q4<T>) -> (MFrame<T>, M3<T>, V3<T>) {
         let mk = &self.model.markers[k];
         let a = rot(p);
-        let o = mvc(&a, &mk.position);
-        MFrame {
-            origin: [r[0] + o[0], r[1] + o[1], r[2] + o[2]],
+        let rho = mvc(&a, &mk.position);
+        let f = MFrame {
+            origin: add(r, &rho),
             axes: mm(&a, &cst33(&mk.axes)),
-        }
+        };
+        (f, a, rho)
     }
 
     pub(super) fn ground_frame<T: Scalar>(&self, k: usize) -> MFrame<T> {
@@ -208,13 +205,11 @@ impl System {
             }
             Some(b) => {
                 let o = self.qo[b];
-                let a = rot(&[q[o + 3], q[o + 4], q[o + 5], q[o + 6]]);
-                let m = &self.model.markers[mk];
-                let rho = mvc(&a, &m.position);
-                let f = MFrame {
-                    origin: [q[o] + rho[0], q[o + 1] + rho[1], q[o + 2] + rho[2]],
-                    axes: mm(&a, &m.axes),
-                };
+                let (f, a, rho) = self.rigid_frame(
+                    mk,
+                    &[q[o], q[o + 1], q[o + 2]],
+                    &[q[o + 3], q[o + 4], q[o + 5], q[o + 6]],
+                );
                 (f, SideMap::Rigid { a, rho })
             }
         }
@@ -264,7 +259,8 @@ impl System {
         }
     }
 
-    /// The drive value s and its rate s' of a motion's row as scalars of time `t`.
+    /// The drive value s and its rate s' of a motion's row as scalars of time `t` (s
+    /// exact to second order in nested duals; s' to first order, s''' being unknown).
     fn drive_rates<T: Scalar>(&self, e: &ConElem, t: T) -> (T, T) {
         match e.owner {
             Owner::Motion(k) => {
@@ -294,13 +290,7 @@ impl System {
                     let r: V3<Q15> = std::array::from_fn(|c| Q15::var(q[o + c], 7 * side + c));
                     let p: Q4<Q15> =
                         std::array::from_fn(|c| Q15::var(q[o + 3 + c], 7 * side + 3 + c));
-                    let a = rot(&p);
-                    let m = &self.model.markers[mk];
-                    let rho = mvc(&a, &m.position);
-                    let f = MFrame {
-                        origin: add(&r, &rho),
-                        axes: mm(&a, &cst33(&m.axes)),
-                    };
+                    let (f, a, rho) = self.rigid_frame(mk, &r, &p);
                     (f, Some((a, rho)))
                 }
             }
