@@ -4,7 +4,7 @@
 //!
 //! Both solvers get the same right-hand side and the same analytic Jacobian (from
 //! [`StiffOde::rhs_jacobian`]), the same rtol/atol, and are scored by the same
-//! [`towride::verify::scd`] over all components at `t_end`. Wall times are the fastest of
+//! [`towride_solver::testset::scd`] over all components at `t_end`. Wall times are the fastest of
 //! repeated runs. Because equal tolerances do not give equal accuracy, the cost ratio is
 //! taken at equal SCD: for each towride point, diffsol's log10(wall) is interpolated
 //! piecewise linearly in SCD between diffsol's own points (no extrapolation).
@@ -25,9 +25,9 @@ use diffsol::{
     VectorRef,
 };
 use serde_json::{json, Value};
-use towride::solver::{Method, SolverOptions};
-use towride::verify::runner::{run_with, Formulation};
-use towride::verify::{self, StiffOde, StiffOdeCase};
+use towride_solver::{Method, SolverOptions};
+use towride_solver::testset::runner::{run_with, Formulation};
+use towride_solver::testset::{self as verify, StiffOde, StiffOdeCase};
 
 /// diffsol version this crate is built against (checked against Cargo.lock by hand).
 const DIFFSOL_VERSION: &str = "0.18.0";
@@ -810,7 +810,7 @@ fn main() {
         },
         "towride": {
             "method": "Variable (variable-coefficient BDF, fixed-leading-coefficient form)",
-            "entry": "towride::verify::runner::run_with on the DAE form F = y' - f(t, y)",
+            "entry": "towride_solver::testset::runner::run_with on the DAE form F = y' - f(t, y)",
             "newton_tol_growth_cap": args.towride_cap,
         },
         "settings": {
@@ -819,7 +819,7 @@ fn main() {
             "k": [args.kmin, args.kmax],
             "min_wall_s": args.min_wall,
             "max_repeats": args.max_repeats,
-            "scd": "towride::verify::scd over all components at t_end",
+            "scd": "towride_solver::testset::scd over all components at t_end",
         },
         "points": points.iter().map(Point::to_json).collect::<Vec<_>>(),
         "ratios": all_ratios.iter().map(|r| json!({

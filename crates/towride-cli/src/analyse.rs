@@ -1,0 +1,218 @@
+//! `towride linear FILE` and `towride doctor FILE`: analyses before trusting a model
+//! (a mechanism file or a vehicle scene).
+
+use std::path::PathBuf;
+
+use clap::Args;
+
+use towride::model::{self, spec};
+use towride::scene::{self, Scene};
+use towride_solver::SolverOptions;
+
+/// A mechanism or a scene, assembled, with its solver settings and output rate.
+struct Loaded {
+    sys: model::System,
+    solver: SolverOptions,
+    rate: f64,
+    scene: Option<Scene>,
+}
+
+fn load(file: &std::path::Path) -> Result<Loaded, String> {
+    if scene::is_scene(file) {
+        let s = scene::load(file).map_err(|e| e.to_string())?;
+        let sys = model::System::new(s.model().clone());
+        Ok(Loaded {
+            solver: s.solver_for(&sys),
+            rate: s.sample_rate,
+            sys,
+            scene: Some(s),
+        })
+    } else {
+        let mech = spec::load(file).map_err(|e| e.to_string())?;
+        Ok(Loaded {
+            sys: model::System::new(mech.model),
+            solver: mech.solver,
+            rate: mech.run.sample_rate_hz,
+            scene: None,
+        })
+    }
+}
+
+#[derive(Args, Debug)]
+pub struct LinearArgs {
+    /// A mechanism file or a scene (TOML).
+    file: PathBuf,
+    /// Linearise about the state of a run at this time [s] instead of the equilibrium.
+    #[arg(long)]
+    at: Option<f64>,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+pub fn linear(a: &LinearArgs) -> Result<i32, String> {
+    let l = load(&a.file)?;
+    let sys = &l.sys;
+    crate::model_check(sys)?;
+    let (t, y, at) = match a.at {
+        None => {
+            let st = model::statics::equilibrium(sys, 0.0, &l.solver)?;
+            (0.0, st.y, "equilibrium".to_string())
+        }
+        Some(t) if t > 0.0 => {
+            let start = match &l.scene {
+                Some(s) => towride::scene::exec::start(s, &l.solver)?.0,
+                None => None,
+            };
+            let res = model::run::simulate(
+                sys,
+                0.0,
+                t,
+                l.rate.max(1.0 / t),
+                &l.solver,
+                start,
+                &towride::progress::Silent,
+            );
+            if let Some((e, te)) = res.error {
+                return Err(format!("run to t = {t} s failed at {te:.6} s: {e}"));
+            }
+            let (t, y, _) = res.last.ok_or("run produced no state")?;
+            (t, y, format!("state of the run at t = {t} s"))
+        }
+        Some(_) => {
+            let (mut q, mut v) = sys.initial_q_v();
+            let (y, _, _) = {
+                let x = sys.ext_initial(&q, &v, 0.0);
+                model::ic::initial_state(sys, 0.0, &mut q, &mut v, &x)?
+            };
+            (0.0, y, "initial state".to_string())
+        }
+    };
+    let lin = model::linear::linearise(sys, t, &y)?;
+    if a.json {
+        let v = serde_json::json!({"model": sys.model.name, "linearised_at": at, "result": lin});
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&v).map_err(|e| e.to_string())?
+        );
+        return Ok(0);
+    }
+    println!(
+        "{}: linearised about the {at}; {} degrees of freedom",
+        sys.model.name, lin.dof
+    );
+    match lin.stiffness_ratio {
+        Some(s) => println!(
+            "stiffness ratio S = {s:.3e}{}",
+            if s > 200.0 { " (stiff)" } else { "" }
+        ),
+        None => println!("stiffness ratio S: undefined (fewer than two damped roots)"),
+    }
+    println!(
+        "{:>4} {:>14} {:>14} {:>9}  dominant bodies / elements",
+        "mode", "undamped [Hz]", "damped [Hz]", "zeta"
+    );
+    for m in &lin.modes {
+        let bodies: Vec<String> = m
+            .bodies
+            .iter()
+            .take(3)
+            .map(|s| format!("{} {:.0}%", s.name, 100.0 * s.share))
+            .collect();
+        let elems: Vec<String> = m
+            .elements
+            .iter()
+            .take(2)
+            .map(|s| format!("{} {:.0}%", s.name, 100.0 * s.share))
+            .collect();
+        println!(
+            "{:>4} {:>14.6} {:>14.6} {:>9.4}  {} / {}",
+            m.index,
+            m.undamped_hz,
+            m.damped_hz,
+            m.damping_ratio,
+            bodies.join(", "),
+            elems.join(", ")
+        );
+    }
+    Ok(0)
+}
+
+#[derive(Args, Debug)]
+pub struct DoctorArgs {
+    /// A mechanism file or a scene (TOML).
+    file: PathBuf,
+    /// Step size for the condition-number estimate [s].
+    #[arg(long, default_value_t = 1e-3)]
+    step: f64,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+pub fn doctor(a: &DoctorArgs) -> Result<i32, String> {
+    let l = load(&a.file)?;
+    crate::model_check(&l.sys)?;
+    let rep = model::doctor::examine(&l.sys, &l.solver, a.step);
+    if a.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&rep).map_err(|e| e.to_string())?
+        );
+        return Ok(0);
+    }
+    println!(
+        "{}: {} bodies, {} equations, {} constraint rows kept",
+        rep.model, rep.bodies, rep.equations, rep.constraint_rows
+    );
+    if rep.redundant.is_empty() {
+        println!("redundant constraints: none");
+    } else {
+        println!("redundant constraints: {} rows", rep.redundant.len());
+        for r in &rep.redundant {
+            println!("  {} (repeats {})", r.row, r.duplicates.join(", "));
+        }
+    }
+    match rep.newton_condition {
+        Some(k) => println!(
+            "Newton matrix condition at h = {:.0e} s: {k:.3e}",
+            rep.step_s
+        ),
+        None => println!("Newton matrix condition: not estimated"),
+    }
+    println!(
+        "mass ratio {:.3e}, inertia ratio {:.3e}",
+        rep.mass_ratio, rep.inertia_ratio
+    );
+    for b in &rep.bushings {
+        println!(
+            "  bushing {} {}: {:.3e} against {:.3e} -> {:.1} Hz",
+            b.bushing, b.axis, b.stiffness, b.effective_inertia, b.frequency_hz
+        );
+    }
+    if let Some(l) = &rep.linearisation {
+        let top = l.modes.last().map(|m| m.undamped_hz).unwrap_or(0.0);
+        let low = l
+            .modes
+            .iter()
+            .map(|m| m.undamped_hz)
+            .find(|f| *f > 1e-6)
+            .unwrap_or(0.0);
+        println!(
+            "eigenvalues ({}): {} modes from {low:.4} Hz to {top:.4} Hz; S = {}",
+            rep.linearised_at,
+            l.modes.len(),
+            l.stiffness_ratio
+                .map_or("undefined".into(), |s| format!("{s:.3e}"))
+        );
+    }
+    if rep.advice.is_empty() {
+        println!("advice: nothing to report");
+    } else {
+        println!("advice:");
+        for a in &rep.advice {
+            println!("  - {a}");
+        }
+    }
+    Ok(0)
+}

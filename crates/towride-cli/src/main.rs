@@ -1,0 +1,198 @@
+//! The `towride` command line: a thin layer over the library (one module per command):
+//! argument parsing, terminal output and progress bars, nothing else.
+
+mod analyse;
+mod bench;
+mod modes;
+mod run;
+mod scene_bench;
+mod scene_report;
+mod scene_run;
+mod scene_stress;
+mod sweep;
+mod tyre_rig;
+mod validate;
+mod verify;
+
+use clap::{Parser, Subcommand};
+
+use towride_solver::Method;
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "towride",
+    version,
+    about = "Car-plus-trailer obstacle crossing with flexible bodies, checked against measurements"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Run the built-in published benchmark problems (IVP test set) and score them.
+    Verify(verify::VerifyArgs),
+    /// Integrate a mechanism file, a scene or a plan and write the outputs.
+    Run(run::RunArgs),
+    /// Linearise a mechanism about its equilibrium (or a run's state): modes and stiffness ratio.
+    Linear(analyse::LinearArgs),
+    /// Numerical health check: redundant constraints, conditioning, ratios, advice.
+    Doctor(analyse::DoctorArgs),
+    /// Work-precision study of a scene (`bench SCENE`) or of the solver on the test set
+    /// (`bench solver`).
+    Bench(BenchArgs),
+    /// Mode table, mode selection and inertia invariants of a flexible body (flex/*.toml).
+    Modes(modes::ModesArgs),
+    /// Run a tyre test rig (cleat or quarter rig) from a TOML file.
+    TyreRig(tyre_rig::TyreRigArgs),
+    /// Stress test of a scene: the thesis's integrator settings and worse, each case
+    /// classified.
+    Stress(scene_stress::StressArgs),
+    /// Parameter sweep over property-file values, in parallel; `sweep merge` joins shards.
+    Sweep(sweep::SweepArgs),
+    /// Compare the simulation with recorded runs (RUN.toml or a folder); `validate synth`
+    /// writes synthetic runs.
+    Validate(validate::ValidateArgs),
+}
+
+#[derive(clap::Args, Debug)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
+struct BenchArgs {
+    #[command(subcommand)]
+    cmd: Option<BenchCommand>,
+    #[command(flatten)]
+    scene: scene_bench::BenchSceneArgs,
+}
+
+#[derive(Subcommand, Debug)]
+enum BenchCommand {
+    /// Wall time, steps and accuracy over a tolerance range for the built-in problems.
+    Solver(bench::BenchSolverArgs),
+}
+
+/// `--method` values on the command line.
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+pub(crate) enum MethodArg {
+    Variable,
+    Fixed,
+}
+
+impl From<MethodArg> for Method {
+    fn from(m: MethodArg) -> Self {
+        match m {
+            MethodArg::Variable => Method::Variable,
+            MethodArg::Fixed => Method::FixedCoefficient,
+        }
+    }
+}
+
+fn main() {
+    std::process::exit(run());
+}
+
+/// Parses the arguments, runs the command and returns the process exit code.
+fn run() -> i32 {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Verify(a) => verify::run(&a),
+        Command::Bench(BenchArgs {
+            cmd: Some(BenchCommand::Solver(a)),
+            ..
+        }) => bench::run_solver(&a),
+        Command::Bench(a) => scene_bench::run_bench(&a.scene),
+        Command::Run(a) => run::run(&a),
+        Command::Linear(a) => analyse::linear(&a),
+        Command::Doctor(a) => analyse::doctor(&a),
+        Command::Modes(a) => modes::run(&a),
+        Command::TyreRig(a) => tyre_rig::run(&a),
+        Command::Sweep(a) => sweep::run(&a),
+        Command::Stress(a) => scene_stress::run_stress(&a),
+        Command::Validate(a) => validate::run(&a),
+    };
+    match result {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e}");
+            2
+        }
+    }
+}
+
+/// A progress bar on a terminal, hidden otherwise (and under `--json`).
+pub(crate) fn progress(len: u64, quiet: bool) -> Bar {
+    use std::io::IsTerminal;
+    if quiet || !std::io::stderr().is_terminal() {
+        return Bar(indicatif::ProgressBar::hidden());
+    }
+    let pb = indicatif::ProgressBar::new(len);
+    pb.set_style(
+        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} {msg} [{elapsed}]")
+            .expect("valid template"),
+    );
+    Bar(pb)
+}
+
+/// The library's progress reports drawn as an indicatif bar.
+pub(crate) struct Bar(pub indicatif::ProgressBar);
+
+impl towride::progress::Progress for Bar {
+    fn begin(&self, total: u64) {
+        self.0.set_length(total);
+    }
+    fn set(&self, done: u64) {
+        self.0.set_position(done);
+    }
+    fn inc(&self, n: u64) {
+        self.0.inc(n);
+    }
+    fn finish(&self) {
+        self.0.finish_and_clear();
+    }
+}
+
+impl std::ops::Deref for Bar {
+    type Target = indicatif::ProgressBar;
+    fn deref(&self) -> &indicatif::ProgressBar {
+        &self.0
+    }
+}
+
+/// Refuses models the solver cannot run (a motion on a direction already locked).
+pub(crate) fn model_check(sys: &towride::model::System) -> Result<(), String> {
+    for r in &sys.redundant {
+        if let towride::model::system::Owner::Motion(_) = sys.cons[r.elem].owner {
+            return Err(format!(
+                "{} drives a direction the joints already lock",
+                sys.row_name(&sys.cons[r.elem], r.row)
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// One warning per redundant constraint row, naming what it duplicates.
+pub(crate) fn redundancy_warnings(sys: &towride::model::System) -> Vec<String> {
+    sys.redundant
+        .iter()
+        .map(|r| {
+            let deps: Vec<String> = r
+                .depends_on
+                .iter()
+                .map(|&(e, row, _)| sys.row_name(&sys.cons[e], row))
+                .collect();
+            if deps.is_empty() {
+                format!(
+                    "constraint eliminated: {} is degenerate at the initial position (its Jacobian row vanishes)",
+                    sys.row_name(&sys.cons[r.elem], r.row)
+                )
+            } else {
+                format!(
+                    "redundant constraint eliminated: {} repeats {}",
+                    sys.row_name(&sys.cons[r.elem], r.row),
+                    deps.join(", ")
+                )
+            }
+        })
+        .collect()
+}

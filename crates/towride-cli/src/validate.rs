@@ -1,0 +1,236 @@
+//! `towride validate RUN.toml|FOLDER`: compares recorded runs with the simulation;
+//! `towride validate synth`: writes synthetic runs (one, or the 72-run plan).
+
+use std::path::{Path, PathBuf};
+
+use clap::{Args, Subcommand};
+
+use towride::validate::descriptor::{AcqFilter, Unit};
+use towride::validate::folder::{find_descriptors, summary_json};
+use towride::validate::synth::{make_synthetic, SensorModel, SynthRun, TriggerLayout};
+use towride::validate::{default_simulator, plan, report, validate_folder, write_summary, Options};
+
+#[derive(Args, Debug)]
+#[command(args_conflicts_with_subcommands = true)]
+pub struct ValidateArgs {
+    #[command(subcommand)]
+    cmd: Option<ValidateCommand>,
+    /// A run descriptor (RUN.toml) or a folder searched recursively for them.
+    path: Option<PathBuf>,
+    /// Directory for summary.csv, summary.json, index.html and per-run plots.
+    #[arg(long, default_value = "out/validate")]
+    out: PathBuf,
+    /// Print per run and channel figures as JSON.
+    #[arg(long)]
+    json: bool,
+    /// Skip the corrections (speed from the foils, cross-correlation shift).
+    #[arg(long)]
+    no_correct: bool,
+    /// Skip the PNG overlays and report pages.
+    #[arg(long)]
+    no_plots: bool,
+    /// Bound of the time-shift search [ms].
+    #[arg(long, default_value_t = 100.0)]
+    max_shift_ms: f64,
+}
+
+#[derive(Subcommand, Debug)]
+enum ValidateCommand {
+    /// Write synthetic runs (CSV + descriptor, labelled synthetic) made by the simulator.
+    Synth(SynthArgs),
+}
+
+#[derive(Args, Debug)]
+struct SynthArgs {
+    /// Output folder.
+    #[arg(long)]
+    out: PathBuf,
+    /// All 72 runs of the measurement plan (3 obstacles x 6 speeds x 4 loads).
+    #[arg(long)]
+    plan: bool,
+    /// Plan obstacles as NAME=SCENE (repeatable; default the three thesis scenes).
+    #[arg(long = "plan-scene")]
+    plan_scenes: Vec<String>,
+    /// Single run: the scene file.
+    #[arg(long, required_unless_present = "plan")]
+    scene: Option<PathBuf>,
+    /// Single run: obstacle name (default: the scene's file stem).
+    #[arg(long)]
+    obstacle: Option<String>,
+    /// Single run: nominal (speedometer) speed [km/h].
+    #[arg(long, required_unless_present = "plan")]
+    speed_kmh: Option<f64>,
+    /// Single run: trailer load case.
+    #[arg(long, default_value = "empty")]
+    load: String,
+    /// Single run: file name stem (default OBSTACLE_SPEEDkmh_LOAD).
+    #[arg(long)]
+    name: Option<String>,
+    #[arg(long, default_value_t = 0.05)]
+    noise_rms_mps2: f64,
+    #[arg(long, default_value_t = 37.0)]
+    trigger_delay_ms: f64,
+    #[arg(long, default_value_t = 3.0)]
+    speed_error_pct: f64,
+    #[arg(long, default_value_t = 5.0)]
+    gain_error_pct: f64,
+    #[arg(long, default_value_t = 1000.0)]
+    rate_hz: f64,
+    #[arg(long, default_value_t = 4)]
+    filter_order: usize,
+    #[arg(long, default_value_t = 100.0)]
+    cutoff_hz: f64,
+    #[arg(long, default_value_t = 0.1)]
+    foil_jitter_ms: f64,
+    /// Write the channels in g instead of m/s^2.
+    #[arg(long)]
+    in_g: bool,
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+}
+
+pub fn run(a: &ValidateArgs) -> Result<i32, String> {
+    if let Some(ValidateCommand::Synth(s)) = &a.cmd {
+        return synth(s);
+    }
+    let path = a
+        .path
+        .as_ref()
+        .ok_or("give a run descriptor (RUN.toml) or a folder")?;
+    let files = find_descriptors(path)?;
+    let sim = default_simulator();
+    let opts = Options {
+        correct: !a.no_correct,
+        max_shift_s: a.max_shift_ms * 1e-3,
+        ..Options::default()
+    };
+    let pb = crate::progress(files.len() as u64, a.json);
+    let show = |i: usize, f: &Path| {
+        pb.set_position(i as u64);
+        pb.set_message(
+            f.file_stem()
+                .map_or(String::new(), |s| s.to_string_lossy().to_string()),
+        );
+    };
+    let res = validate_folder(&files, sim.as_ref(), &opts, &show);
+    pb.finish_and_clear();
+    let (csv, json) = write_summary(&res, &a.out)?;
+    let mut pages = Vec::new();
+    if !a.no_plots {
+        for r in &res.runs {
+            let dir = a.out.join(&r.name);
+            report::overlays(r, &dir)?;
+            let page = dir.join("report.png");
+            report::page(r, &page)?;
+            pages.push((r.clone(), page));
+        }
+        report::index(&pages, &res.failures, &a.out.join("index.html"))?;
+    }
+    for (f, e) in &res.failures {
+        eprintln!("error: {}: {e}", f.display());
+    }
+    if a.json {
+        let text = serde_json::to_string_pretty(&summary_json(&res)).map_err(|e| e.to_string())?;
+        println!("{text}");
+    } else {
+        println!("simulator: {}", sim.name());
+        for r in &res.runs {
+            let u = r.uncorrected.mean_rating;
+            match &r.corrected {
+                Some(c) => println!(
+                    "{}{}: rating {u:.3} uncorrected -> {:.3} corrected; speed {:.2} km/h (nominal {:.2}); shift {:+.1} ms{}",
+                    r.name, if r.synthetic { " [synthetic]" } else { "" }, c.mean_rating,
+                    c.speed_mps * 3.6, r.nominal_speed_mps * 3.6, c.shift_s * 1e3,
+                    if c.shift_at_bound { " (at the search bound)" } else { "" }
+                ),
+                None => println!("{}: rating {u:.3} uncorrected", r.name),
+            }
+        }
+        println!(
+            "{} run(s) validated, {} failed, {:.2} s; wrote {} and {}{}",
+            res.runs.len(),
+            res.failures.len(),
+            res.wall_s,
+            csv.display(),
+            json.display(),
+            if a.no_plots {
+                String::new()
+            } else {
+                format!(" and plots under {}", a.out.display())
+            }
+        );
+    }
+    Ok(if res.failures.is_empty() { 0 } else { 1 })
+}
+
+fn synth(a: &SynthArgs) -> Result<i32, String> {
+    let sensor = SensorModel {
+        noise_rms_mps2: a.noise_rms_mps2,
+        filter: AcqFilter {
+            order: a.filter_order,
+            cutoff_hz: a.cutoff_hz,
+        },
+        trigger_delay_s: a.trigger_delay_ms * 1e-3,
+        speed_error_pct: a.speed_error_pct,
+        gain_error_pct: a.gain_error_pct,
+        channel_gain_error_pct: Vec::new(),
+        sample_rate_hz: a.rate_hz,
+        foil_jitter_s: a.foil_jitter_ms * 1e-3,
+        unit: if a.in_g { Unit::G } else { Unit::Mps2 },
+        seed: a.seed,
+    };
+    let sim = default_simulator();
+    let files = if a.plan {
+        let obstacles = if a.plan_scenes.is_empty() {
+            plan::default_obstacles()
+        } else {
+            a.plan_scenes
+                .iter()
+                .map(|s| {
+                    s.split_once('=')
+                        .map(|(n, p)| (n.to_string(), PathBuf::from(p)))
+                        .ok_or_else(|| format!("--plan-scene {s}: expected NAME=FILE"))
+                })
+                .collect::<Result<Vec<_>, String>>()?
+        };
+        let runs = plan::plan(&obstacles);
+        let pb = crate::progress(runs.len() as u64, false);
+        let files = plan::write_plan(sim.as_ref(), &runs, &sensor, &a.out, &|i| {
+            pb.set_position(i as u64)
+        })?;
+        pb.finish_and_clear();
+        files
+    } else {
+        let scene = a.scene.clone().ok_or("--scene is required")?;
+        let speed = a.speed_kmh.ok_or("--speed-kmh is required")?;
+        let obstacle = a.obstacle.clone().unwrap_or_else(|| {
+            scene
+                .file_stem()
+                .map_or("obstacle".into(), |s| s.to_string_lossy().to_string())
+        });
+        let run = SynthRun {
+            name: a
+                .name
+                .clone()
+                .unwrap_or(format!("{obstacle}_{speed:02.0}kmh_{}", a.load)),
+            scene,
+            obstacle,
+            nominal_speed_kmh: speed,
+            load_case: a.load.clone(),
+        };
+        vec![make_synthetic(
+            sim.as_ref(),
+            &run,
+            &sensor,
+            &TriggerLayout::default(),
+            &a.out,
+        )?]
+    };
+    println!(
+        "wrote {} synthetic run(s) made by the {} into {}",
+        files.len(),
+        sim.name(),
+        a.out.display()
+    );
+    Ok(0)
+}

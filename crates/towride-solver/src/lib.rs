@@ -1,0 +1,69 @@
+//! Implicit BDF solver for differential-algebraic equations F(t, y, y') = 0, and the
+//! published IVP test-set problems it is verified on ([`testset`]).
+//!
+//! The solver knows nothing about vehicles: a problem implements [`DaeProblem`]
+//! (residual, optional sparsity pattern and analytic iteration matrix, the index of each
+//! unknown, event functions) and [`Bdf`] integrates it. See `docs/solver.md` for the
+//! algorithms, the index-3 treatment and the settings.
+
+// Numerical kernels index several arrays in step; iterator chains would obscure them.
+#![allow(clippy::needless_range_loop)]
+
+pub mod bdf;
+pub mod error;
+pub mod ggl;
+pub mod ic;
+pub mod linear;
+pub mod options;
+pub mod problem;
+mod sparse_lu;
+pub mod testset;
+
+pub use bdf::{Advance, Bdf};
+pub use error::SolverError;
+pub use ggl::{Ggl, MechanicalDae};
+pub use options::{
+    AlgebraicControl, JacobianSource, LinearSolver, MatrixRebuilds, Method, SolverOptions, Stats,
+};
+pub use problem::{DaeProblem, JacobianSink, VarKind};
+
+use std::time::Instant;
+
+/// The state at the end of a run plus what it cost.
+#[derive(Clone, Debug)]
+pub struct EndState {
+    pub t: f64,
+    pub y: Vec<f64>,
+    pub yp: Vec<f64>,
+    pub stats: Stats,
+    pub wall_s: f64,
+}
+
+/// Integrates from `t0` to `t_end` and returns the state at `t_end` (never stepping past
+/// it). Events, if the problem has any, are located and passed over.
+pub fn solve_to<P: DaeProblem + ?Sized>(
+    prob: &P,
+    t0: f64,
+    y0: &[f64],
+    yp0: &[f64],
+    t_end: f64,
+    opts: &SolverOptions,
+) -> Result<EndState, SolverError> {
+    let start = Instant::now();
+    let mut bdf = Bdf::new(prob, t0, y0, yp0, opts.clone())?;
+    if t_end <= t0 {
+        return Err(SolverError::BadOutputTime { tout: t_end, t: t0 });
+    }
+    bdf.set_stop_time(t_end);
+    while let Advance::Root { .. } = bdf.advance(t_end)? {}
+    let mut y = vec![0.0; y0.len()];
+    let mut yp = vec![0.0; y0.len()];
+    bdf.interpolate(t_end, &mut y, &mut yp);
+    Ok(EndState {
+        t: t_end,
+        y,
+        yp,
+        stats: bdf.stats().clone(),
+        wall_s: start.elapsed().as_secs_f64(),
+    })
+}

@@ -1,0 +1,303 @@
+//! Linearisation about a state (normally the static equilibrium): eigenvalues, natural
+//! and damped frequencies, damping ratios, the bodies and elements that dominate each
+//! mode, and the stiffness ratio S = |Re lambda|max / |Re lambda|min of the thesis (3.35).
+//!
+//! In velocity space (translations, body-axes rotations, modal coordinates) the linear
+//! equations are M x'' + C x' + K x + D e = 0 on the tangent space B x = 0 of the
+//! constraints, with K = d(-f + B^T lambda)/dx including the geometric terms of the
+//! reactions, C = -df/dv (dampers and gyroscopic terms) and D the load of the extension
+//! states e (tyre rings and treads, controllers), which obey E e' + F_x x + F_v x' + F_e e
+//! = 0. With N an orthonormal basis of the null space of B, x = N z reduces this to an
+//! unconstrained first-order system solved as a dense non-symmetric eigenproblem (faer).
+
+use faer::Mat;
+use nalgebra::{DMatrix, SymmetricEigen};
+use serde::Serialize;
+
+use super::system::System;
+use towride_solver::problem::JacobianSink;
+
+#[derive(Clone, Debug, Serialize)]
+pub struct Share {
+    pub name: String,
+    pub share: f64,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct Mode {
+    pub index: usize,
+    pub real: f64,
+    pub imag: f64,
+    /// |lambda| / 2 pi [Hz].
+    pub undamped_hz: f64,
+    /// Im lambda / 2 pi [Hz]; 0 for a real (overdamped or static) root.
+    pub damped_hz: f64,
+    pub damping_ratio: f64,
+    /// Kinetic-energy share per body, largest first (shares > 1 %).
+    pub bodies: Vec<Share>,
+    /// Strain-energy share per force element, largest first (shares > 1 %).
+    pub elements: Vec<Share>,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct Linearisation {
+    pub t: f64,
+    /// Degrees of freedom after the constraints.
+    pub dof: usize,
+    pub modes: Vec<Mode>,
+    /// |Re lambda|max / |Re lambda|min over roots with a non-zero real part; `None` when
+    /// fewer than two such roots exist (an undamped system).
+    pub stiffness_ratio: Option<f64>,
+}
+
+/// Velocity-space mass matrix.
+fn mass(sys: &System, q: &[f64]) -> DMatrix<f64> {
+    let mut m = DMatrix::zeros(sys.nv, sys.nv);
+    for (r, c, v) in sys.mass_entries_at(q) {
+        m[(r, c)] += v;
+    }
+    m
+}
+
+/// The iteration matrix dF/dy + cj dF/dy' as a dense matrix.
+fn dense_jacobian(sys: &System, t: f64, y: &[f64], cj: f64) -> DMatrix<f64> {
+    let n = sys.size();
+    let mut e = Vec::new();
+    sys.jacobian_entries(t, y, cj, &mut JacobianSink::new(&mut e), false);
+    let mut out = DMatrix::zeros(n, n);
+    for (r, c, v) in e {
+        out[(r, c)] += v;
+    }
+    out
+}
+
+/// Orthonormal basis of the null space of B (n x (n - rank)).
+fn null_space(b: &DMatrix<f64>) -> DMatrix<f64> {
+    let n = b.ncols();
+    let btb = b.transpose() * b;
+    let eig = SymmetricEigen::new(btb);
+    let mut idx: Vec<usize> = (0..n).collect();
+    idx.sort_by(|&i, &j| eig.eigenvalues[i].total_cmp(&eig.eigenvalues[j]));
+    let rank = b.nrows().min(n);
+    let keep = n - rank;
+    let mut out = DMatrix::zeros(n, keep);
+    for (c, &i) in idx.iter().take(keep).enumerate() {
+        out.set_column(c, &eig.eigenvectors.column(i));
+    }
+    out
+}
+
+/// Linearises about the solver state (t, y) and solves the eigenproblem.
+pub fn linearise(sys: &System, t: f64, y: &[f64]) -> Result<Linearisation, String> {
+    let (_, ov, ol, om) = sys.offsets();
+    let oe = sys.oe();
+    let (nv, ne) = (sys.nv, sys.ne);
+    let j0 = dense_jacobian(sys, t, y, 0.0);
+    let mut h = DMatrix::zeros(sys.nq, nv);
+    for (r, c, v) in sys.q_map(&y[..ov]) {
+        h[(r, c)] += v;
+    }
+    let blk = |r0: usize, nr: usize, c0: usize, nc: usize| j0.view((r0, c0), (nr, nc)).into_owned();
+    let k = blk(ov, nv, 0, sys.nq) * &h;
+    let c = blk(ov, nv, ov, nv);
+    let d = blk(ov, nv, oe, ne);
+    let b = blk(ol, om - ol, 0, sys.nq) * &h;
+    let fx = blk(oe, ne, 0, sys.nq) * &h;
+    let fv = blk(oe, ne, ov, nv);
+    let fe = blk(oe, ne, oe, ne);
+    let e_rate = dense_jacobian(sys, t, y, 1.0)
+        .view((oe, oe), (ne, ne))
+        .into_owned()
+        - &fe;
+    let m = mass(sys, &y[..sys.nq]);
+    let nmat = null_space(&b);
+    let nd = nmat.ncols();
+    let mr = nmat.transpose() * &m * &nmat;
+    let kr = nmat.transpose() * &k * &nmat;
+    let cr = nmat.transpose() * &c * &nmat;
+    let dr = nmat.transpose() * &d;
+    let mr_inv = mr
+        .clone()
+        .try_inverse()
+        .ok_or("the reduced mass matrix is singular")?;
+    let e_inv = e_rate
+        .try_inverse()
+        .ok_or("the extension states' rate matrix is singular (an algebraic tyre state)")?;
+    let a_k = &mr_inv * &kr;
+    let a_c = &mr_inv * &cr;
+    let a_d = &mr_inv * &dr;
+    let e_x = &e_inv * &fx * &nmat;
+    let e_v = &e_inv * &fv * &nmat;
+    let e_e = &e_inv * &fe;
+    let ns = 2 * nd + ne;
+    let mut a = Mat::<f64>::zeros(ns, ns);
+    for i in 0..nd {
+        a[(i, nd + i)] = 1.0;
+        for j in 0..nd {
+            a[(nd + i, j)] = -a_k[(i, j)];
+            a[(nd + i, nd + j)] = -a_c[(i, j)];
+        }
+        for j in 0..ne {
+            a[(nd + i, 2 * nd + j)] = -a_d[(i, j)];
+        }
+    }
+    for i in 0..ne {
+        for j in 0..nd {
+            a[(2 * nd + i, j)] = -e_x[(i, j)];
+            a[(2 * nd + i, nd + j)] = -e_v[(i, j)];
+        }
+        for j in 0..ne {
+            a[(2 * nd + i, 2 * nd + j)] = -e_e[(i, j)];
+        }
+    }
+    let eig = a
+        .eigen()
+        .map_err(|e| format!("eigenvalue solver failed: {e:?}"))?;
+    let s = eig.S();
+    let u = eig.U();
+    let elements = element_stiffness(sys, t, y);
+    let mut modes = Vec::new();
+    for i in 0..ns {
+        let l = s[i];
+        if l.im < 0.0 {
+            continue; // report each conjugate pair once
+        }
+        // mode shape in velocity space: x = N z
+        let mut xr = vec![0.0; nv];
+        let mut xi = vec![0.0; nv];
+        for r in 0..nv {
+            for j in 0..nd {
+                xr[r] += nmat[(r, j)] * u[(j, i)].re;
+                xi[r] += nmat[(r, j)] * u[(j, i)].im;
+            }
+        }
+        let quad = |mat: &DMatrix<f64>| -> f64 {
+            let (mr_, mi_) = (
+                mat * DMatrix::from_column_slice(xr.len(), 1, &xr),
+                mat * DMatrix::from_column_slice(xi.len(), 1, &xi),
+            );
+            xr.iter().zip(mr_.iter()).map(|(a, b)| a * b).sum::<f64>()
+                + xi.iter().zip(mi_.iter()).map(|(a, b)| a * b).sum::<f64>()
+        };
+        let mut bodies: Vec<Share> = sys
+            .model
+            .bodies
+            .iter()
+            .enumerate()
+            .map(|(bk, body)| {
+                let mut mb = DMatrix::zeros(nv, nv);
+                let range = sys.vo[bk]..sys.vo[bk] + 6 + sys.nm[bk];
+                for (r, c, v) in sys.mass_entries_at(&y[..sys.nq]) {
+                    if range.contains(&r) {
+                        mb[(r, c)] += v;
+                    }
+                }
+                Share {
+                    name: body.name.clone(),
+                    share: quad(&mb).abs(),
+                }
+            })
+            .collect();
+        let mut elems: Vec<Share> = elements
+            .iter()
+            .map(|(name, ke)| Share {
+                name: name.clone(),
+                share: quad(ke).abs(),
+            })
+            .collect();
+        normalise(&mut bodies);
+        normalise(&mut elems);
+        let mag = l.re.hypot(l.im);
+        modes.push(Mode {
+            index: 0,
+            real: l.re,
+            imag: l.im,
+            undamped_hz: mag / (2.0 * std::f64::consts::PI),
+            damped_hz: l.im / (2.0 * std::f64::consts::PI),
+            damping_ratio: if mag > 0.0 { -l.re / mag } else { 0.0 },
+            bodies,
+            elements: elems,
+        });
+    }
+    modes.sort_by(|a, b| a.undamped_hz.total_cmp(&b.undamped_hz));
+    for (i, m) in modes.iter_mut().enumerate() {
+        m.index = i + 1;
+    }
+    let big = modes
+        .iter()
+        .fold(0.0f64, |acc, m| acc.max(m.real.hypot(m.imag)));
+    let reals: Vec<f64> = modes
+        .iter()
+        .map(|m| m.real.abs())
+        .filter(|r| *r > 1e-9 * big.max(1e-300))
+        .collect();
+    let stiffness_ratio = if reals.len() >= 2 {
+        Some(
+            reals.iter().fold(0.0f64, |a, b| a.max(*b))
+                / reals.iter().fold(f64::INFINITY, |a, b| a.min(*b)),
+        )
+    } else {
+        None
+    };
+    Ok(Linearisation {
+        t,
+        dof: nd,
+        modes,
+        stiffness_ratio,
+    })
+}
+
+fn normalise(v: &mut Vec<Share>) {
+    let total: f64 = v.iter().map(|s| s.share).sum();
+    if total > 0.0 {
+        for s in v.iter_mut() {
+            s.share /= total;
+        }
+    }
+    v.retain(|s| s.share > 0.01);
+    v.sort_by(|a, b| b.share.total_cmp(&a.share));
+}
+
+/// Each force element's own tangent stiffness in velocity space (for strain shares), by
+/// finite differences of its generalised loads over its bodies' position increments.
+fn element_stiffness(sys: &System, t: f64, y: &[f64]) -> Vec<(String, DMatrix<f64>)> {
+    let (_, ov, ol, _) = sys.offsets();
+    let q = &y[..ov];
+    let v = &y[ov..ol];
+    let nv = sys.nv;
+    let mut out = Vec::new();
+    for fe in 0..sys.n_forces() {
+        let name = sys.force_name(fe);
+        let load = |q: &[f64]| -> Vec<f64> {
+            let (bs, gl, _) = sys.force_eval(fe, t, q, v);
+            let mut f = vec![0.0; nv];
+            for s in 0..2 {
+                if let Some(b) = bs[s] {
+                    for (c, x) in gl[s].iter().enumerate() {
+                        f[sys.vo[b] + c] += x;
+                    }
+                }
+            }
+            f
+        };
+        let f0 = load(q);
+        let mut ke = DMatrix::zeros(nv, nv);
+        let mut bodies: Vec<usize> = sys.force_bodies(fe).into_iter().flatten().collect();
+        bodies.dedup();
+        for b in bodies {
+            for col in sys.vo[b]..sys.vo[b] + 6 + sys.nm[b] {
+                let h = 1e-7;
+                let mut dx = vec![0.0; nv];
+                dx[col] = h;
+                let mut qp = q.to_vec();
+                sys.apply_increment(&mut qp, &dx);
+                let f1 = load(&qp);
+                for r in 0..nv {
+                    ke[(r, col)] = -(f1[r] - f0[r]) / h;
+                }
+            }
+        }
+        out.push((name, ke));
+    }
+    out
+}

@@ -1,0 +1,194 @@
+//! A dynamic run on a fixed sample grid: integrate, sample the requested outputs, and
+//! keep everything computed so far when the solver fails.
+
+use std::time::Instant;
+
+use super::ic::{initial_state, AssemblyReport};
+use super::output::{channels, evaluate, ChannelInfo};
+use super::system::System;
+use towride_solver::{Advance, Bdf, SolverOptions, Stats};
+
+/// The sampled result of a run.
+#[derive(Clone, Debug)]
+pub struct RunResult {
+    pub channels: Vec<ChannelInfo>,
+    pub times: Vec<f64>,
+    /// rows[k][c]: channel c at times[k].
+    pub rows: Vec<Vec<f64>>,
+    pub stats: Stats,
+    pub wall_s: f64,
+    pub assembly: AssemblyReport,
+    /// Set when the run stopped early: the message and the time reached.
+    pub error: Option<(String, f64)>,
+    /// Final solver state (t, y, y'), for follow-up analyses.
+    pub last: Option<(f64, Vec<f64>, Vec<f64>)>,
+    /// Modal coordinates of every modal body at every sample: (body, rows[k][mode]).
+    pub modal: Vec<(usize, Vec<Vec<f64>>)>,
+}
+
+/// Runs from `t0` (state from the model's initial values, or `start` if given) to
+/// `t_end`, sampling every 1/rate seconds.
+pub fn simulate(
+    sys: &System,
+    t0: f64,
+    t_end: f64,
+    rate: f64,
+    opts: &SolverOptions,
+    start: Option<(Vec<f64>, Vec<f64>)>,
+    progress: &dyn crate::progress::Progress,
+) -> RunResult {
+    let wall = Instant::now();
+    let chans = channels(sys);
+    let mut res = RunResult {
+        channels: chans.clone(),
+        times: Vec::new(),
+        rows: Vec::new(),
+        stats: Stats::default(),
+        wall_s: 0.0,
+        assembly: AssemblyReport::default(),
+        error: None,
+        last: None,
+        modal: (0..sys.nb())
+            .filter(|&b| sys.nm[b] > 0)
+            .map(|b| (b, Vec::new()))
+            .collect(),
+    };
+    let (y0, yp0) = match start {
+        Some(s) => s,
+        None => {
+            let (mut q, mut v) = sys.initial_q_v();
+            let x = sys.ext_initial(&q, &v, 0.0);
+            match initial_state(sys, t0, &mut q, &mut v, &x) {
+                Ok((y, yp, rep)) => {
+                    res.assembly = rep;
+                    (y, yp)
+                }
+                Err(e) => {
+                    res.error = Some((format!("initial state: {e}"), t0));
+                    return res;
+                }
+            }
+        }
+    };
+    res.times.push(t0);
+    res.rows.push(evaluate(sys, t0, &y0, &yp0));
+    record_modal(sys, &mut res, &y0);
+    let mut bdf = match Bdf::new(sys, t0, &y0, &yp0, opts.clone()) {
+        Ok(b) => b,
+        Err(e) => {
+            res.error = Some((e.to_string(), t0));
+            return res;
+        }
+    };
+    bdf.set_stop_time(t_end);
+    let n = ((t_end - t0) * rate).round() as usize;
+    progress.begin(n as u64);
+    let mut y = vec![0.0; y0.len()];
+    let mut yp = vec![0.0; y0.len()];
+    'samples: for k in 1..=n {
+        let ts = if k == n { t_end } else { t0 + k as f64 / rate };
+        loop {
+            match bdf.advance(ts) {
+                Ok(Advance::Reached) => break,
+                Ok(Advance::Root { .. }) => continue,
+                Err(e) => {
+                    let t = e.time().unwrap_or(bdf.t());
+                    res.error = Some((e.to_string(), t));
+                    break 'samples;
+                }
+            }
+        }
+        bdf.interpolate(ts, &mut y, &mut yp);
+        res.times.push(ts);
+        res.rows.push(evaluate(sys, ts, &y, &yp));
+        record_modal(sys, &mut res, &y);
+        progress.set(k as u64);
+    }
+    unwrap_angles(&mut res);
+    res.stats = bdf.stats().clone();
+    res.stats.step_limiters = bdf.step_limiters(5);
+    if let Some(&t) = res.times.last() {
+        if res.error.is_none() {
+            res.last = Some((t, y.clone(), yp.clone()));
+        }
+    }
+    res.wall_s = wall.elapsed().as_secs_f64();
+    res
+}
+
+fn record_modal(sys: &System, res: &mut RunResult, y: &[f64]) {
+    for (b, rows) in &mut res.modal {
+        let o = sys.qo[*b] + 7;
+        rows.push(y[o..o + sys.nm[*b]].to_vec());
+    }
+}
+
+/// Removes 2 pi jumps from angle channels so a turning crank reads continuously.
+fn unwrap_angles(res: &mut RunResult) {
+    let tau = 2.0 * std::f64::consts::PI;
+    for (c, ch) in res.channels.iter().enumerate() {
+        if !ch.angle {
+            continue;
+        }
+        let mut offset = 0.0;
+        for k in 1..res.rows.len() {
+            let prev = res.rows[k - 1][c];
+            let cur = res.rows[k][c] + offset;
+            let jump = ((cur - prev) / tau).round();
+            offset -= jump * tau;
+            res.rows[k][c] += offset;
+        }
+    }
+}
+
+impl RunResult {
+    /// Writes the samples as CSV with units in the headers.
+    pub fn write_csv(&self, path: &std::path::Path) -> std::io::Result<()> {
+        use std::io::Write;
+        let mut w = csv::Writer::from_path(path)?;
+        let mut head = vec!["time [s]".to_string()];
+        head.extend(
+            self.channels
+                .iter()
+                .map(|c| format!("{} [{}]", c.name, c.unit)),
+        );
+        w.write_record(&head)?;
+        // Numbers need no quoting: written straight into the buffer, no string per value.
+        let mut out = std::io::BufWriter::new(w.into_inner().map_err(|e| e.into_error())?);
+        for (t, row) in self.times.iter().zip(&self.rows) {
+            write!(out, "{t:.9e}")?;
+            for v in row {
+                write!(out, ",{v:.9e}")?;
+            }
+            out.write_all(b"\n")?;
+        }
+        out.flush()
+    }
+
+    /// Per channel: (name, unit, min, max, time of the largest magnitude).
+    pub fn peaks(&self) -> Vec<serde_json::Value> {
+        self.channels
+            .iter()
+            .enumerate()
+            .map(|(c, ch)| {
+                let (mut lo, mut hi, mut tpk, mut big) = (f64::INFINITY, f64::NEG_INFINITY, 0.0, -1.0);
+                for (t, row) in self.times.iter().zip(&self.rows) {
+                    let v = row[c];
+                    lo = lo.min(v);
+                    hi = hi.max(v);
+                    if v.abs() > big {
+                        big = v.abs();
+                        tpk = *t;
+                    }
+                }
+                serde_json::json!({"name": ch.name, "unit": ch.unit, "min": lo, "max": hi, "time_of_peak_s": tpk})
+            })
+            .collect()
+    }
+
+    /// Value of channel `name` at sample k.
+    pub fn channel(&self, name: &str) -> Option<Vec<f64>> {
+        let c = self.channels.iter().position(|ch| ch.name == name)?;
+        Some(self.rows.iter().map(|r| r[c]).collect())
+    }
+}

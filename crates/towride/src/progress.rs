@@ -1,0 +1,22 @@
+//! How long work reports its progress: an observer the caller supplies. The library
+//! never draws anything; the command line turns these calls into a progress bar, and
+//! tests and library users pass [`Silent`].
+
+/// Receives progress of a run (samples written) or of a batch (cases finished). Called
+/// from worker threads in parallel batches, hence `Sync` and `&self`.
+pub trait Progress: Sync {
+    /// Work of `total` units starts (samples of a run, cases of a batch).
+    fn begin(&self, _total: u64) {}
+    /// `done` units are finished so far.
+    fn set(&self, _done: u64) {}
+    /// `n` more units are finished.
+    fn inc(&self, _n: u64) {}
+    /// The work ended (completed, failed or stopped).
+    fn finish(&self) {}
+}
+
+/// Reports nothing.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Silent;
+
+impl Progress for Silent {}

@@ -1,0 +1,4 @@
+//! Figures and reports as files: plotting with a bundled font (no system fonts needed).
+
+pub mod lineplot;
+pub mod plot;

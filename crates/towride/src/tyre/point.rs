@@ -1,0 +1,149 @@
+//! The point-follower tyre: one contact point under the wheel centre, vertical spring and
+//! damper (VERTICAL_STIFFNESS, VERTICAL_DAMPING), first-order transient slip with the
+//! relaxation length sigma = C_Fkappa / C_x (Pacejka 2012 sec. 7.2) and the Magic Formula
+//! longitudinal force. No ring, no enveloping: it sees the road's own slope (45 deg on the
+//! thesis ramp's flank), which is why it suits flat roads and quick runs only.
+
+use nalgebra::Vector3;
+
+use crate::road::Road;
+use towride_solver::VarKind;
+
+use super::envelope::EffectiveRoad;
+use super::params::TyreParams;
+use super::{ramp, smooth_step, ContactOutputs, HubLoad, WheelFrame, WheelKinematics};
+
+/// State indices of the point follower.
+pub mod idx {
+    /// Tread (carcass) deflection, kappa' = u / sigma [m].
+    pub const U: usize = 0;
+    pub const N: usize = 1;
+}
+
+/// The point-follower tyre.
+#[derive(Clone, Debug)]
+pub struct PointFollower {
+    pub p: TyreParams,
+}
+
+struct Eval {
+    hub: HubLoad,
+    out: ContactOutputs,
+    v_slip: f64,
+    v_roll: f64,
+}
+
+impl PointFollower {
+    pub fn new(p: TyreParams) -> PointFollower {
+        PointFollower { p }
+    }
+
+    pub fn n_states(&self) -> usize {
+        idx::N
+    }
+
+    pub fn state_names(&self) -> Vec<String> {
+        vec!["tread_u_m".to_string()]
+    }
+
+    pub fn var_kinds(&self) -> Vec<VarKind> {
+        vec![VarKind::Differential]
+    }
+
+    pub fn atol(&self, scale: f64) -> Vec<f64> {
+        vec![1e-6 * scale]
+    }
+
+    fn eval(&self, kin: &WheelKinematics, road: &Road, x: &[f64]) -> Eval {
+        let p = &self.p;
+        let fr = WheelFrame::new(kin);
+        let (px, py) = (kin.position.x, kin.position.y);
+        let z_road = road.height(px, py);
+        let (gx, gy) = road.slope(px, py);
+        let tan = gx * fr.heading[0] + gy * fr.heading[1];
+        let cosb = 1.0 / (1.0 + tan * tan).sqrt();
+        let sinb = tan * cosb;
+        let n = fr.ex * (-sinb) + Vector3::z() * cosb;
+        let t = fr.ex * cosb + Vector3::z() * sinb;
+        let rho = p.r0 - (kin.position.z - z_road);
+        let s_dot = kin.velocity.dot(&fr.ex);
+        let rho_dot = -(kin.velocity.z - tan * s_dot);
+        let eps = p.contact_blend;
+        let f_raw = p.cz * ramp(rho, eps) + p.vertical_damping * rho_dot * smooth_step(rho, eps);
+        let f_n = ramp(f_raw, eps * p.cz);
+        let omega = kin.omega.dot(&fr.ey);
+        let r_e = p.rolling_radius(ramp(rho, eps), omega);
+        let v_roll = r_e * omega;
+        let v_slip = kin.velocity.dot(&t) - v_roll;
+        let sigma = p.d.sigma_point;
+        let kappa = x[idx::U] / sigma;
+        let f_x = p.mf.force(kappa, f_n);
+        let fc = n * f_n + t * f_x;
+        let cp = Vector3::new(px, py, z_road);
+        let hub = HubLoad {
+            force: fc,
+            torque: (cp - kin.position).cross(&fc),
+        };
+        let out = ContactOutputs {
+            normal_force: f_n,
+            longitudinal_force: f_x,
+            contact_force: fc,
+            contact_point: cp,
+            effective: EffectiveRoad {
+                height: z_road,
+                tan_slope: tan,
+                dheight_ds: tan,
+                dtan_ds: 0.0,
+                curvature: 0.0,
+                flat: tan == 0.0,
+            },
+            slip: kappa,
+            rolling_radius: r_e,
+            loaded_radius: kin.position.z - z_road,
+            deflection: rho,
+            slip_velocity: v_slip,
+            rolling_speed: v_roll,
+        };
+        Eval {
+            hub,
+            out,
+            v_slip,
+            v_roll,
+        }
+    }
+
+    pub fn residual(
+        &self,
+        _t: f64,
+        kin: &WheelKinematics,
+        road: &Road,
+        x: &[f64],
+        xdot: &[f64],
+        res: &mut [f64],
+    ) -> HubLoad {
+        let e = self.eval(kin, road, x);
+        res[idx::U] = xdot[idx::U] + e.v_slip + e.v_roll.abs() / self.p.d.sigma_point * x[idx::U];
+        e.hub
+    }
+
+    pub fn outputs(&self, kin: &WheelKinematics, road: &Road, x: &[f64]) -> ContactOutputs {
+        self.eval(kin, road, x).out
+    }
+
+    pub fn hub_load(&self, kin: &WheelKinematics, road: &Road, x: &[f64]) -> HubLoad {
+        self.eval(kin, road, x).hub
+    }
+
+    /// Steady state for steady wheel motion (x' = 0 consistent).
+    pub fn initial_state(&self, kin: &WheelKinematics, road: &Road) -> Vec<f64> {
+        let mut x = vec![0.0; idx::N];
+        let e = self.eval(kin, road, &x);
+        let kappa = if e.v_roll.abs() > 1e-9 {
+            -e.v_slip / e.v_roll.abs()
+        } else {
+            0.0
+        };
+        x[idx::U] = kappa * self.p.d.sigma_point;
+        x
+    }
+}

@@ -1,0 +1,173 @@
+//! The command line as a user runs it: JSON fields, files written, clear errors.
+
+use crate::towride;
+
+#[test]
+fn verify_json_has_the_fields_a_script_needs() {
+    let out = towride(&[
+        "verify",
+        "--problems",
+        "hires,caraxis",
+        "--tol",
+        "1e-6",
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let recs = v.as_array().unwrap();
+    assert_eq!(recs.len(), 2);
+    for r in recs {
+        for key in [
+            "problem",
+            "rtol",
+            "atol",
+            "t_end",
+            "y",
+            "scd",
+            "steps",
+            "rejected_steps",
+            "residual_evals",
+            "jacobian_evals",
+            "lu_factorizations",
+            "newton_iterations",
+            "wall_s",
+        ] {
+            assert!(r.get(key).is_some(), "missing {key} in {r}");
+        }
+    }
+    let car = recs.iter().find(|r| r["problem"] == "caraxis").unwrap();
+    // y in the test set's component order: 10 components for the car axis.
+    assert_eq!(car["y"].as_array().unwrap().len(), 10);
+    assert!(car["steps"].as_u64().unwrap() > 100);
+}
+
+#[test]
+fn unknown_problem_is_a_clear_error() {
+    let out = towride(&["verify", "--problems", "nosuch"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("unknown problem `nosuch`"), "{err}");
+}
+
+#[test]
+fn bench_solver_writes_csv_and_png() {
+    let dir = std::env::temp_dir().join(format!("towride-bench-{}", std::process::id()));
+    let out = towride(&[
+        "bench",
+        "solver",
+        "--problems",
+        "vdpol",
+        "--tightest",
+        "5",
+        "--min-wall",
+        "0",
+        "--json",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let csv = std::fs::read_to_string(dir.join("work_precision.csv")).unwrap();
+    assert!(csv.starts_with("problem,method,rtol [-]"), "{csv}");
+    // 3 tolerances x 2 methods + header.
+    assert_eq!(csv.lines().count(), 7);
+    let png = std::fs::read(dir.join("work_precision.png")).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn run_linear_and_doctor_speak_json() {
+    let dir = std::env::temp_dir().join(format!("towride-run-{}", std::process::id()));
+    let out = towride(&[
+        "run",
+        repo!("scenes/examples/two_mass_chain.toml"),
+        "--out",
+        dir.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["status"], "completed");
+    for key in [
+        "steps",
+        "newton_iterations",
+        "jacobian_evals",
+        "wall_s",
+        "channels",
+        "statics",
+    ] {
+        assert!(!v[key].is_null(), "missing {key}");
+    }
+    let csv = std::fs::read_to_string(dir.join("outputs.csv")).unwrap();
+    assert!(
+        csv.starts_with("time [s],m2.cm.position.x [m]"),
+        "{}",
+        &csv[..80]
+    );
+    assert_eq!(csv.lines().count(), 1 + 1001);
+
+    let out = towride(&[
+        "linear",
+        repo!("scenes/examples/two_mass_chain.toml"),
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let f = v["result"]["modes"][0]["undamped_hz"].as_f64().unwrap();
+    assert!((f - 500f64.sqrt() / (2.0 * std::f64::consts::PI)).abs() < 1e-6);
+
+    let out = towride(&["doctor", repo!("scenes/examples/andrews.toml"), "--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["redundant"].as_array().unwrap().len(), 9);
+    assert!(v["newton_condition"].as_f64().unwrap() > 1.0);
+}
+
+#[test]
+fn a_bad_mechanism_file_is_named_with_its_line() {
+    let path = std::env::temp_dir().join(format!("towride-bad-{}.toml", std::process::id()));
+    let text = std::fs::read_to_string(repo!("scenes/examples/pendulum.toml"))
+        .unwrap()
+        .replace("mass_kg = 1.0", "mass_kg = -1.0");
+    std::fs::write(&path, text).unwrap();
+    let out = towride(&["run", path.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains(".toml:17:") && err.contains("body[0].mass_kg") && err.contains("positive"),
+        "{err}"
+    );
+}
+
+#[test]
+fn plan_lists_its_cases_on_the_command_line() {
+    let out = towride(&["run", repo!("scenes/measurement_plan.toml"), "--list"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(text.lines().count(), 72);
+    assert!(text.lines().any(|l| l == "ramp_50mm_50kmh_empty"));
+}

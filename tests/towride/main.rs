@@ -1,0 +1,41 @@
+//! Integration tests of the `towride` library, one module per area, all in one test
+//! binary (as ripgrep does), so the test build links one executable for the crate.
+//!
+//! Paths to the repository's data (`scenes/`, `vehicles/`, `flex/`, ...) go through
+//! [`repo!`]: tests run with the crate's folder as their working directory.
+
+/// A path to a file of the repository, as a `&'static str` (usable in `const`s).
+macro_rules! repo {
+    ($p:literal) => {
+        concat!(env!("CARGO_MANIFEST_DIR"), "/../../", $p)
+    };
+}
+
+mod common;
+mod validate_sim;
+
+mod flex_beam;
+mod flex_hitch;
+mod flex_input;
+mod model_mechanisms;
+mod model_modal;
+mod model_modal_full;
+mod model_tyres;
+mod road_obstacles;
+mod road_profile_mesh;
+mod tyre_cleat;
+mod tyre_enveloping;
+mod tyre_lift_off;
+mod tyre_rolling;
+mod tyre_static;
+mod tyre_tir;
+mod validate_csv;
+mod validate_filter_rating;
+mod validate_recovery;
+mod validate_vehicle;
+mod vehicle_assembly;
+mod vehicle_errors;
+mod vehicle_scene;
+mod vehicle_statics;
+mod vehicle_twist_beam;
+mod vehicle_variants;
