@@ -26,6 +26,7 @@ fn hitch(n_fixed: usize) -> FlexBody {
             fixed_interface_modes: Some(n_fixed),
             rule: None,
         },
+        &towride::input::Loader::new(),
     )
     .unwrap()
 }
@@ -439,7 +440,13 @@ fn load_path_selection_agrees_with_the_full_model_and_keeps_the_low_modes() {
 fn every_variant_builds_and_variant_5_is_the_base() {
     let base = hitch(8);
     for v in 1..=10 {
-        let b = FlexBody::load(Path::new(FILE), Some(v), &Options::default()).unwrap();
+        let b = FlexBody::load(
+            Path::new(FILE),
+            Some(v),
+            &Options::default(),
+            &towride::input::Loader::new(),
+        )
+        .unwrap();
         let f: Vec<f64> = b
             .table
             .iter()
@@ -470,7 +477,8 @@ fn every_variant_builds_and_variant_5_is_the_base() {
 /// same way, reproduces its first four elastic modes.
 #[test]
 fn variant_5_crossbeam_tube_reproduces_the_thesis_mode_table() {
-    let mesh = towride::flex::Mesh::read(Path::new(FILE), Some(5)).unwrap();
+    let mesh = towride::flex::Mesh::read(Path::new(FILE), Some(5), &towride::input::Loader::new())
+        .unwrap();
     let sec = &mesh
         .sections
         .iter()

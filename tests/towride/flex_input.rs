@@ -68,7 +68,7 @@ fn line_of(text: &str, needle: &str, n: usize) -> usize {
 
 fn refuse(name: &str, text: &str, variant: Option<u32>) -> String {
     let p = write(name, text);
-    let e = Mesh::read(&p, variant).unwrap_err();
+    let e = Mesh::read(&p, variant, &towride::input::Loader::new()).unwrap_err();
     let s = e.to_string();
     assert!(s.starts_with(&p.display().to_string()), "{s}");
     s
@@ -77,10 +77,10 @@ fn refuse(name: &str, text: &str, variant: Option<u32>) -> String {
 #[test]
 fn the_good_file_reads() {
     let p = write("good.toml", GOOD);
-    let m = Mesh::read(&p, None).unwrap();
+    let m = Mesh::read(&p, None, &towride::input::Loader::new()).unwrap();
     assert_eq!(m.elements.len(), 6);
     assert_eq!(m.nodes.len(), 3 + 3 + 1);
-    Mesh::read(&p, Some(1)).unwrap();
+    Mesh::read(&p, Some(1), &towride::input::Loader::new()).unwrap();
 }
 
 #[test]
@@ -125,7 +125,12 @@ fn zero_wall_thickness_in_a_variant_points_at_the_variant() {
     assert!(e.contains(&format!(":{line}:")), "{e}");
     assert!(e.contains("field `variant[0].section.tube.wall_m`"), "{e}");
     // The base sections are fine, so without the variant the file reads.
-    Mesh::read(&write("zero_wall_variant_base.toml", &text), None).unwrap();
+    Mesh::read(
+        &write("zero_wall_variant_base.toml", &text),
+        None,
+        &towride::input::Loader::new(),
+    )
+    .unwrap();
 }
 
 #[test]

@@ -3,13 +3,13 @@
 use std::path::Path;
 
 use towride::input::Source;
-use towride::model::run::{simulate, RunResult};
+use towride::model::run::{simulate, Samples};
 use towride::model::spec::{self, Mechanism};
 use towride::model::{doctor, linear, statics, System};
 use towride_solver::problem::{DaeProblem, JacobianSink};
 
 fn load(path: &str) -> Mechanism {
-    spec::load(Path::new(path)).unwrap_or_else(|e| panic!("{e}"))
+    spec::load(Path::new(path), &towride::input::Loader::new()).unwrap_or_else(|e| panic!("{e}"))
 }
 
 fn from_text(name: &str, text: &str) -> Result<Mechanism, towride::input::InputError> {
@@ -18,7 +18,7 @@ fn from_text(name: &str, text: &str) -> Result<Mechanism, towride::input::InputE
     spec::build(&src, file)
 }
 
-fn run(m: &Mechanism, rate: f64) -> (System, RunResult) {
+fn run(m: &Mechanism, rate: f64) -> (System, Samples) {
     let sys = System::new(m.model.clone());
     let r = simulate(
         &sys,
@@ -34,7 +34,7 @@ fn run(m: &Mechanism, rate: f64) -> (System, RunResult) {
 }
 
 /// Period from the two zero crossings of x (at T/4 and 3T/4), linear interpolation.
-fn period(r: &RunResult) -> f64 {
+fn period(r: &Samples) -> f64 {
     let x = r.channel("bob.cm.position.x").unwrap();
     let mut cross = Vec::new();
     for k in 1..x.len() {

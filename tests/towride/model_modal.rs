@@ -28,6 +28,7 @@ fn hitch() -> FlexBody {
             fixed_interface_modes: Some(8),
             rule: None,
         },
+        &towride::input::Loader::new(),
     )
     .unwrap()
 }

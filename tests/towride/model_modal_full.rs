@@ -241,6 +241,7 @@ fn hitch() -> FlexBody {
             fixed_interface_modes: Some(8),
             rule: None,
         },
+        &towride::input::Loader::new(),
     )
     .unwrap()
 }
@@ -438,7 +439,13 @@ rule = "all"
 fn full_coupling_without_modal_excitation_spins_as_the_rigid_body() {
     let path = std::env::temp_dir().join(format!("towride_round_bar_{}.toml", std::process::id()));
     std::fs::write(&path, BAR).unwrap();
-    let b = FlexBody::load(&path, None, &Options::default()).unwrap();
+    let b = FlexBody::load(
+        &path,
+        None,
+        &Options::default(),
+        &towride::input::Loader::new(),
+    )
+    .unwrap();
     std::fs::remove_file(&path).ok();
     // Torsion and symmetric bending modes of a round bar: the frame's rotation puts no
     // centrifugal load on them (symmetric part of I8 zero) and omega' none (I4 zero), so

@@ -116,8 +116,12 @@ fn quarter_car(
 #[test]
 fn quarter_car_from_bodies_and_joints_rolls_as_the_tyre_rig() {
     let file = Path::new(repo!("vehicles/tyres/car_185_60r14.tir"));
-    let tyre = Tyre::from_file(file, TyreKind::RigidRing).unwrap();
-    let road = Road::from_file(Path::new(repo!("roads/bump_25mm.toml"))).unwrap();
+    let tyre = Tyre::from_file(file, TyreKind::RigidRing, &towride::input::Loader::new()).unwrap();
+    let road = Road::from_file(
+        Path::new(repo!("roads/bump_25mm.toml")),
+        &towride::input::Loader::new(),
+    )
+    .unwrap();
     let speed = 40.0 / 3.6;
     let (mass, rim_iyy, x0) = (300.0, 0.6, 0.0);
     let rig = QuarterRig::new(tyre.clone(), road.clone(), speed, x0, mass, rim_iyy, 0.0);
@@ -187,9 +191,14 @@ fn iteration_matrix_transport_follows_the_wheel_spin() {
     let tyre = Tyre::from_file(
         Path::new(repo!("vehicles/tyres/car_185_60r14.tir")),
         TyreKind::RigidRing,
+        &towride::input::Loader::new(),
     )
     .unwrap();
-    let road = Road::from_file(Path::new(repo!("roads/bump_25mm.toml"))).unwrap();
+    let road = Road::from_file(
+        Path::new(repo!("roads/bump_25mm.toml")),
+        &towride::input::Loader::new(),
+    )
+    .unwrap();
     let speed = 40.0 / 3.6;
     let (mass, rim_iyy) = (300.0, 0.6);
     let rig = QuarterRig::new(tyre.clone(), road.clone(), speed, 0.0, mass, rim_iyy, 0.0);

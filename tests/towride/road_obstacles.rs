@@ -15,7 +15,11 @@ fn write(name: &str, text: &str) -> std::path::PathBuf {
 
 #[test]
 fn thesis_ramp_geometry() {
-    let r = Road::from_file(Path::new(repo!("roads/ramp_thesis.toml"))).unwrap();
+    let r = Road::from_file(
+        Path::new(repo!("roads/ramp_thesis.toml")),
+        &towride::input::Loader::new(),
+    )
+    .unwrap();
     // 50 mm high, 45 deg flanks (50 mm run), 500 mm foot to foot from x = 1 m.
     let cases = [
         (0.999, 0.0),
@@ -65,7 +69,7 @@ fn thesis_ramp_geometry() {
 #[test]
 fn ramp_length_at_the_top() {
     let text = "[road]\nkind = \"flat\"\nheight_m = 0.1\n\n[[obstacle]]\nkind = \"ramp\"\nstart_m = 1.0\nheight_m = 0.05\nlength_m = 0.5\nlength_measured_at = \"top\"\nflank_angle_deg = 45.0\n";
-    let r = Road::from_file(&write("top.toml", text)).unwrap();
+    let r = Road::from_file(&write("top.toml", text), &towride::input::Loader::new()).unwrap();
     assert!((r.height(1.05, 0.0) - 0.15).abs() < 1e-12);
     assert!((r.height(1.55, 0.0) - 0.15).abs() < 1e-12);
     assert!((r.height(1.6, 0.0) - 0.1).abs() < 1e-12);
@@ -78,7 +82,7 @@ fn circular_bumps_of_the_measurement_plan() {
         (repo!("roads/bump_25mm.toml"), 0.025),
         (repo!("roads/bump_50mm.toml"), 0.05),
     ] {
-        let r = Road::from_file(Path::new(file)).unwrap();
+        let r = Road::from_file(Path::new(file), &towride::input::Loader::new()).unwrap();
         let c = 0.5;
         let radius = (c * c / 4.0 + h * h) / (2.0 * h);
         assert!((r.height(1.25, 0.0) - h).abs() < 1e-12, "{file}");
@@ -97,7 +101,7 @@ fn circular_bumps_of_the_measurement_plan() {
 #[test]
 fn step_and_lateral_extent() {
     let text = "[road]\nkind = \"flat\"\nheight_m = 0.0\n\n[[obstacle]]\nkind = \"step\"\nstart_m = 2.0\nheight_m = -0.03\ny_min_m = 0.0\ny_max_m = 1.0\n";
-    let r = Road::from_file(&write("step.toml", text)).unwrap();
+    let r = Road::from_file(&write("step.toml", text), &towride::input::Loader::new()).unwrap();
     assert_eq!(r.height(2.0, 0.5), -0.03, "right-continuous at the face");
     assert_eq!(r.height(1.999, 0.5), 0.0);
     assert_eq!(r.height(5.0, -0.5), 0.0, "outside the lateral range");
@@ -109,23 +113,28 @@ fn step_and_lateral_extent() {
 fn bad_inputs_are_located() {
     let text = "[road]\nkind = \"flat\"\nheight_m = 0.0\n\n[[obstacle]]\nkind = \"ramp\"\nstart_m = 1.0\nheight_m = -0.05\nlength_m = 0.5\nlength_measured_at = \"base\"\nflank_angle_deg = 45.0\n";
     let p = write("neg.toml", text);
-    let e = Road::from_file(&p).unwrap_err();
+    let e = Road::from_file(&p, &towride::input::Loader::new()).unwrap_err();
     println!("{e}");
     assert_eq!(e.line, Some(8));
     assert_eq!(e.field, "obstacle[0].height_m");
     let text = text
         .replace("height_m = -0.05", "height_m = 0.05")
         .replace("flank_angle_deg = 45.0", "flank_angle_deg = 5.0");
-    let e = Road::from_file(&write("flat_flank.toml", &text)).unwrap_err();
+    let e = Road::from_file(
+        &write("flat_flank.toml", &text),
+        &towride::input::Loader::new(),
+    )
+    .unwrap_err();
     println!("{e}");
     assert!(e.message.contains("no plateau"), "{e}");
     let text =
         "[road]\nkind = \"flat\"\nheight_m = 0.0\n\n[[obstacle]]\nkind = \"hump\"\nstart_m = 1.0\n";
-    let e = Road::from_file(&write("kind.toml", text)).unwrap_err();
+    let e = Road::from_file(&write("kind.toml", text), &towride::input::Loader::new()).unwrap_err();
     println!("{e}");
     assert!(e.line.is_some() && e.message.contains("hump"), "{e}");
     let text = "[road]\nkind = \"flat\"\nheight_m = 0.0\n\n[[obstacle]]\nkind = \"step\"\nstart_m = 1.0\nheight_m = 0.05\n\n[[obstacle]]\nkind = \"bump\"\nstart_m = 3.0\nheight_m = 0.02\nchord_m = 0.3\n";
-    let e = Road::from_file(&write("overlap.toml", text)).unwrap_err();
+    let e =
+        Road::from_file(&write("overlap.toml", text), &towride::input::Loader::new()).unwrap_err();
     println!("{e}");
     assert!(e.message.contains("overlaps"), "{e}");
     assert_eq!(e.line, Some(12));

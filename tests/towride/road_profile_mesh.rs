@@ -16,7 +16,11 @@ fn rows(file: &str) -> Vec<Vec<f64>> {
 
 #[test]
 fn two_track_profile() {
-    let r = Road::from_file(Path::new(repo!("roads/profile_example.toml"))).unwrap();
+    let r = Road::from_file(
+        Path::new(repo!("roads/profile_example.toml")),
+        &towride::input::Loader::new(),
+    )
+    .unwrap();
     let data = rows(repo!("roads/profile_example.csv"));
     let half = 1.43 / 2.0;
     for w in data.windows(2).step_by(7) {
@@ -54,7 +58,7 @@ fn bad_profile_names_its_line() {
         "[road]\nkind = \"profile\"\nfile = \"p.csv\"\ntrack_width_m = 1.4\n",
     )
     .unwrap();
-    let e = Road::from_file(&dir.join("p.toml")).unwrap_err();
+    let e = Road::from_file(&dir.join("p.toml"), &towride::input::Loader::new()).unwrap_err();
     println!("{e}");
     assert_eq!(e.line, Some(5));
     assert_eq!(e.field, "x_m");
@@ -80,7 +84,11 @@ fn triangle_height(data: &[Vec<f64>], x: f64, y: f64) -> f64 {
 
 #[test]
 fn height_field_through_parry() {
-    let r = Road::from_file(Path::new(repo!("roads/height_field_example.toml"))).unwrap();
+    let r = Road::from_file(
+        Path::new(repo!("roads/height_field_example.toml")),
+        &towride::input::Loader::new(),
+    )
+    .unwrap();
     let data = rows(repo!("roads/height_field_example.csv"));
     let mut worst: f64 = 0.0;
     for k in 0..200 {

@@ -15,8 +15,13 @@ const CAR: &str = repo!("vehicles/tyres/car_185_60r14.tir");
 const DT: f64 = 1e-4;
 
 fn run(road: &str, speed: f64, rtol: f64, t_end: f64) -> RigRun {
-    let tyre = Tyre::from_file(Path::new(CAR), TyreKind::RigidRing).unwrap();
-    let road = Road::from_file(Path::new(road)).unwrap();
+    let tyre = Tyre::from_file(
+        Path::new(CAR),
+        TyreKind::RigidRing,
+        &towride::input::Loader::new(),
+    )
+    .unwrap();
+    let road = Road::from_file(Path::new(road), &towride::input::Loader::new()).unwrap();
     let rig = CleatRig::new(tyre, road, speed, 0.0, 3500.0, Spin::Free, 0.6);
     let opts = rig_options(&rig.tyre, rtol, &[1e-3]);
     rig.run(t_end, DT, &opts).unwrap()

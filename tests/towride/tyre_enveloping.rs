@@ -62,10 +62,18 @@ fn out_dir() -> PathBuf {
 
 #[test]
 fn step_and_ramp_enveloping() {
-    let p = TyreParams::from_file(Path::new(TIR)).unwrap();
+    let p = TyreParams::from_file(Path::new(TIR), &towride::input::Loader::new()).unwrap();
     let cams = TandemCams::new(&p);
-    let step = Road::from_file(Path::new(repo!("roads/step_50mm.toml"))).unwrap();
-    let ramp = Road::from_file(Path::new(repo!("roads/ramp_thesis.toml"))).unwrap();
+    let step = Road::from_file(
+        Path::new(repo!("roads/step_50mm.toml")),
+        &towride::input::Loader::new(),
+    )
+    .unwrap();
+    let ramp = Road::from_file(
+        Path::new(repo!("roads/ramp_thesis.toml")),
+        &towride::input::Loader::new(),
+    )
+    .unwrap();
     let h = 0.05;
     let foot = 1.0;
     let dx = 2e-4;

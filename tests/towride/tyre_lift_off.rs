@@ -13,9 +13,14 @@ fn contact_intervals(kind: TyreKind, mass: f64) {
     let tyre = Tyre::from_file(
         Path::new(repo!("vehicles/tyres/trailer_155_80r13.tir")),
         kind,
+        &towride::input::Loader::new(),
     )
     .unwrap();
-    let road = Road::from_file(Path::new(repo!("roads/ramp_thesis.toml"))).unwrap();
+    let road = Road::from_file(
+        Path::new(repo!("roads/ramp_thesis.toml")),
+        &towride::input::Loader::new(),
+    )
+    .unwrap();
     let speed = 50.0 / 3.6;
     // The trailer axle damper acts against the (much heavier, slower) box, taken as fixed.
     let rig = QuarterRig::new(tyre, road, speed, 0.0, mass, 0.5, 1500.0);

@@ -11,8 +11,12 @@ use towride::tyre::{Tyre, TyreKind};
 /// Starts with the rim spinning 2 % too fast (driving slip), lets it settle for 1 s, then
 /// watches 2 s of free rolling.
 fn free_rolling(file: &str, kind: TyreKind, load: f64, speed: f64) {
-    let tyre = Tyre::from_file(Path::new(file), kind).unwrap();
-    let road = Road::from_file(Path::new(repo!("roads/flat.toml"))).unwrap();
+    let tyre = Tyre::from_file(Path::new(file), kind, &towride::input::Loader::new()).unwrap();
+    let road = Road::from_file(
+        Path::new(repo!("roads/flat.toml")),
+        &towride::input::Loader::new(),
+    )
+    .unwrap();
     let mut rig = CleatRig::new(tyre, road, speed, 0.0, load, Spin::Free, 0.6);
     rig.initial_spin_factor = 1.02;
     let opts = rig_options(&rig.tyre, 1e-6, &[1e-3]);
@@ -101,9 +105,14 @@ fn slow_roll_over_a_step_makes_no_spurious_slip() {
     let tyre = Tyre::from_file(
         Path::new(repo!("vehicles/tyres/car_185_60r14.tir")),
         TyreKind::RigidRing,
+        &towride::input::Loader::new(),
     )
     .unwrap();
-    let road = Road::from_file(Path::new(repo!("roads/step_50mm.toml"))).unwrap();
+    let road = Road::from_file(
+        Path::new(repo!("roads/step_50mm.toml")),
+        &towride::input::Loader::new(),
+    )
+    .unwrap();
     let speed = 0.5;
     // Axle held 50 mm higher after the step is impossible on a cleat rig; use the quarter
     // rig (vertical freedom) with a guide damper so it climbs quasi-statically.
@@ -151,9 +160,10 @@ fn rolls_over_profile_and_height_field_roads() {
         let tyre = Tyre::from_file(
             Path::new(repo!("vehicles/tyres/car_185_60r14.tir")),
             TyreKind::RigidRing,
+            &towride::input::Loader::new(),
         )
         .unwrap();
-        let road = Road::from_file(Path::new(file)).unwrap();
+        let road = Road::from_file(Path::new(file), &towride::input::Loader::new()).unwrap();
         let speed = 30.0 / 3.6;
         let rig = towride::tyre::rig::QuarterRig::new(tyre, road, speed, 0.0, 300.0, 0.6, 3000.0);
         let opts = rig_options(&rig.tyre, 1e-5, &[1e-6, 1e-4, 1e-3]);

@@ -12,8 +12,12 @@ const CAR: &str = repo!("vehicles/tyres/car_185_60r14.tir");
 const TRAILER: &str = repo!("vehicles/tyres/trailer_155_80r13.tir");
 
 fn drop(file: &str, kind: TyreKind, mass: f64, height: f64) -> (QuarterRig, RigRun) {
-    let tyre = Tyre::from_file(Path::new(file), kind).unwrap();
-    let road = Road::from_file(Path::new(repo!("roads/flat.toml"))).unwrap();
+    let tyre = Tyre::from_file(Path::new(file), kind, &towride::input::Loader::new()).unwrap();
+    let road = Road::from_file(
+        Path::new(repo!("roads/flat.toml")),
+        &towride::input::Loader::new(),
+    )
+    .unwrap();
     // A guide damper (drop-test carriage) so the run settles within seconds.
     let rig = QuarterRig::new(tyre, road, 0.0, 0.0, mass, 0.6, 1000.0);
     let opts = rig_options(&rig.tyre, 1e-7, &[1e-7, 1e-5, 1e-3]);

@@ -79,7 +79,8 @@ fn errors_from_a_real_file_name_it() {
     );
     let file = dir.join("heavy_belt.tir");
     std::fs::write(&file, text).unwrap();
-    let e = Tyre::from_file(&file, TyreKind::RigidRing).unwrap_err();
+    let e =
+        Tyre::from_file(&file, TyreKind::RigidRing, &towride::input::Loader::new()).unwrap_err();
     println!("{e}");
     assert_eq!(e.file, file);
     assert_eq!(e.line, Some(line));
@@ -103,7 +104,7 @@ fn errors_from_a_real_file_name_it() {
 #[test]
 fn shipped_files_reproduce_their_ring_data() {
     for file in [CAR, repo!("vehicles/tyres/trailer_155_80r13.tir")] {
-        let p = TyreParams::from_file(Path::new(file)).unwrap();
+        let p = TyreParams::from_file(Path::new(file), &towride::input::Loader::new()).unwrap();
         let t = |s: &str, k: &str| crate::common::tir_value(file, s, k);
         let f_long = (p.d.c_b / t("INERTIA", "BELT_MASS")).sqrt() / (2.0 * PI);
         let f_wind = (p.d.c_theta / t("INERTIA", "BELT_IYY")).sqrt() / (2.0 * PI);

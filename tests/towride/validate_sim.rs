@@ -53,14 +53,19 @@ impl Simulator for Analytic {
         "closed-form test simulator".into()
     }
 
-    fn simulate(&self, _scene: &Path, v: f64, load: &str) -> Result<SimChannels, String> {
+    fn simulate(&self, _scene: &Path, v: f64, load: &str) -> Result<SimChannels, towride::Error> {
         // A heavier trailer rides lower in frequency.
         let trailer = match load {
             "empty" => 1.0,
             "200kg_over_axle" => 0.8,
             "200kg_ahead_of_axle" => 0.85,
             "200kg_behind_axle" => 0.75,
-            _ => return Err(format!("unknown load {load}")),
+            _ => {
+                return Err(towride::validate::ValidateError::Mismatch(format!(
+                    "unknown load {load}"
+                ))
+                .into())
+            }
         };
         let t_obs = 1.0 / v + 0.6; // front wheels 0.6 s + 1 m before the obstacle
         let last = self.channels.iter().map(|c| c.1).fold(0.0, f64::max);

@@ -30,7 +30,12 @@ fn mass(t: &toml::Table, key: &str) -> f64 {
 }
 
 fn load(opts: &Options) -> Vehicle {
-    vehicle::load(Path::new(repo!("vehicles/fabia_trailer.toml")), opts).unwrap()
+    vehicle::load(
+        Path::new(repo!("vehicles/fabia_trailer.toml")),
+        opts,
+        &towride::input::Loader::new(),
+    )
+    .unwrap()
 }
 
 /// World position of marker `k` at the initial configuration.

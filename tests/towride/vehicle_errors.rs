@@ -67,6 +67,7 @@ fn vehicle_error(root: &Path) -> InputError {
     vehicle::load(
         &root.join("vehicles/fabia_trailer.toml"),
         &Options::default(),
+        &towride::input::Loader::new(),
     )
     .unwrap_err()
 }
@@ -191,6 +192,7 @@ fn unknown_inertia_coupling_and_the_full_level() {
     let v = vehicle::load(
         &root.join("vehicles/fabia_trailer.toml"),
         &Options::default(),
+        &towride::input::Loader::new(),
     )
     .unwrap();
     let hb = v.handles.hitch.as_ref().unwrap().body;

@@ -73,10 +73,10 @@ fn measurement_plan_has_72_cases() {
     names.dedup();
     assert_eq!(names.len(), 72);
     let c = p.case("bump_50mm_20kmh_200kg_behind_axle").unwrap();
-    assert_eq!(c.overrides.speed_km_h, Some(20.0));
+    assert_eq!(c.changes.speed_km_h, Some(20.0));
     // 7.5 m of travel at 20 km/h, then 1 s.
-    assert!((c.overrides.duration_s.unwrap() - (7.5 / (20.0 / 3.6) + 1.0)).abs() < 1e-12);
-    let s = p.scene(c).unwrap();
+    assert!((c.changes.duration_s.unwrap() - (7.5 / (20.0 / 3.6) + 1.0)).abs() < 1e-12);
+    let s = p.scene(c, &towride::input::Loader::new()).unwrap();
     assert_eq!(
         s.vehicle.design.trailer.as_ref().unwrap().load_case,
         "200kg_behind_axle"

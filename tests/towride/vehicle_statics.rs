@@ -21,6 +21,7 @@ fn at_rest(file: &str, case: Option<&str>) -> (Vehicle, System, Vec<f64>, Vec<f6
             load_case: case.map(String::from),
             ..Default::default()
         },
+        &towride::input::Loader::new(),
     )
     .unwrap();
     v.model.road = Some(Road::flat(0.0));

@@ -10,16 +10,17 @@ use std::path::Path;
 
 use towride::flex::modes::static_solution;
 use towride::flex::{FlexBody, ModalData, Options};
-use towride::input::overrides::{self, Override};
+use towride::input::{Loader, Override};
+use towride::job::Job;
 use towride::model::desc::{
     Applied, Body, Coupling, Force, Joint, JointKind, Marker, Modal, Model,
 };
 use towride::model::function::TimeFunction;
 use towride::model::statics::equilibrium;
 use towride::model::system::{ExtKind, System};
+use towride::progress::Silent;
 use towride::road::Road;
-use towride::scene::exec::run;
-use towride::scene::{channels, Overrides};
+use towride::scene::{channels, Changes};
 use towride::vehicle::{self, Vehicle};
 use towride_solver::SolverOptions;
 
@@ -102,7 +103,13 @@ fn held_and_twisted(md: &ModalData, held: usize, twisted: usize, t: f64) -> Mode
 
 #[test]
 fn cross_member_twists_as_the_full_fe_model_and_the_rigid_torsion_element() {
-    let b = FlexBody::load(Path::new(FE), None, &Options::default()).unwrap();
+    let b = FlexBody::load(
+        Path::new(FE),
+        None,
+        &Options::default(),
+        &towride::input::Loader::new(),
+    )
+    .unwrap();
     let fe = table(FE);
     let rear = table(REAR);
     // Interface nodes on the pivot hardpoints of the rear axle file.
@@ -174,11 +181,7 @@ fn cross_member_twists_as_the_full_fe_model_and_the_rigid_torsion_element() {
 }
 
 fn flexible(mount: &str) -> Vec<Override> {
-    let o = |path: &str, value: &str| Override {
-        file: REAR.into(),
-        path: path.into(),
-        value: value.into(),
-    };
+    let o = |path: &str, value: &str| Override::program(REAR, path, value, "test");
     vec![
         o("cross_member.kind", "\"flexible\""),
         o("cross_member.mount", &format!("\"{mount}\"")),
@@ -187,9 +190,11 @@ fn flexible(mount: &str) -> Vec<Override> {
 
 /// The car alone at rest on a flat road with the rear axle file overridden by `props`.
 fn at_rest(props: &[Override]) -> (Vehicle, System, Vec<f64>) {
-    let mut v = overrides::with(props, || {
-        vehicle::load(Path::new(repo!("vehicles/fabia.toml")), &Default::default())
-    })
+    let mut v = vehicle::load(
+        Path::new(repo!("vehicles/fabia.toml")),
+        &Default::default(),
+        &Loader::with_overrides(props.to_vec()),
+    )
     .unwrap();
     v.model.road = Some(Road::flat(0.0));
     v.model.outputs = channels::standard(&v).0;
@@ -265,9 +270,11 @@ fn car_with_the_flexible_cross_member_rests_on_its_weight_at_the_rigid_ride_heig
 #[test]
 fn property_file_selection_replaces_the_fe_files() {
     let modes = |props: &[Override]| {
-        let v = overrides::with(props, || {
-            vehicle::load(Path::new(repo!("vehicles/fabia.toml")), &Default::default())
-        })
+        let v = vehicle::load(
+            Path::new(repo!("vehicles/fabia.toml")),
+            &Default::default(),
+            &Loader::with_overrides(props.to_vec()),
+        )
         .unwrap();
         let cm = v.handles.bodies["cross_member"];
         let md = &v.model.bodies[cm].modal.as_ref().unwrap().data;
@@ -275,11 +282,12 @@ fn property_file_selection_replaces_the_fe_files() {
     };
     let mut props = flexible("fixed");
     let file_rule = modes(&props);
-    props.push(Override {
-        file: REAR.into(),
-        path: "cross_member.selection".into(),
-        value: "{ rule = \"list\", modes = [7, 8] }".into(),
-    });
+    props.push(Override::program(
+        REAR,
+        "cross_member.selection",
+        "{ rule = \"list\", modes = [7, 8] }",
+        "test",
+    ));
     assert_eq!(modes(&props), vec![7, 8]);
     // The FE file's load-path rule keeps 11 of the 14 elastic modes, the twist among them.
     assert_eq!(file_rule.len(), 11);
@@ -293,26 +301,31 @@ fn flexible_scene_runs_over_the_ramp_like_the_rigid_one() {
         repo!("scenes/default.toml"),
         repo!("scenes/flexible_twist_beam.toml"),
     ] {
-        let r = run(Path::new(file), &[], &Overrides::default(), &|_| {}).unwrap();
-        assert!(r.result.error.is_none(), "{file}: {:?}", r.result.error);
-        let t_end = *r.result.times.last().unwrap();
+        let job =
+            Job::from_scene_file(Path::new(file), &Changes::default(), &Loader::new()).unwrap();
+        let r = job.run(&Silent).unwrap();
+        assert!(r.completed(), "{file}: {:?}", r.failure());
+        let t_end = *r.samples.times.last().unwrap();
         assert!(
-            (t_end - r.scene.duration).abs() < 1e-9,
+            (t_end - job.settings.t_end).abs() < 1e-9,
             "{file} ends at {t_end}"
         );
-        runs.push(r);
+        runs.push((job, r));
     }
-    let flex = &runs[1];
-    let cm = flex.scene.vehicle.handles.bodies["cross_member"];
-    let eta = &flex.result.modal.iter().find(|(b, _)| *b == cm).unwrap().1;
+    let (flex_job, flex) = &runs[1];
+    let cm = flex_job.scene.as_ref().unwrap().vehicle.handles.bodies["cross_member"];
+    let eta = &flex.samples.modal.iter().find(|(b, _)| *b == cm).unwrap().1;
     let eta_peak = eta
         .iter()
         .flat_map(|r| r.iter())
         .fold(0.0f64, |m, x| m.max(x.abs()));
-    for (name, r) in ["rigid", "flexible"].iter().zip(&runs) {
+    for (name, (job, r)) in ["rigid", "flexible"].iter().zip(&runs) {
         println!(
             "{name}: {} equations, {} modal coordinates, {} steps, {:.2} s wall",
-            r.equations, r.modes, r.result.stats.steps, r.wall_s
+            r.summary.equations,
+            job.system.nm.iter().sum::<usize>(),
+            r.summary.solver.steps,
+            r.summary.wall_s
         );
     }
     println!("flexible: largest cross-member modal coordinate {eta_peak:.3e}");
@@ -324,7 +337,7 @@ fn flexible_scene_runs_over_the_ramp_like_the_rigid_one() {
         "acc_body_rear_left_z",
         "tyre_rl_fz",
     ] {
-        let (a, b) = (runs[0].peak(ch).unwrap(), runs[1].peak(ch).unwrap());
+        let (a, b) = (runs[0].1.peak(ch).unwrap(), runs[1].1.peak(ch).unwrap());
         println!(
             "peak {ch:24}: rigid {a:10.2}, flexible {b:10.2} ({:+.2} %)",
             100.0 * (b / a - 1.0)
@@ -361,7 +374,13 @@ fn first_modes_match_beam_theory() {
         4.730f64.powi(2) / (2.0 * std::f64::consts::PI * length * length)
             * (e * i / (rho * a)).sqrt()
     };
-    let b = FlexBody::load(Path::new(FE), None, &Options::default()).unwrap();
+    let b = FlexBody::load(
+        Path::new(FE),
+        None,
+        &Options::default(),
+        &towride::input::Loader::new(),
+    )
+    .unwrap();
     let f: Vec<f64> = b.modal.modes.iter().map(|m| m.frequency_hz).collect();
     for (what, got, want) in [
         ("torsion", f[0], torsion),

@@ -3,25 +3,25 @@
 
 use std::path::Path;
 
-use towride::scene::exec::run;
-use towride::scene::Overrides;
+use towride::input::Loader;
+use towride::job::Job;
+use towride::progress::Silent;
+use towride::scene::Changes;
 
 fn peak_deflection(variant: u32) -> (f64, f64) {
-    let r = run(
+    let changes = Changes {
+        hitch_variant: Some(variant),
+        ..Default::default()
+    };
+    let r = Job::from_scene_file(
         Path::new(repo!("scenes/default.toml")),
-        &[],
-        &Overrides {
-            hitch_variant: Some(variant),
-            ..Default::default()
-        },
-        &|_| {},
+        &changes,
+        &Loader::new(),
     )
+    .unwrap()
+    .run(&Silent)
     .unwrap();
-    assert!(
-        r.result.error.is_none(),
-        "variant {variant}: {:?}",
-        r.result.error
-    );
+    assert!(r.completed(), "variant {variant}: {:?}", r.failure());
     let ch = |n: &str| r.channel(n).unwrap();
     let (x, y, z) = (
         ch("hitch_deflection_x"),

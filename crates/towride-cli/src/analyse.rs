@@ -5,38 +5,12 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-use towride::model::{self, spec};
-use towride::scene::{self, Scene};
-use towride_solver::SolverOptions;
+use towride::input::Loader;
+use towride::job::Job;
+use towride::model;
+use towride::progress::Silent;
 
-/// A mechanism or a scene, assembled, with its solver settings and output rate.
-struct Loaded {
-    sys: model::System,
-    solver: SolverOptions,
-    rate: f64,
-    scene: Option<Scene>,
-}
-
-fn load(file: &std::path::Path) -> Result<Loaded, String> {
-    if scene::is_scene(file) {
-        let s = scene::load(file).map_err(|e| e.to_string())?;
-        let sys = model::System::new(s.model().clone());
-        Ok(Loaded {
-            solver: s.solver_for(&sys),
-            rate: s.sample_rate,
-            sys,
-            scene: Some(s),
-        })
-    } else {
-        let mech = spec::load(file).map_err(|e| e.to_string())?;
-        Ok(Loaded {
-            sys: model::System::new(mech.model),
-            solver: mech.solver,
-            rate: mech.run.sample_rate_hz,
-            scene: None,
-        })
-    }
-}
+use crate::CliResult;
 
 #[derive(Args, Debug)]
 pub struct LinearArgs {
@@ -50,34 +24,30 @@ pub struct LinearArgs {
     json: bool,
 }
 
-pub fn linear(a: &LinearArgs) -> Result<i32, String> {
-    let l = load(&a.file)?;
-    let sys = &l.sys;
-    crate::model_check(sys)?;
+pub fn linear(a: &LinearArgs) -> CliResult {
+    let mut job = Job::from_file(&a.file, &Loader::new())?;
+    if let Some(t) = a.at.filter(|t| *t > 0.0) {
+        // The state of a run at t, started as the file says.
+        job.settings.t_end = t;
+        job.settings.sample_rate = job.settings.sample_rate.max(1.0 / t);
+        let res = job.run(&Silent)?;
+        if let Some((e, te)) = res.failure() {
+            return Err(format!("run to t = {t} s failed at {te:.6} s: {e}").into());
+        }
+        let (t, y, _) = res.samples.last.ok_or("run produced no state")?;
+        let lin = model::linear::linearise(&job.system, t, &y)?;
+        return print_linear(
+            a,
+            &job.system,
+            &lin,
+            &format!("state of the run at t = {t} s"),
+        );
+    }
+    let sys = &job.system;
     let (t, y, at) = match a.at {
         None => {
-            let st = model::statics::equilibrium(sys, 0.0, &l.solver)?;
+            let st = model::statics::equilibrium(sys, 0.0, &job.solver)?;
             (0.0, st.y, "equilibrium".to_string())
-        }
-        Some(t) if t > 0.0 => {
-            let start = match &l.scene {
-                Some(s) => towride::scene::exec::start(s, &l.solver)?.0,
-                None => None,
-            };
-            let res = model::run::simulate(
-                sys,
-                0.0,
-                t,
-                l.rate.max(1.0 / t),
-                &l.solver,
-                start,
-                &towride::progress::Silent,
-            );
-            if let Some((e, te)) = res.error {
-                return Err(format!("run to t = {t} s failed at {te:.6} s: {e}"));
-            }
-            let (t, y, _) = res.last.ok_or("run produced no state")?;
-            (t, y, format!("state of the run at t = {t} s"))
         }
         Some(_) => {
             let (mut q, mut v) = sys.initial_q_v();
@@ -89,12 +59,18 @@ pub fn linear(a: &LinearArgs) -> Result<i32, String> {
         }
     };
     let lin = model::linear::linearise(sys, t, &y)?;
+    print_linear(a, sys, &lin, &at)
+}
+
+fn print_linear(
+    a: &LinearArgs,
+    sys: &model::System,
+    lin: &model::linear::Linearisation,
+    at: &str,
+) -> CliResult {
     if a.json {
         let v = serde_json::json!({"model": sys.model.name, "linearised_at": at, "result": lin});
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&v).map_err(|e| e.to_string())?
-        );
+        println!("{}", serde_json::to_string_pretty(&v)?);
         return Ok(0);
     }
     println!(
@@ -150,15 +126,11 @@ pub struct DoctorArgs {
     json: bool,
 }
 
-pub fn doctor(a: &DoctorArgs) -> Result<i32, String> {
-    let l = load(&a.file)?;
-    crate::model_check(&l.sys)?;
-    let rep = model::doctor::examine(&l.sys, &l.solver, a.step);
+pub fn doctor(a: &DoctorArgs) -> CliResult {
+    let job = Job::from_file(&a.file, &Loader::new())?;
+    let rep = model::doctor::examine(&job.system, &job.solver, a.step);
     if a.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&rep).map_err(|e| e.to_string())?
-        );
+        println!("{}", serde_json::to_string_pretty(&rep)?);
         return Ok(0);
     }
     println!(

@@ -1,5 +1,6 @@
 //! `towride bench solver`: work-precision data for the built-in problems.
 
+use crate::CliResult;
 use clap::Args;
 use std::path::PathBuf;
 
@@ -26,7 +27,7 @@ pub struct BenchSolverArgs {
     min_wall: f64,
 }
 
-pub fn run_solver(a: &BenchSolverArgs) -> Result<i32, String> {
+pub fn run_solver(a: &BenchSolverArgs) -> CliResult {
     let benches = crate::verify::select(&a.problems)?;
     let tols: Vec<f64> = (3..=a.tightest.max(3))
         .map(|k| 10f64.powi(-(k as i32)))

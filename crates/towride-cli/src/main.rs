@@ -6,8 +6,6 @@ mod bench;
 mod modes;
 mod run;
 mod scene_bench;
-mod scene_report;
-mod scene_run;
 mod scene_stress;
 mod sweep;
 mod tyre_rig;
@@ -119,6 +117,15 @@ fn run() -> i32 {
     }
 }
 
+/// What a command returns: the exit code, or an error printed as `error: ...` with exit
+/// code 2. Library errors arrive typed and say where (file, line, field).
+pub(crate) type CliResult = Result<i32, Box<dyn std::error::Error>>;
+
+#[allow(dead_code)]
+fn _assert_library_errors_convert(e: towride::Error) -> Box<dyn std::error::Error> {
+    Box::new(e)
+}
+
 /// A progress bar on a terminal, hidden otherwise (and under `--json`).
 pub(crate) fn progress(len: u64, quiet: bool) -> Bar {
     use std::io::IsTerminal;
@@ -156,43 +163,4 @@ impl std::ops::Deref for Bar {
     fn deref(&self) -> &indicatif::ProgressBar {
         &self.0
     }
-}
-
-/// Refuses models the solver cannot run (a motion on a direction already locked).
-pub(crate) fn model_check(sys: &towride::model::System) -> Result<(), String> {
-    for r in &sys.redundant {
-        if let towride::model::system::Owner::Motion(_) = sys.cons[r.elem].owner {
-            return Err(format!(
-                "{} drives a direction the joints already lock",
-                sys.row_name(&sys.cons[r.elem], r.row)
-            ));
-        }
-    }
-    Ok(())
-}
-
-/// One warning per redundant constraint row, naming what it duplicates.
-pub(crate) fn redundancy_warnings(sys: &towride::model::System) -> Vec<String> {
-    sys.redundant
-        .iter()
-        .map(|r| {
-            let deps: Vec<String> = r
-                .depends_on
-                .iter()
-                .map(|&(e, row, _)| sys.row_name(&sys.cons[e], row))
-                .collect();
-            if deps.is_empty() {
-                format!(
-                    "constraint eliminated: {} is degenerate at the initial position (its Jacobian row vanishes)",
-                    sys.row_name(&sys.cons[r.elem], r.row)
-                )
-            } else {
-                format!(
-                    "redundant constraint eliminated: {} repeats {}",
-                    sys.row_name(&sys.cons[r.elem], r.row),
-                    deps.join(", ")
-                )
-            }
-        })
-        .collect()
 }

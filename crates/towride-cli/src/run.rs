@@ -1,12 +1,15 @@
 //! `towride run FILE`: integrate a mechanism file, a scene or a plan's cases and write
-//! the outputs (scenes and plans: `scene_run.rs`).
+//! the outputs (`outputs.csv`, `summary.json`, a scene's plot page).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::Args;
-use serde_json::json;
 
-use towride::model::{self, spec};
+use towride::input::{Loader, Override};
+use towride::job::{Job, RunResult};
+use towride::scene::{plan, SceneError};
+
+use crate::CliResult;
 
 #[derive(Args, Debug)]
 pub struct RunArgs {
@@ -24,109 +27,108 @@ pub struct RunArgs {
     /// Plans: list the cases and stop.
     #[arg(long)]
     pub(crate) list: bool,
+    /// Replace a value of any file the run reads: FILE:PATH=VALUE (FILE matched by the
+    /// end of its path; PATH `table.key`, `.tir` `SECTION.KEY`, CSV `column[row]`).
+    /// Repeatable.
+    #[arg(long = "set", value_name = "FILE:PATH=VALUE")]
+    pub(crate) set: Vec<String>,
 }
 
-pub fn run(a: &RunArgs) -> Result<i32, String> {
-    if towride::scene::plan::is_plan(&a.file) || towride::scene::is_scene(&a.file) {
-        return crate::scene_run::run(a);
+pub fn run(a: &RunArgs) -> CliResult {
+    let overrides = a
+        .set
+        .iter()
+        .map(|s| Override::from_argument(s))
+        .collect::<Result<Vec<_>, _>>()?;
+    let loader = Loader::with_overrides(overrides);
+    if !plan::is_plan(&a.file) {
+        let job = Job::from_file(&a.file, &loader)?;
+        return run_job(&job, &a.out, a.json);
     }
-    let mech = spec::load(&a.file).map_err(|e| e.to_string())?;
-    let sys = model::System::new(mech.model);
-    crate::model_check(&sys)?;
-    let warnings = crate::redundancy_warnings(&sys);
-    if !a.json {
-        for w in &warnings {
+    let p = plan::load(&a.file)?;
+    if a.list {
+        for c in &p.cases {
+            println!("{}", c.name);
+        }
+        return Ok(0);
+    }
+    for name in &a.case {
+        if p.case(name).is_none() {
+            return Err(SceneError::NoSuchCase(format!(
+                "{}: no case '{name}' (--list shows them)",
+                a.file.display()
+            ))
+            .into());
+        }
+    }
+    let mut code = 0;
+    for c in p
+        .cases
+        .iter()
+        .filter(|c| a.case.is_empty() || a.case.contains(&c.name))
+    {
+        let job = Job::from_scene(p.scene(c, &loader)?)?;
+        code = code.max(run_job(&job, &a.out.join(&c.name), a.json)?);
+    }
+    Ok(code)
+}
+
+/// Runs one job, writes its files and prints its summary; exit code 1 when the solver
+/// stopped it early.
+fn run_job(job: &Job, out: &Path, json: bool) -> CliResult {
+    if !json {
+        for w in &job.warnings {
             eprintln!("warning: {w}");
         }
     }
-    let t_end = mech.run.end_time_s;
-    let pb = crate::progress((t_end * mech.run.sample_rate_hz).round() as u64, a.json);
-    let (start, statics) = match mech.run.start {
-        spec::Start::Assembly => (None, None),
-        spec::Start::Statics => {
-            let st =
-                model::statics::equilibrium(&sys, 0.0, &mech.solver).map_err(|e| e.to_string())?;
-            (Some((st.y.clone(), st.yp.clone())), Some(st.report))
-        }
-    };
-    let res = model::run::simulate(
-        &sys,
-        0.0,
-        t_end,
-        mech.run.sample_rate_hz,
-        &mech.solver,
-        start,
-        &pb,
-    );
-    pb.finish_and_clear();
-    std::fs::create_dir_all(&a.out).map_err(|e| format!("{}: {e}", a.out.display()))?;
-    let csv_path = a.out.join("outputs.csv");
-    res.write_csv(&csv_path)
-        .map_err(|e| format!("{}: {e}", csv_path.display()))?;
-    let s = &res.stats;
-    let summary = json!({
-        "file": a.file.display().to_string(),
-        "model": sys.model.name,
-        "status": if res.error.is_none() { "completed" } else { "failed" },
-        "error": res.error.as_ref().map(|e| e.0.clone()),
-        "failed_at_s": res.error.as_ref().map(|e| e.1),
-        "t_end_s": t_end,
-        "samples": res.times.len(),
-        "equations": sys.size(),
-        "constraint_rows": sys.m,
-        "redundant_rows": sys.redundant.len(),
-        "warnings": warnings,
-        "assembly": res.assembly,
-        "statics": statics,
-        "steps": s.steps,
-        "rejected_steps": s.rejected_steps,
-        "residual_evals": s.residual_evals,
-        "jacobian_evals": s.jacobian_evals,
-        "lu_factorizations": s.lu_factorizations,
-        "newton_iterations": s.newton_iterations,
-        "wall_s": res.wall_s,
-        "outputs_csv": csv_path.display().to_string(),
-        "channels": res.peaks(),
-    });
-    let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
-    std::fs::write(a.out.join("summary.json"), &text).map_err(|e| e.to_string())?;
-    if a.json {
-        println!("{text}");
+    let samples = (job.settings.t_end * job.settings.sample_rate).round() as u64;
+    let pb = crate::progress(samples, json);
+    let mut res = job.run(&pb)?;
+    res.write(out)?;
+    if json {
+        println!("{}", res.summary.to_json());
     } else {
-        println!(
-            "{}: {}",
-            sys.model.name,
-            if res.error.is_none() {
-                "completed"
-            } else {
-                "FAILED"
-            }
-        );
-        println!(
-            "  {} steps, {} Newton iterations, {} Jacobians, {:.3} s wall; outputs in {}",
-            s.steps,
-            s.newton_iterations,
-            s.jacobian_evals,
-            res.wall_s,
-            csv_path.display()
-        );
-        for p in res.peaks() {
-            println!(
-                "  {:<32} min {:>12.5e} max {:>12.5e} {:<7} peak at {:.4} s",
-                p["name"].as_str().unwrap_or(""),
-                p["min"].as_f64().unwrap_or(f64::NAN),
-                p["max"].as_f64().unwrap_or(f64::NAN),
-                p["unit"].as_str().unwrap_or(""),
-                p["time_of_peak_s"].as_f64().unwrap_or(f64::NAN)
-            );
-        }
+        print_summary(&res);
     }
-    if let Some((e, t)) = &res.error {
+    if let Some((e, t)) = res.failure() {
         eprintln!(
             "error: run stopped at t = {t:.6} s: {e}\n  results up to that time are in {}",
-            csv_path.display()
+            out.join("outputs.csv").display()
         );
         return Ok(1);
     }
     Ok(0)
+}
+
+fn print_summary(r: &RunResult) {
+    let s = &r.summary;
+    println!(
+        "{}: {} in {:.1} s wall, {} steps, {} Newton iterations, {} Jacobians; outputs in {}",
+        s.name,
+        if r.completed() { "completed" } else { "FAILED" },
+        s.wall_s,
+        s.solver.steps,
+        s.solver.newton_iterations,
+        s.solver.jacobian_evals,
+        s.outputs_csv.as_deref().unwrap_or("")
+    );
+    for l in &s.lift_off {
+        println!(
+            "  wheel {} off the road from {:.3} s for {:.3} s",
+            l.wheel, l.start_s, l.duration_s
+        );
+    }
+    if let Some(p) = s.plots.as_deref().filter(|p| p.starts_with("not written")) {
+        eprintln!("warning: plots {p}");
+    }
+    for (name, c) in s
+        .channels
+        .iter()
+        .filter(|(n, _)| !n.starts_with("hitch_eta_"))
+    {
+        println!(
+            "  {name:<24} min {:>11.4e} at {:>7.4} s   max {:>11.4e} at {:>7.4} s  [{}]",
+            c.min, c.t_min, c.max, c.t_max, c.unit
+        );
+    }
 }

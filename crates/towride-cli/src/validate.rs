@@ -1,6 +1,7 @@
 //! `towride validate RUN.toml|FOLDER`: compares recorded runs with the simulation;
 //! `towride validate synth`: writes synthetic runs (one, or the 72-run plan).
 
+use crate::CliResult;
 use std::path::{Path, PathBuf};
 
 use clap::{Args, Subcommand};
@@ -89,7 +90,7 @@ struct SynthArgs {
     seed: u64,
 }
 
-pub fn run(a: &ValidateArgs) -> Result<i32, String> {
+pub fn run(a: &ValidateArgs) -> CliResult {
     if let Some(ValidateCommand::Synth(s)) = &a.cmd {
         return synth(s);
     }
@@ -163,7 +164,7 @@ pub fn run(a: &ValidateArgs) -> Result<i32, String> {
     Ok(if res.failures.is_empty() { 0 } else { 1 })
 }
 
-fn synth(a: &SynthArgs) -> Result<i32, String> {
+fn synth(a: &SynthArgs) -> CliResult {
     let sensor = SensorModel {
         noise_rms_mps2: a.noise_rms_mps2,
         filter: AcqFilter {

@@ -1,5 +1,6 @@
 //! `towride verify`: the published benchmarks at a few tolerances.
 
+use crate::CliResult;
 use clap::Args;
 
 use crate::MethodArg;
@@ -44,7 +45,7 @@ pub struct VerifyArgs {
     newton_tol_cap: bool,
 }
 
-pub fn run(a: &VerifyArgs) -> Result<i32, String> {
+pub fn run(a: &VerifyArgs) -> CliResult {
     let benches = select(&a.problems)?;
     let pb = crate::progress((benches.len() * a.tol.len()) as u64, a.json);
     let mut records = Vec::new();

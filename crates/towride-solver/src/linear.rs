@@ -9,6 +9,7 @@ use faer::sparse::SymbolicSparseColMat;
 use nalgebra::{DMatrix, DVectorViewMut, Dyn, LU};
 
 use super::sparse_lu::{Refactor, SparseLu};
+use super::SolverError;
 
 /// Why a factorisation or solve failed; the solver turns this into a step cut or an error.
 #[derive(Debug, Clone)]
@@ -67,15 +68,15 @@ impl NewtonMatrix {
         n: usize,
         pattern: Option<Vec<(usize, usize)>>,
         dense: bool,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, SolverError> {
         let mut cols: Vec<Vec<usize>> = vec![Vec::new(); n];
         match pattern {
             Some(p) => {
                 for (r, c) in p {
                     if r >= n || c >= n {
-                        return Err(format!(
-                            "pattern entry ({r}, {c}) outside a {n} x {n} matrix"
-                        ));
+                        return Err(SolverError::SizeMismatch {
+                            what: format!("pattern entry ({r}, {c}) outside a {n} x {n} matrix"),
+                        });
                     }
                     cols[c].push(r);
                 }
@@ -473,7 +474,7 @@ fn fill_reducing_order(
     n: usize,
     col_ptr: &[usize],
     row_idx: &[usize],
-) -> Result<Vec<usize>, String> {
+) -> Result<Vec<usize>, SolverError> {
     let sym = SymbolicSparseColMat::new_checked(n, n, col_ptr.to_vec(), None, row_idx.to_vec());
     let (mut perm, mut perm_inv) = (vec![0usize; n], vec![0usize; n]);
     let req = faer::sparse::linalg::amd::order_maybe_unsorted_scratch::<usize>(n, row_idx.len());
@@ -485,7 +486,9 @@ fn fill_reducing_order(
         Default::default(),
         MemStack::new(&mut mem),
     )
-    .map_err(|e| format!("fill-reducing order failed: {e:?}"))?;
+    .map_err(|e| SolverError::SizeMismatch {
+        what: format!("fill-reducing order failed: {e:?}"),
+    })?;
     Ok(perm)
 }
 

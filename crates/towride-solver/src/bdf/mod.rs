@@ -169,8 +169,7 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
             LinearSolver::Sparse => false,
             LinearSolver::Auto => pattern.is_none() || n < opts.dense_limit,
         };
-        let jac = NewtonMatrix::new(n, pattern, dense)
-            .map_err(|what| SolverError::SizeMismatch { what })?;
+        let jac = NewtonMatrix::new(n, pattern, dense)?;
         let mut phi = vec![vec![0.0; n]; MAXORD + 2];
         phi[0].copy_from_slice(y0);
         phi[1].copy_from_slice(yp0); // scaled by h once the first step size is known

@@ -86,8 +86,12 @@ pub struct Mesh {
 
 impl Mesh {
     /// Reads `path` and builds variant `variant` (None: the base sections).
-    pub fn read(path: &Path, variant: Option<u32>) -> Result<Mesh, InputError> {
-        Mesh::from_source(&Source::read(path)?, variant)
+    pub fn read(
+        path: &Path,
+        variant: Option<u32>,
+        loader: &crate::input::Loader,
+    ) -> Result<Mesh, InputError> {
+        Mesh::from_source(&loader.toml(path)?, variant)
     }
 
     pub fn from_source(src: &Source, variant: Option<u32>) -> Result<Mesh, InputError> {

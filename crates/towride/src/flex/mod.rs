@@ -18,10 +18,10 @@ pub mod material;
 pub mod mesh;
 pub mod modal;
 pub mod modes;
+pub mod report;
 pub mod section;
 pub mod selection;
 
-use std::fmt;
 use std::path::Path;
 
 pub use assemble::Assembly;
@@ -35,31 +35,22 @@ pub use selection::{LoadPath, Rule, Selection};
 use crate::input::InputError;
 
 /// A flexible-body failure: a bad file, or a model the numerics refuse.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, thiserror::Error)]
 pub enum FlexError {
-    Input(InputError),
+    /// A bad FE file.
+    #[error(transparent)]
+    Input(#[from] InputError),
     /// The file is fine but the model is not (a mechanism, too many modes asked...).
+    #[error("{file}: {message}")]
     Model {
+        /// The FE file.
         file: String,
+        /// What is wrong.
         message: String,
     },
-}
-
-impl fmt::Display for FlexError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            FlexError::Input(e) => write!(f, "{e}"),
-            FlexError::Model { file, message } => write!(f, "{file}: {message}"),
-        }
-    }
-}
-
-impl std::error::Error for FlexError {}
-
-impl From<InputError> for FlexError {
-    fn from(e: InputError) -> Self {
-        FlexError::Input(e)
-    }
+    /// A mode selection that cannot be made as asked.
+    #[error("{0}")]
+    Selection(String),
 }
 
 /// Choices that override the file's.
@@ -91,8 +82,9 @@ impl FlexBody {
         path: &Path,
         variant: Option<u32>,
         options: &Options,
+        loader: &crate::input::Loader,
     ) -> Result<FlexBody, FlexError> {
-        let mesh = Mesh::read(path, variant)?;
+        let mesh = Mesh::read(path, variant, loader)?;
         FlexBody::from_mesh(mesh, options)
     }
 
@@ -128,5 +120,6 @@ impl FlexBody {
 
 /// The modal data of `path` / `variant` with the file's selection flagged.
 pub fn modal_data(path: &Path, variant: Option<u32>) -> Result<ModalData, FlexError> {
-    Ok(FlexBody::load(path, variant, &Options::default())?.modal)
+    let loader = crate::input::Loader::new();
+    Ok(FlexBody::load(path, variant, &Options::default(), &loader)?.modal)
 }

@@ -12,8 +12,13 @@ pub struct Row {
 }
 
 /// Reads `file` (`#` comments, trimmed fields) and returns the columns `names` of every
-/// row as finite numbers.
-pub fn read_columns(file: &Path, names: &[&str]) -> Result<Vec<Row>, InputError> {
+/// row as finite numbers, with the loader's overrides of this file applied (path
+/// `column[row]`, the row counted from 0 over the data rows).
+pub fn read_columns(
+    file: &Path,
+    names: &[&str],
+    loader: &super::Loader,
+) -> Result<Vec<Row>, InputError> {
     let err = |line: Option<usize>, field: &str, msg: String| error(file, line, field, msg);
     let mut rdr = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
@@ -57,6 +62,45 @@ pub fn read_columns(file: &Path, names: &[&str]) -> Result<Vec<Row>, InputError>
             values.push(v);
         }
         rows.push(Row { line, values });
+    }
+    for e in loader.matching(file) {
+        let o = &e.ov;
+        let cell = o
+            .path
+            .strip_suffix(']')
+            .and_then(|p| p.split_once('['))
+            .and_then(|(c, r)| Some((c, r.parse::<usize>().ok()?)));
+        let Some((col, row)) = cell else {
+            return Err(o.origin.at_path(format!(
+                "a CSV value is addressed as `column[row]`, not `{}`",
+                o.path
+            )));
+        };
+        let c = names.iter().position(|n| *n == col).ok_or_else(|| {
+            o.origin.at_path(format!(
+                "{} has no column `{col}` that is read (columns: {})",
+                file.display(),
+                names.join(", ")
+            ))
+        })?;
+        let n = rows.len();
+        let r = rows.get_mut(row).ok_or_else(|| {
+            o.origin.at_path(format!(
+                "{} has {n} data rows; row {row} does not exist",
+                file.display()
+            ))
+        })?;
+        r.values[c] = o
+            .value
+            .trim()
+            .parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .ok_or_else(|| {
+                o.origin
+                    .at_path(format!("`{}` is not a finite number", o.value))
+            })?;
+        e.placed();
     }
     Ok(rows)
 }

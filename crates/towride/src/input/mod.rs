@@ -6,7 +6,11 @@
 //! as `file:line:column: field `path`: message`, the line found from the TOML spans.
 
 pub mod csv_table;
+pub mod loader;
 pub mod overrides;
+
+pub use loader::Loader;
+pub use overrides::Override;
 
 use std::fmt;
 use std::ops::Range;
@@ -95,6 +99,7 @@ pub fn path_string(path: &[Seg]) -> String {
 }
 
 /// A TOML file kept with its text and spans, so any field can be located later.
+#[derive(Debug)]
 pub struct Source {
     pub path: PathBuf,
     text: String,
@@ -102,17 +107,11 @@ pub struct Source {
 }
 
 impl Source {
-    /// Reads and parses `path` (syntax only; typing happens in [`Source::parse`]).
+    /// Reads and parses `path` as it is on disk (syntax only; typing happens in
+    /// [`Source::parse`]). Files of a run are read through a [`Loader`] instead, which
+    /// applies the run's overrides.
     pub fn read(path: &Path) -> Result<Source, InputError> {
-        let text = std::fs::read_to_string(path).map_err(|e| InputError {
-            file: path.to_path_buf(),
-            line: None,
-            column: None,
-            field: String::new(),
-            message: format!("cannot read: {e}"),
-        })?;
-        let text = overrides::apply(path, text)?;
-        Source::from_text(path, text)
+        Source::from_text(path, loader::read_text(path)?)
     }
 
     /// Parses `text` as if read from `path` (used by tests and generated inputs).

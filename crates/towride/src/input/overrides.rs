@@ -1,81 +1,155 @@
-//! Property overrides: replace values in input files as they are read, by file and
-//! TOML path, without touching the files. Parameter sweeps use it to vary any value of
-//! any property file ("vehicles/car_front.toml" `spring.stiffness_n_m` = 2.5e4) through
-//! the normal loaders, so every override is validated like a hand-edited file.
+//! Property overrides: values in input files replaced as they are read, by file and
+//! path, without touching the files. A sweep varies any value of any file a case reads
+//! ("vehicles/fabia/front_mcpherson.toml" `spring.stiffness_n_m` = 2.5e4); a single run
+//! takes them from `--set FILE:PATH=VALUE` or a scene's `[[override]]` table. The
+//! overrides travel explicitly with the [`super::Loader`] that reads the files, and every
+//! override is validated like a hand-edited value by the file's own reader.
 //!
-//! Overrides are set per thread for the duration of a closure ([`with`]), so parallel
-//! sweep cases do not see each other's values.
+//! Paths: TOML files `table.key`, `array[2].key`; `.tir` files `SECTION.KEY`; CSV tables
+//! `column[row]` (row counted from 0 over the data rows).
 
-use std::cell::RefCell;
 use std::path::Path;
 
 use toml_edit::{DocumentMut, Item, Value};
 
+use super::loader::Entry;
 use super::InputError;
 
-/// One value to replace: in every file whose path ends with `file`, at the dotted TOML
-/// path `path` (`table.key`, `array[2].key`), the TOML value `value` (`2.5e4`, `"text"`,
-/// `[1, 2]`).
+/// One value to replace: in every file whose path ends with `file`, at `path`, the value
+/// `value` (TOML syntax for TOML files: `2.5e4`, `"text"`, `[1, 2]`; a number for `.tir`
+/// and CSV files).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Override {
     pub file: String,
     pub path: String,
     pub value: String,
+    /// Where the override was written, for errors about it.
+    pub origin: Origin,
 }
 
-thread_local! {
-    static ACTIVE: RefCell<Vec<Override>> = const { RefCell::new(Vec::new()) };
+impl Override {
+    /// An override set by the program itself (`what` says which part of it).
+    pub fn program(file: &str, path: &str, value: impl Into<String>, what: &str) -> Override {
+        Override {
+            file: file.into(),
+            path: path.into(),
+            value: value.into(),
+            origin: Origin::Program(what.into()),
+        }
+    }
+
+    /// Parses a command-line `FILE:PATH=VALUE`.
+    pub fn from_argument(arg: &str) -> Result<Override, InputError> {
+        let bad = |m: &str| Origin::Argument(arg.to_string()).error(m.to_string());
+        let (lhs, value) = arg
+            .split_once('=')
+            .ok_or_else(|| bad("write FILE:PATH=VALUE, e.g. hitch.toml:hitch.variant=7"))?;
+        let (file, path) = lhs
+            .rsplit_once(':')
+            .ok_or_else(|| bad("write FILE:PATH=VALUE, e.g. hitch.toml:hitch.variant=7"))?;
+        if file.trim().is_empty() || path.trim().is_empty() || value.trim().is_empty() {
+            return Err(bad("FILE, PATH and VALUE must not be empty"));
+        }
+        Ok(Override {
+            file: file.trim().into(),
+            path: path.trim().into(),
+            value: value.trim().into(),
+            origin: Origin::Argument(arg.to_string()),
+        })
+    }
 }
 
-/// Runs `f` with `list` active on this thread (nested calls add to the outer list).
-pub fn with<R>(list: &[Override], f: impl FnOnce() -> R) -> R {
-    let before = ACTIVE.with(|a| {
-        let mut a = a.borrow_mut();
-        let n = a.len();
-        a.extend_from_slice(list);
-        n
-    });
-    let out = f();
-    ACTIVE.with(|a| a.borrow_mut().truncate(before));
-    out
+/// Where an override was written.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Origin {
+    /// In an input file: located errors for its `file` and its `path` fields (their
+    /// messages are replaced).
+    File {
+        file: Box<InputError>,
+        path: Box<InputError>,
+    },
+    /// A command-line argument.
+    Argument(String),
+    /// Set by the program (a stress case, the validation's lead-in).
+    Program(String),
 }
 
-/// Applies the active overrides that match `path` to its text.
-pub fn apply(path: &Path, text: String) -> Result<String, InputError> {
-    let list: Vec<Override> = ACTIVE.with(|a| {
-        a.borrow()
-            .iter()
-            .filter(|o| path.ends_with(&o.file))
-            .cloned()
-            .collect()
-    });
-    if list.is_empty() {
+impl Origin {
+    fn error(&self, message: String) -> InputError {
+        match self {
+            Origin::File { path, .. } => InputError {
+                message,
+                ..(**path).clone()
+            },
+            Origin::Argument(a) => InputError {
+                file: "command line".into(),
+                line: None,
+                column: None,
+                field: format!("--set {a}"),
+                message,
+            },
+            Origin::Program(w) => InputError {
+                file: "towride".into(),
+                line: None,
+                column: None,
+                field: w.clone(),
+                message,
+            },
+        }
+    }
+
+    /// An error about the override's file.
+    pub fn at_file(&self, message: String) -> InputError {
+        match self {
+            Origin::File { file, .. } => InputError {
+                message,
+                ..(**file).clone()
+            },
+            other => other.error(message),
+        }
+    }
+
+    /// An error about the override's path or value.
+    pub fn at_path(&self, message: String) -> InputError {
+        self.error(message)
+    }
+}
+
+/// Applies `entries` (the overrides matching `path`) to the TOML `text`.
+pub(crate) fn apply_toml(
+    path: &Path,
+    text: String,
+    entries: &[&Entry],
+) -> Result<String, InputError> {
+    if entries.is_empty() {
         return Ok(text);
     }
-    let err = |field: &str, message: String| InputError {
+    let mut doc: DocumentMut = text.parse().map_err(|e| InputError {
         file: path.to_path_buf(),
         line: None,
         column: None,
-        field: field.to_string(),
-        message,
-    };
-    let mut doc: DocumentMut = text
-        .parse()
-        .map_err(|e| err("", format!("cannot apply overrides: {e}")))?;
-    for o in &list {
-        let value: Value = o.value.parse().map_err(|e| {
-            err(
-                &o.path,
-                format!("override value `{}` is not TOML: {e}", o.value),
-            )
+        field: String::new(),
+        message: format!("TOML syntax (reading it to apply overrides): {e}"),
+    })?;
+    for e in entries {
+        let o = &e.ov;
+        let value: Value = o.value.parse().map_err(|err| {
+            o.origin
+                .at_path(format!("override value `{}` is not TOML: {err}", o.value))
         })?;
         match locate(doc.as_item_mut(), &o.path) {
             Some(slot) => *slot = Item::Value(value),
             // A key missing from an existing table is added (the file's own checks
             // then refuse a key that does not belong there).
-            None => insert(doc.as_item_mut(), &o.path, value)
-                .ok_or_else(|| err(&o.path, "override path not found in the file".into()))?,
+            None => insert(doc.as_item_mut(), &o.path, value).ok_or_else(|| {
+                o.origin.at_path(format!(
+                    "`{}` is not a value or table of {}",
+                    o.path,
+                    path.display()
+                ))
+            })?,
         }
+        e.placed();
     }
     Ok(doc.to_string())
 }
@@ -146,40 +220,59 @@ fn walk_table<'a>(t: &'a mut toml_edit::Table, segs: &Segs) -> Option<&'a mut It
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::input::Loader;
+
+    fn ov(path: &str, value: &str) -> Override {
+        Override::program("car.toml", path, value, "test")
+    }
 
     #[test]
     fn overrides_replace_values_by_path_and_refuse_missing_paths() {
+        let dir = std::env::temp_dir().join(format!("towride-ov-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let p = dir.join("car.toml");
         let text =
-            "[spring]\nstiffness_n_m = 1.0\n\n[[axle]]\nmass_kg = 2.0\n[[axle]]\nmass_kg = 3.0\n"
-                .to_string();
-        let p = Path::new("vehicles/car.toml");
-        let ov = |path: &str, value: &str| Override {
-            file: "car.toml".into(),
-            path: path.into(),
-            value: value.into(),
-        };
-        let out = with(
-            &[
-                ov("spring.stiffness_n_m", "2.5e4"),
-                ov("axle[1].mass_kg", "7.5"),
-            ],
-            || apply(p, text.clone()),
-        )
-        .unwrap();
-        let doc: DocumentMut = out.parse().unwrap();
+            "[spring]\nstiffness_n_m = 1.0\n\n[[axle]]\nmass_kg = 2.0\n[[axle]]\nmass_kg = 3.0\n";
+        std::fs::write(&p, text).unwrap();
+        let l = Loader::with_overrides(vec![
+            ov("spring.stiffness_n_m", "2.5e4"),
+            ov("axle[1].mass_kg", "7.5"),
+        ]);
+        let doc: DocumentMut = l.toml(&p).unwrap().text().parse().unwrap();
         assert_eq!(doc["spring"]["stiffness_n_m"].as_float(), Some(2.5e4));
         assert_eq!(doc["axle"][1]["mass_kg"].as_float(), Some(7.5));
         assert_eq!(doc["axle"][0]["mass_kg"].as_float(), Some(2.0));
-        let e = with(&[ov("sprin.stiffness_n_m", "1")], || apply(p, text.clone())).unwrap_err();
-        assert!(e.field.contains("sprin.stiffness_n_m"));
+        assert!(l.check_used().is_ok());
+        let l = Loader::with_overrides(vec![ov("sprin.stiffness_n_m", "1")]);
+        let e = l.toml(&p).unwrap_err();
+        assert!(e.message.contains("sprin.stiffness_n_m"), "{e}");
         // A missing key of an existing table is added.
-        let out = with(&[ov("spring.damping_n_s_m", "3.0")], || {
-            apply(p, text.clone())
-        })
-        .unwrap();
-        let doc: DocumentMut = out.parse().unwrap();
+        let l = Loader::with_overrides(vec![ov("spring.damping_n_s_m", "3.0")]);
+        let doc: DocumentMut = l.toml(&p).unwrap().text().parse().unwrap();
         assert_eq!(doc["spring"]["damping_n_s_m"].as_float(), Some(3.0));
-        // Other files and other threads are untouched.
-        assert_eq!(apply(p, text.clone()).unwrap(), text);
+        // A loader without overrides reads the file as it is.
+        assert_eq!(Loader::new().toml(&p).unwrap().text(), text);
+        // An override of a file never read is reported, naming what was read.
+        let l = Loader::with_overrides(vec![Override::program("other.toml", "a", "1", "test")]);
+        l.toml(&p).unwrap();
+        let e = l.check_used().unwrap_err();
+        assert!(
+            e.message.contains("other.toml") && e.message.contains("car.toml"),
+            "{e}"
+        );
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
+    fn command_line_overrides_parse_and_refuse_bad_forms() {
+        let o = Override::from_argument("fabia/hitch.toml:hitch.variant=7").unwrap();
+        assert_eq!(
+            (o.file.as_str(), o.path.as_str(), o.value.as_str()),
+            ("fabia/hitch.toml", "hitch.variant", "7")
+        );
+        for bad in ["hitch.toml", "hitch.toml=7", ":a=1", "f:a="] {
+            let e = Override::from_argument(bad).unwrap_err();
+            assert!(e.field.contains(bad), "{e}");
+        }
     }
 }

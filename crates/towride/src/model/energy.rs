@@ -8,7 +8,7 @@
 
 use serde::Serialize;
 
-use super::run::RunResult;
+use super::run::Samples;
 use super::system::System;
 
 #[derive(Clone, Debug, Serialize)]
@@ -34,7 +34,7 @@ pub struct BodyEnergy {
 }
 
 /// Per modal body, each mode's strain-energy share over `run`.
-pub fn strain_shares(sys: &System, run: &RunResult) -> Vec<BodyEnergy> {
+pub fn strain_shares(sys: &System, run: &Samples) -> Vec<BodyEnergy> {
     let mut out = Vec::new();
     for (b, rows) in &run.modal {
         let Some(m) = &sys.model.bodies[*b].modal else {

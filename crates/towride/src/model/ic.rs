@@ -4,6 +4,7 @@
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 
 use super::system::{MassBlock, System};
+use super::ModelError;
 use towride_solver::linear::NewtonMatrix;
 
 /// What the initial-state analysis did.
@@ -39,7 +40,7 @@ pub fn assemble(
     t: f64,
     q: &mut [f64],
     v: &mut [f64],
-) -> Result<AssemblyReport, String> {
+) -> Result<AssemblyReport, ModelError> {
     let mut rep = AssemblyReport::default();
     if sys.m == 0 {
         return Ok(rep);
@@ -63,15 +64,17 @@ pub fn assemble(
                     a
                 }
             });
-            return Err(format!(
+            return Err(ModelError::Assembly(format!(
                 "kinematic assembly did not converge: largest violation {:.3e} on {}",
                 worst.1,
                 sys.equation_name(sys.offsets().2 + worst.0)
-            ));
+            )));
         }
         let bm = dense_b(sys, &b);
-        let dx = min_norm(&bm, &DVector::from_vec(g.iter().map(|x| -x).collect()))
-            .ok_or("constraint Jacobian is rank-deficient during assembly")?;
+        let dx =
+            min_norm(&bm, &DVector::from_vec(g.iter().map(|x| -x).collect())).ok_or_else(|| {
+                ModelError::Assembly("constraint Jacobian is rank-deficient during assembly".into())
+            })?;
         sys.apply_increment(q, dx.as_slice());
         rep.iterations = it + 1;
     }
@@ -79,7 +82,8 @@ pub fn assemble(
     let bm = dense_b(sys, &b);
     let vv = DVector::from_column_slice(v);
     let r = &bm * &vv + DVector::from_vec(gt);
-    let dv = min_norm(&bm, &(-r)).ok_or("constraint Jacobian is rank-deficient")?;
+    let dv = min_norm(&bm, &(-r))
+        .ok_or_else(|| ModelError::Assembly("constraint Jacobian is rank-deficient".into()))?;
     rep.velocity_correction = inf(dv.as_slice());
     for (a, d) in v.iter_mut().zip(dv.iter()) {
         *a += d;
@@ -102,7 +106,7 @@ pub fn accelerations(
     q: &[f64],
     v: &[f64],
     x: &[f64],
-) -> Result<(Vec<f64>, Vec<f64>), String> {
+) -> Result<(Vec<f64>, Vec<f64>), ModelError> {
     let f = sys.loads(t, q, v, x, None);
     let (rows, rhs_c) = kept_rows(sys, t, q, v);
     if let Some(sol) = schur_solve(sys, q, &f, &rows, &rhs_c) {
@@ -263,7 +267,7 @@ fn saddle_point_lu(
     f: Vec<f64>,
     rows: &Rows,
     rhs_c: &[f64],
-) -> Result<(Vec<f64>, Vec<f64>), String> {
+) -> Result<(Vec<f64>, Vec<f64>), ModelError> {
     let (n, m) = (sys.nv, sys.m);
     let mut cache = sys.accel.borrow_mut();
     if cache.is_none() {
@@ -291,10 +295,10 @@ fn saddle_point_lu(
         rhs[n + row] = rhs_c[*row];
     }
     let singular = |e: towride_solver::linear::Singular| {
-        format!(
+        ModelError::Singular(format!(
             "the augmented mass matrix is singular (a body without mass or inertia, or a redundant constraint left in): {}",
             e.detail
-        )
+        ))
     };
     a.factor(&vec![1.0; n + m], true).map_err(singular)?;
     a.solve(&mut rhs).map_err(singular)?;
@@ -328,7 +332,7 @@ pub fn ext_rates(
     q: &[f64],
     v: &[f64],
     x: &[f64],
-) -> Result<Vec<f64>, String> {
+) -> Result<Vec<f64>, ModelError> {
     let mut xd = vec![0.0; sys.ne];
     let mut f = vec![0.0; sys.nv];
     for e in &sys.ext {
@@ -349,7 +353,12 @@ pub fn ext_rates(
         let sol = jm
             .lu()
             .solve(&DVector::from_iterator(e.n, r0.iter().map(|z| -z)))
-            .ok_or_else(|| format!("{}: singular rate equations", sys.ext_state_name(e, 0)))?;
+            .ok_or_else(|| {
+                ModelError::Singular(format!(
+                    "{}: singular rate equations",
+                    sys.ext_state_name(e, 0)
+                ))
+            })?;
         xd[r].copy_from_slice(sol.as_slice());
     }
     Ok(xd)
@@ -363,7 +372,7 @@ pub fn initial_state(
     q: &mut [f64],
     v: &mut [f64],
     x: &[f64],
-) -> Result<(Vec<f64>, Vec<f64>, AssemblyReport), String> {
+) -> Result<(Vec<f64>, Vec<f64>, AssemblyReport), ModelError> {
     let rep = assemble(sys, t, q, v)?;
     let (vd, lam) = accelerations(sys, t, q, v, x)?;
     let qd = sys.qdot_of(q, v);
@@ -388,10 +397,13 @@ mod tests {
     /// on Andrews' squeezing mechanism (seven bodies, two closed loops, a motor).
     #[test]
     fn schur_complement_matches_the_saddle_point_lu() {
-        let mech = crate::model::spec::load(std::path::Path::new(concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/../../scenes/examples/andrews.toml"
-        )))
+        let mech = crate::model::spec::load(
+            std::path::Path::new(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/../../scenes/examples/andrews.toml"
+            )),
+            &crate::input::Loader::new(),
+        )
         .expect("example loads");
         let sys = System::new(mech.model);
         let (mut q, mut v) = sys.initial_q_v();

@@ -15,6 +15,7 @@ use nalgebra::{DMatrix, SymmetricEigen};
 use serde::Serialize;
 
 use super::system::System;
+use super::ModelError;
 use towride_solver::problem::JacobianSink;
 
 #[derive(Clone, Debug, Serialize)]
@@ -88,7 +89,7 @@ fn null_space(b: &DMatrix<f64>) -> DMatrix<f64> {
 }
 
 /// Linearises about the solver state (t, y) and solves the eigenproblem.
-pub fn linearise(sys: &System, t: f64, y: &[f64]) -> Result<Linearisation, String> {
+pub fn linearise(sys: &System, t: f64, y: &[f64]) -> Result<Linearisation, ModelError> {
     let (_, ov, ol, om) = sys.offsets();
     let oe = sys.oe();
     let (nv, ne) = (sys.nv, sys.ne);
@@ -119,10 +120,12 @@ pub fn linearise(sys: &System, t: f64, y: &[f64]) -> Result<Linearisation, Strin
     let mr_inv = mr
         .clone()
         .try_inverse()
-        .ok_or("the reduced mass matrix is singular")?;
-    let e_inv = e_rate
-        .try_inverse()
-        .ok_or("the extension states' rate matrix is singular (an algebraic tyre state)")?;
+        .ok_or_else(|| ModelError::Linearise("the reduced mass matrix is singular".into()))?;
+    let e_inv = e_rate.try_inverse().ok_or_else(|| {
+        ModelError::Linearise(
+            "the extension states' rate matrix is singular (an algebraic tyre state)".into(),
+        )
+    })?;
     let a_k = &mr_inv * &kr;
     let a_c = &mr_inv * &cr;
     let a_d = &mr_inv * &dr;
@@ -152,7 +155,7 @@ pub fn linearise(sys: &System, t: f64, y: &[f64]) -> Result<Linearisation, Strin
     }
     let eig = a
         .eigen()
-        .map_err(|e| format!("eigenvalue solver failed: {e:?}"))?;
+        .map_err(|e| ModelError::Linearise(format!("eigenvalue solver failed: {e:?}")))?;
     let s = eig.S();
     let u = eig.U();
     let elements = element_stiffness(sys, t, y);

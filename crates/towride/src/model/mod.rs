@@ -26,3 +26,42 @@ pub mod system;
 
 pub use desc::Model;
 pub use system::System;
+
+use towride_solver::SolverError;
+
+/// Why a model could not be built, started or analysed.
+#[derive(Debug, Clone, thiserror::Error)]
+pub enum ModelError {
+    /// A value the model builder refuses, before it is located in a file: `item` names
+    /// the body or element, `field` the value (as the file keys name it).
+    #[error("{item}: field `{field}`: {message}")]
+    Build {
+        /// The body or element, e.g. `spring 'damper_fl'`.
+        item: String,
+        /// The value's key, e.g. `bump_stop.clearance_m`.
+        field: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// Something the solver cannot run (a motion on a direction the joints lock).
+    #[error("{0}")]
+    Unsupported(String),
+    /// Kinematic assembly or the consistent initial state failed.
+    #[error("{0}")]
+    Assembly(String),
+    /// A singular system at the start or at an output.
+    #[error("{0}")]
+    Singular(String),
+    /// The static equilibrium was not found.
+    #[error("{0}")]
+    Statics(String),
+    /// Starting at speed failed.
+    #[error("{0}")]
+    Start(String),
+    /// The linearisation failed.
+    #[error("{0}")]
+    Linearise(String),
+    /// The integrator failed in a model analysis (statics relaxation, settling run).
+    #[error(transparent)]
+    Solver(#[from] SolverError),
+}

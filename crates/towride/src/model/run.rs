@@ -8,9 +8,10 @@ use super::output::{channels, evaluate, ChannelInfo};
 use super::system::System;
 use towride_solver::{Advance, Bdf, SolverOptions, Stats};
 
-/// The sampled result of a run.
+/// The sampled result of a simulation: channels on the sample grid, solver statistics,
+/// and the final state.
 #[derive(Clone, Debug)]
-pub struct RunResult {
+pub struct Samples {
     pub channels: Vec<ChannelInfo>,
     pub times: Vec<f64>,
     /// rows[k][c]: channel c at times[k].
@@ -36,10 +37,10 @@ pub fn simulate(
     opts: &SolverOptions,
     start: Option<(Vec<f64>, Vec<f64>)>,
     progress: &dyn crate::progress::Progress,
-) -> RunResult {
+) -> Samples {
     let wall = Instant::now();
     let chans = channels(sys);
-    let mut res = RunResult {
+    let mut res = Samples {
         channels: chans.clone(),
         times: Vec::new(),
         rows: Vec::new(),
@@ -116,7 +117,7 @@ pub fn simulate(
     res
 }
 
-fn record_modal(sys: &System, res: &mut RunResult, y: &[f64]) {
+fn record_modal(sys: &System, res: &mut Samples, y: &[f64]) {
     for (b, rows) in &mut res.modal {
         let o = sys.qo[*b] + 7;
         rows.push(y[o..o + sys.nm[*b]].to_vec());
@@ -124,7 +125,7 @@ fn record_modal(sys: &System, res: &mut RunResult, y: &[f64]) {
 }
 
 /// Removes 2 pi jumps from angle channels so a turning crank reads continuously.
-fn unwrap_angles(res: &mut RunResult) {
+fn unwrap_angles(res: &mut Samples) {
     let tau = 2.0 * std::f64::consts::PI;
     for (c, ch) in res.channels.iter().enumerate() {
         if !ch.angle {
@@ -141,7 +142,7 @@ fn unwrap_angles(res: &mut RunResult) {
     }
 }
 
-impl RunResult {
+impl Samples {
     /// Writes the samples as CSV with units in the headers.
     pub fn write_csv(&self, path: &std::path::Path) -> std::io::Result<()> {
         use std::io::Write;
@@ -165,28 +166,7 @@ impl RunResult {
         out.flush()
     }
 
-    /// Per channel: (name, unit, min, max, time of the largest magnitude).
-    pub fn peaks(&self) -> Vec<serde_json::Value> {
-        self.channels
-            .iter()
-            .enumerate()
-            .map(|(c, ch)| {
-                let (mut lo, mut hi, mut tpk, mut big) = (f64::INFINITY, f64::NEG_INFINITY, 0.0, -1.0);
-                for (t, row) in self.times.iter().zip(&self.rows) {
-                    let v = row[c];
-                    lo = lo.min(v);
-                    hi = hi.max(v);
-                    if v.abs() > big {
-                        big = v.abs();
-                        tpk = *t;
-                    }
-                }
-                serde_json::json!({"name": ch.name, "unit": ch.unit, "min": lo, "max": hi, "time_of_peak_s": tpk})
-            })
-            .collect()
-    }
-
-    /// Value of channel `name` at sample k.
+    /// The samples of channel `name`.
     pub fn channel(&self, name: &str) -> Option<Vec<f64>> {
         let c = self.channels.iter().position(|ch| ch.name == name)?;
         Some(self.rows.iter().map(|r| r[c]).collect())

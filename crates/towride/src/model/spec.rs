@@ -17,7 +17,7 @@ use super::desc::{
 };
 use super::function::{Spline, TimeFunction};
 use super::math::{dot, frame_from_axes, quat_from_matrix, sub};
-use crate::input::{InputError, Seg, Source};
+use crate::input::{InputError, Loader, Seg, Source};
 use crate::path;
 use towride_solver::SolverOptions;
 
@@ -302,11 +302,15 @@ pub struct Mechanism {
     pub solver: SolverOptions,
 }
 
-/// Reads and validates a mechanism file.
-pub fn load(path: &Path) -> Result<Mechanism, InputError> {
-    let src = Source::read(path)?;
+/// Reads and validates a mechanism file, read through `loader` (its overrides; one
+/// that matches nothing read is an error).
+pub fn load(path: &Path, loader: &Loader) -> Result<Mechanism, InputError> {
+    let loader = loader.fresh();
+    let src = loader.toml(path)?;
     let file: File = src.parse()?;
-    build(&src, file)
+    let m = build(&src, file)?;
+    loader.check_used()?;
+    Ok(m)
 }
 
 /// Validates a parsed file into a model.

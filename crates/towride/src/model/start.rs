@@ -22,6 +22,7 @@ use super::desc::Model;
 use super::ic::initial_state;
 use super::statics::{equilibrium, StaticsReport};
 use super::system::{ExtKind, System};
+use super::ModelError;
 use crate::road::Road;
 use towride_solver::{solve_to, SolverOptions};
 
@@ -44,11 +45,11 @@ pub fn at_speed(
     speed: f64,
     settle_s: f64,
     opts: &SolverOptions,
-) -> Result<(Vec<f64>, Vec<f64>, StartReport), String> {
+) -> Result<(Vec<f64>, Vec<f64>, StartReport), ModelError> {
     let road = model
         .road
         .as_ref()
-        .ok_or("starting at speed needs a road")?;
+        .ok_or_else(|| ModelError::Start("starting at speed needs a road".into()))?;
     let mut rep = StartReport {
         settle_s,
         ..Default::default()
@@ -63,16 +64,18 @@ pub fn at_speed(
         let h = road
             .flat_height(reach.0, reach.1, c[1] - 0.2, c[1] + 0.2)
             .ok_or_else(|| {
-                format!(
+                ModelError::Start(format!(
                     "tyre '{}' does not start on flat road (x {:.3} m): move the obstacle ahead",
                     t.name, c[0]
-                )
+                ))
             })?;
         heights.push(h);
     }
     let h = heights.first().copied().unwrap_or(0.0);
     if heights.iter().any(|x| (x - h).abs() > 1e-9) {
-        return Err("the tyres start at different road heights".into());
+        return Err(ModelError::Start(
+            "the tyres start at different road heights".into(),
+        ));
     }
     let mut flat_model = model.clone();
     flat_model.road = Some(Road::flat(h));
@@ -92,7 +95,9 @@ pub fn at_speed(
     for e in &flat.ext {
         let ExtKind::Tyre(k) = e.kind else { continue };
         let te = &flat.model.tyres[k];
-        let b = flat.model.markers[te.marker].body.ok_or("tyre on ground")?;
+        let b = flat.model.markers[te.marker]
+            .body
+            .ok_or_else(|| ModelError::Start("tyre on ground".into()))?;
         let c = flat.marker_frame(&q, te.marker);
         let spin_axis = [c.axes[0][1], c.axes[1][1], c.axes[2][1]];
         let road = flat.model.road.as_ref().expect("flat road");
@@ -123,7 +128,7 @@ pub fn at_speed(
         ..opts.clone()
     };
     let end = solve_to(&flat, t0, &y0, &yp0, 0.0, &settle_opts)
-        .map_err(|e| format!("settling run at speed failed: {e}"))?;
+        .map_err(|e| ModelError::Start(format!("settling run at speed failed: {e}")))?;
     rep.settle_steps = end.stats.steps;
     rep.settle_wall_s = end.wall_s;
     let (mut y, yp) = (end.y, end.yp);

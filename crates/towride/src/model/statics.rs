@@ -11,6 +11,7 @@ use nalgebra::DMatrix;
 
 use super::ic::assemble;
 use super::system::System;
+use super::ModelError;
 use towride_solver::linear::NewtonMatrix;
 use towride_solver::problem::{DaeProblem, JacobianSink, VarKind};
 use towride_solver::SolverOptions;
@@ -104,7 +105,7 @@ fn state_jacobian_entries(
 }
 
 /// Finds the static equilibrium nearest the model's initial positions.
-pub fn equilibrium(sys: &System, t: f64, opts: &SolverOptions) -> Result<Statics, String> {
+pub fn equilibrium(sys: &System, t: f64, opts: &SolverOptions) -> Result<Statics, ModelError> {
     let wall = std::time::Instant::now();
     let (mut q, mut v) = sys.initial_q_v();
     assemble(sys, t, &mut q, &mut v)?;
@@ -131,7 +132,7 @@ fn finish(
     mut x: Vec<f64>,
     mut rep: StaticsReport,
     ok: bool,
-) -> Result<Statics, String> {
+) -> Result<Statics, ModelError> {
     if !ok {
         // Dynamic relaxation: settle with heavy damping, then polish with Newton.
         rep.relaxation_used = true;
@@ -140,15 +141,15 @@ fn finish(
         let mut o = opts.clone();
         o.rtol = o.rtol.max(1e-5);
         let end = towride_solver::solve_to(&relaxed, t, &y0, &yp0, t + 5.0, &o)
-            .map_err(|e| format!("dynamic relaxation failed: {e}"))?;
+            .map_err(|e| ModelError::Statics(format!("dynamic relaxation failed: {e}")))?;
         q.copy_from_slice(&end.y[..sys.nq]);
         lam.copy_from_slice(&end.y[sys.offsets().2..sys.offsets().3]);
         x.copy_from_slice(&end.y[sys.oe()..]);
         if !newton(sys, t, &mut q, &mut lam, &mut x, &mut rep) {
-            return Err(format!(
+            return Err(ModelError::Statics(format!(
                 "static equilibrium not found after {} Newton iterations and dynamic relaxation: force imbalance {:.3e}, constraint violation {:.3e}",
                 rep.iterations, rep.residual_force, rep.residual_constraint
-            ));
+            )));
         }
     }
     let y = state(sys, &q, &lam, &x);

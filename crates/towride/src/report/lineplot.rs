@@ -4,6 +4,7 @@ use plotters::prelude::*;
 use std::path::Path;
 
 use super::plot::register_font;
+use super::ReportError;
 
 /// One curve.
 pub struct Line {
@@ -20,7 +21,7 @@ pub struct LinePanel {
 }
 
 /// Draws panels in a grid with `cols` columns into a PNG (or SVG by extension).
-pub fn line_panels(path: &Path, panels: &[LinePanel], cols: usize) -> Result<(), String> {
+pub fn line_panels(path: &Path, panels: &[LinePanel], cols: usize) -> Result<(), ReportError> {
     register_font();
     let cols = cols.max(1);
     let rows = panels.len().div_ceil(cols);
@@ -29,12 +30,14 @@ pub fn line_panels(path: &Path, panels: &[LinePanel], cols: usize) -> Result<(),
         let root = SVGBackend::new(path, size).into_drawing_area();
         root.fill(&WHITE).map_err(|e| e.to_string())?;
         draw_panels(&root, panels, rows, cols)?;
-        root.present().map_err(|e| e.to_string())
+        root.present().map_err(|e| e.to_string())?;
+        Ok(())
     } else {
         let root = BitMapBackend::new(path, size).into_drawing_area();
         root.fill(&WHITE).map_err(|e| e.to_string())?;
         draw_panels(&root, panels, rows, cols)?;
-        root.present().map_err(|e| e.to_string())
+        root.present().map_err(|e| e.to_string())?;
+        Ok(())
     }
 }
 
@@ -44,7 +47,7 @@ pub fn draw_panels<DB: DrawingBackend>(
     panels: &[LinePanel],
     rows: usize,
     cols: usize,
-) -> Result<(), String> {
+) -> Result<(), ReportError> {
     let e = |x: &dyn std::fmt::Display| x.to_string();
     for (panel, area) in panels.iter().zip(root.split_evenly((rows, cols)).iter()) {
         let pts: Vec<(f64, f64)> = panel

@@ -1,4 +1,22 @@
-//! Figures and reports as files: plotting with a bundled font (no system fonts needed).
+//! Figures and reports as files: plotting with a bundled font (no system fonts needed),
+//! and the page of plots a vehicle run writes.
 
 pub mod lineplot;
 pub mod plot;
+mod run;
+
+pub use run::run_page;
+
+/// A figure or report that could not be drawn or written.
+#[derive(Debug, Clone, thiserror::Error)]
+pub enum ReportError {
+    /// The plotting backend failed (a file that cannot be written, a bad font).
+    #[error("plot: {0}")]
+    Plot(String),
+}
+
+impl From<String> for ReportError {
+    fn from(message: String) -> Self {
+        ReportError::Plot(message)
+    }
+}

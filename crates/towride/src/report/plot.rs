@@ -5,6 +5,8 @@ use plotters::prelude::*;
 use std::path::Path;
 use std::sync::Once;
 
+use super::ReportError;
+
 static FONT: Once = Once::new();
 
 /// Registers the bundled DejaVu Sans as plotters' "sans-serif".
@@ -31,7 +33,7 @@ pub struct Panel {
 }
 
 /// Draws panels side by side in a grid (log-log axes) into a PNG or SVG file.
-pub fn loglog_panels(path: &Path, panels: &[Panel], cols: usize) -> Result<(), String> {
+pub fn loglog_panels(path: &Path, panels: &[Panel], cols: usize) -> Result<(), ReportError> {
     register_font();
     let rows = panels.len().div_ceil(cols.max(1));
     let size = (420 * cols as u32, 340 * rows as u32);
@@ -50,7 +52,7 @@ fn draw<DB: DrawingBackend>(
     panels: &[Panel],
     rows: usize,
     cols: usize,
-) -> Result<(), String> {
+) -> Result<(), ReportError> {
     let e = |x: &dyn std::fmt::Display| x.to_string();
     root.fill(&WHITE).map_err(|x| e(&x))?;
     let areas = root.split_evenly((rows, cols));

@@ -7,6 +7,7 @@
 //! diagonal from (x_i, y_j) to (x_i+1, y_j+1). Outside the grid the height is that of the
 //! nearest point of the grid's border.
 
+use super::RoadError;
 use std::path::{Path, PathBuf};
 
 use parry3d_f64::math::{Point, Vector};
@@ -44,15 +45,18 @@ impl std::fmt::Debug for HeightField {
 
 impl HeightField {
     /// Builds the field from grid coordinates and heights z[j * nx + i].
-    pub fn new(xs: Vec<f64>, ys: Vec<f64>, z: Vec<f64>) -> Result<HeightField, String> {
+    pub fn new(xs: Vec<f64>, ys: Vec<f64>, z: Vec<f64>) -> Result<HeightField, RoadError> {
         let (nx, ny) = (xs.len(), ys.len());
         if nx < 2 || ny < 2 {
-            return Err(format!(
+            return Err(RoadError::Geometry(format!(
                 "a height field needs at least 2 x 2 nodes, got {nx} x {ny}"
-            ));
+            )));
         }
         if z.len() != nx * ny {
-            return Err(format!("{} heights for a {nx} x {ny} grid", z.len()));
+            return Err(RoadError::Geometry(format!(
+                "{} heights for a {nx} x {ny} grid",
+                z.len()
+            )));
         }
         if xs
             .windows(2)
@@ -61,10 +65,12 @@ impl HeightField {
                 .windows(2)
                 .any(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater))
         {
-            return Err("grid coordinates must increase strictly".into());
+            return Err(RoadError::Geometry(
+                "grid coordinates must increase strictly".into(),
+            ));
         }
         if let Some(v) = z.iter().find(|v| !v.is_finite()) {
-            return Err(format!("height {v} is not finite"));
+            return Err(RoadError::Geometry(format!("height {v} is not finite")));
         }
         let verts: Vec<Point<f64>> = (0..ny)
             .flat_map(|j| (0..nx).map(move |i| (i, j)))
@@ -89,7 +95,8 @@ impl HeightField {
                 });
             }
         }
-        let mesh = TriMesh::new(verts, tris).map_err(|e| format!("triangle mesh: {e:?}"))?;
+        let mesh = TriMesh::new(verts, tris)
+            .map_err(|e| RoadError::Geometry(format!("triangle mesh: {e:?}")))?;
         let z_top = z.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
         Ok(HeightField {
             file: PathBuf::new(),
@@ -103,12 +110,12 @@ impl HeightField {
     }
 
     /// Reads the grid CSV (see the module docs); errors name the file and line.
-    pub fn from_csv(file: &Path) -> Result<HeightField, InputError> {
+    pub fn from_csv(file: &Path, loader: &crate::input::Loader) -> Result<HeightField, InputError> {
         let err = |line: Option<usize>, field: &str, msg: String| {
             crate::input::csv_table::error(file, line, field, msg)
         };
         let pts: Vec<(f64, f64, f64, Option<usize>)> =
-            crate::input::csv_table::read_columns(file, &["x_m", "y_m", "z_m"])?
+            crate::input::csv_table::read_columns(file, &["x_m", "y_m", "z_m"], loader)?
                 .into_iter()
                 .map(|r| (r.values[0], r.values[1], r.values[2], r.line))
                 .collect();
@@ -140,7 +147,7 @@ impl HeightField {
             }
             z[k] = h;
         }
-        let mut f = HeightField::new(xs, ys, z).map_err(|m| err(None, "", m))?;
+        let mut f = HeightField::new(xs, ys, z).map_err(|m| err(None, "", m.to_string()))?;
         f.file = file.to_path_buf();
         Ok(f)
     }

@@ -54,6 +54,17 @@ enum Kind {
     Mesh(Box<HeightField>),
 }
 
+/// A road that cannot be built from the values given.
+#[derive(Debug, Clone, thiserror::Error)]
+pub enum RoadError {
+    /// A bad road file.
+    #[error(transparent)]
+    Input(#[from] InputError),
+    /// Geometry that is not a road (overlapping obstacles, a grid out of order).
+    #[error("{0}")]
+    Geometry(String),
+}
+
 /// The TOML file: `[road]` plus, for a flat road, any number of `[[obstacle]]`.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -98,11 +109,13 @@ impl Road {
 
     /// A flat road at `height` carrying `obstacles` (their `base` should be `height`);
     /// refuses overlapping obstacles.
-    pub fn with_obstacles(height: f64, obstacles: Vec<Obstacle>) -> Result<Road, String> {
+    pub fn with_obstacles(height: f64, obstacles: Vec<Obstacle>) -> Result<Road, RoadError> {
         for i in 0..obstacles.len() {
             for j in 0..i {
                 if obstacle::overlap(&obstacles[i], &obstacles[j]) {
-                    return Err(format!("obstacle {i} overlaps obstacle {j}"));
+                    return Err(RoadError::Geometry(format!(
+                        "obstacle {i} overlaps obstacle {j}"
+                    )));
                 }
             }
         }
@@ -129,13 +142,13 @@ impl Road {
     }
 
     /// Reads a road TOML file (see `docs/road_tyre.md`).
-    pub fn from_file(path: &Path) -> Result<Road, InputError> {
-        let src = Source::read(path)?;
-        Road::from_source(&src)
+    pub fn from_file(path: &Path, loader: &crate::input::Loader) -> Result<Road, InputError> {
+        let src = loader.toml(path)?;
+        Road::from_source(&src, loader)
     }
 
     /// Builds the road from an already read TOML source.
-    pub fn from_source(src: &Source) -> Result<Road, InputError> {
+    pub fn from_source(src: &Source, loader: &crate::input::Loader) -> Result<Road, InputError> {
         let f: RoadFile = src.parse()?;
         let dir = src.path.parent().unwrap_or(Path::new("."));
         let kind = match f.road {
@@ -171,6 +184,7 @@ impl Road {
                     &csv,
                     track_width_m,
                     outside_height_m,
+                    loader,
                 )?)
             }
             RoadSection::HeightField { file } => {
@@ -180,7 +194,7 @@ impl Road {
                         "obstacles are only allowed on a flat road",
                     ));
                 }
-                Kind::Mesh(Box::new(HeightField::from_csv(&dir.join(&file))?))
+                Kind::Mesh(Box::new(HeightField::from_csv(&dir.join(&file), loader)?))
             }
         };
         Ok(Road {

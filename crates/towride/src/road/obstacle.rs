@@ -11,6 +11,7 @@
 //! the plateau length (base = length + 2 f). A flank angle of 90 deg gives vertical faces
 //! (a rectangular cleat).
 
+use super::RoadError;
 use serde::Deserialize;
 
 use crate::input::{InputError, Source};
@@ -64,14 +65,16 @@ impl Obstacle {
         at: LengthAt,
         flank_angle_deg: f64,
         base: f64,
-    ) -> Result<Obstacle, String> {
+    ) -> Result<Obstacle, RoadError> {
         if height.is_nan() || height <= 0.0 {
-            return Err(format!("ramp height must be positive, got {height}"));
+            return Err(RoadError::Geometry(format!(
+                "ramp height must be positive, got {height}"
+            )));
         }
         if !(flank_angle_deg > 0.0 && flank_angle_deg <= 90.0) {
-            return Err(format!(
+            return Err(RoadError::Geometry(format!(
                 "flank angle must be in (0, 90] deg, got {flank_angle_deg}"
-            ));
+            )));
         }
         let run = if flank_angle_deg == 90.0 {
             0.0
@@ -83,10 +86,10 @@ impl Obstacle {
             LengthAt::Top => length,
         };
         if top.is_nan() || top < 0.0 || length.is_nan() || length <= 0.0 {
-            return Err(format!(
+            return Err(RoadError::Geometry(format!(
                 "length {length} m measured at the {} leaves no plateau with {run:.4} m flanks",
                 if at == LengthAt::Base { "base" } else { "top" }
-            ));
+            )));
         }
         let x = [
             start,
@@ -103,16 +106,16 @@ impl Obstacle {
     }
 
     /// A circular-segment bump of `height` over `chord`, starting at `start`.
-    pub fn bump(start: f64, height: f64, chord: f64, base: f64) -> Result<Obstacle, String> {
+    pub fn bump(start: f64, height: f64, chord: f64, base: f64) -> Result<Obstacle, RoadError> {
         if !(height > 0.0 && chord > 0.0) {
-            return Err(format!(
+            return Err(RoadError::Geometry(format!(
                 "bump height and chord must be positive, got {height} and {chord}"
-            ));
+            )));
         }
         if height > chord / 2.0 {
-            return Err(format!(
+            return Err(RoadError::Geometry(format!(
                 "a circular segment cannot be higher ({height} m) than half its chord ({chord} m)"
-            ));
+            )));
         }
         // Sagitta relation: R = (c^2/4 + h^2) / (2 h).
         let radius = (chord * chord / 4.0 + height * height) / (2.0 * height);
@@ -130,9 +133,11 @@ impl Obstacle {
     }
 
     /// A step of `height` (up if positive) at `start`.
-    pub fn step(start: f64, height: f64, base: f64) -> Result<Obstacle, String> {
+    pub fn step(start: f64, height: f64, base: f64) -> Result<Obstacle, RoadError> {
         if !(height != 0.0 && height.is_finite()) {
-            return Err(format!("step height must be non-zero, got {height}"));
+            return Err(RoadError::Geometry(format!(
+                "step height must be non-zero, got {height}"
+            )));
         }
         Ok(Obstacle {
             shape: Shape::Step {
@@ -145,7 +150,7 @@ impl Obstacle {
         })
     }
 
-    /// Longitudinal extent [x_start, x_end).
+    /// Longitudinal extent [x_start, x_end)).
     pub fn x_range(&self) -> (f64, f64) {
         match self.shape {
             Shape::Ramp { x, .. } => (x[0], x[3]),
@@ -335,7 +340,7 @@ impl ObstacleToml {
                     *flank_angle_deg,
                     base,
                 )
-                .map_err(|m| src.error(&at("length_m"), m))?;
+                .map_err(|m| src.error(&at("length_m"), m.to_string()))?;
                 (o, y_min_m, y_max_m, "height_m")
             }
             ObstacleToml::Bump {
@@ -349,7 +354,7 @@ impl ObstacleToml {
                 src.positive(&at("height_m"), *height_m)?;
                 src.positive(&at("chord_m"), *chord_m)?;
                 let o = Obstacle::bump(*start_m, *height_m, *chord_m, base)
-                    .map_err(|m| src.error(&at("height_m"), m))?;
+                    .map_err(|m| src.error(&at("height_m"), m.to_string()))?;
                 (o, y_min_m, y_max_m, "height_m")
             }
             ObstacleToml::Step {
@@ -360,7 +365,7 @@ impl ObstacleToml {
             } => {
                 src.finite(&at("start_m"), *start_m)?;
                 let o = Obstacle::step(*start_m, *height_m, base)
-                    .map_err(|m| src.error(&at("height_m"), m))?;
+                    .map_err(|m| src.error(&at("height_m"), m.to_string()))?;
                 (o, y_min_m, y_max_m, "height_m")
             }
         };

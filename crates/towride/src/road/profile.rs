@@ -6,6 +6,7 @@
 //! the nearer track's. Between points the profile is linear; before the first and after the
 //! last point it is `outside_height_m` if given, else the end value.
 
+use super::RoadError;
 use std::path::{Path, PathBuf};
 
 use crate::input::InputError;
@@ -31,15 +32,21 @@ impl TrackProfile {
         right: Vec<f64>,
         track_width: f64,
         outside: Option<f64>,
-    ) -> Result<TrackProfile, String> {
+    ) -> Result<TrackProfile, RoadError> {
         if x.len() < 2 || left.len() != x.len() || right.len() != x.len() {
-            return Err("a profile needs at least two points with both tracks".into());
+            return Err(RoadError::Geometry(
+                "a profile needs at least two points with both tracks".into(),
+            ));
         }
         if let Some(i) = (1..x.len()).find(|&i| x[i].is_nan() || x[i] <= x[i - 1]) {
-            return Err(format!("x must increase strictly (point {i})"));
+            return Err(RoadError::Geometry(format!(
+                "x must increase strictly (point {i})"
+            )));
         }
         if track_width.is_nan() || track_width <= 0.0 {
-            return Err(format!("track width must be positive, got {track_width}"));
+            return Err(RoadError::Geometry(format!(
+                "track width must be positive, got {track_width}"
+            )));
         }
         Ok(TrackProfile {
             file: PathBuf::new(),
@@ -56,12 +63,15 @@ impl TrackProfile {
         file: &Path,
         track_width: f64,
         outside: Option<f64>,
+        loader: &crate::input::Loader,
     ) -> Result<TrackProfile, InputError> {
         let err = |line: Option<usize>, field: &str, msg: String| {
             crate::input::csv_table::error(file, line, field, msg)
         };
         let (mut x, mut l, mut r) = (Vec::new(), Vec::new(), Vec::new());
-        for row in crate::input::csv_table::read_columns(file, &["x_m", "z_left_m", "z_right_m"])? {
+        for row in
+            crate::input::csv_table::read_columns(file, &["x_m", "z_left_m", "z_right_m"], loader)?
+        {
             let line = row.line;
             let xi = row.values[0];
             if let Some(&prev) = x.last() {
@@ -77,8 +87,8 @@ impl TrackProfile {
             l.push(row.values[1]);
             r.push(row.values[2]);
         }
-        let mut p =
-            TrackProfile::new(x, l, r, track_width, outside).map_err(|m| err(None, "", m))?;
+        let mut p = TrackProfile::new(x, l, r, track_width, outside)
+            .map_err(|m| err(None, "", m.to_string()))?;
         p.file = file.to_path_buf();
         Ok(p)
     }

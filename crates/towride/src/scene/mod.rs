@@ -25,6 +25,11 @@
 //! rtol = 1e-4
 //!
 //! [[sensor]]                   # extra sensors, as in the vehicle file
+//!
+//! [[override]]                 # a value of any file the scene reads, replaced
+//! file = "fabia/hitch.toml"    # matched by the end of the file's path
+//! path = "ball_coupling.kind"  # TOML `table.key`, .tir `SECTION.KEY`, CSV `column[row]`
+//! value = "bushing"
 //! ```
 //!
 //! [`load`] gives the [`Scene`]: the vehicle's model with its road and the standard
@@ -32,7 +37,6 @@
 //! template scene over obstacles, speeds and load cases.
 
 pub mod channels;
-pub mod exec;
 pub mod plan;
 
 use std::path::{Path, PathBuf};
@@ -41,7 +45,8 @@ use serde::Deserialize;
 
 pub use channels::Channel;
 
-use crate::input::{InputError, Source};
+use crate::input::overrides::Origin;
+use crate::input::{InputError, Loader, Override};
 use crate::model::spec::JointBushing;
 use crate::model::{Model, System};
 use crate::path;
@@ -50,6 +55,47 @@ use crate::tyre::TyreKind;
 use crate::vehicle::sensors::{self, SensorSpec};
 use crate::vehicle::{self, build::Builder, Options, Vehicle};
 use towride_solver::SolverOptions;
+
+/// A scene, plan or batch that cannot be loaded or run as asked.
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    /// A bad scene, plan or sweep file.
+    #[error(transparent)]
+    Input(#[from] InputError),
+    /// A plan asked for something it does not hold.
+    #[error("{}: {message}", file.display())]
+    Plan {
+        /// The plan file.
+        file: PathBuf,
+        /// What is wrong.
+        message: String,
+    },
+    /// The solver stopped a run that had to complete (a batch case, a validation
+    /// simulation); the message is the solver's.
+    #[error("{name}: run failed at t = {t:.6} s: {message}")]
+    RunFailed {
+        /// The scene or model.
+        name: String,
+        /// Time reached [s].
+        t: f64,
+        /// The solver's message.
+        message: String,
+    },
+    /// A case or group asked for by name that does not exist.
+    #[error("{0}")]
+    NoSuchCase(String),
+    /// A shard specification that is not `I/N` with 0 <= I < N.
+    #[error("{0}")]
+    Shard(String),
+    /// Shard summaries that cannot be merged.
+    #[error("{}: {message}", file.display())]
+    Merge {
+        /// The shard file.
+        file: PathBuf,
+        /// What is wrong.
+        message: String,
+    },
+}
 
 #[derive(Deserialize, Debug)]
 #[serde(deny_unknown_fields)]
@@ -61,6 +107,17 @@ struct File {
     solver: SolverOptions,
     #[serde(default)]
     sensor: Vec<SensorSpec>,
+    #[serde(default, rename = "override")]
+    overrides: Vec<OverrideSec>,
+}
+
+/// A scene's `[[override]]`: one value of a file the scene reads.
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct OverrideSec {
+    file: String,
+    path: String,
+    value: toml::Value,
 }
 
 #[derive(Deserialize, Debug)]
@@ -157,15 +214,17 @@ impl Scene {
     }
 }
 
-/// Changes to a scene file's settings (a plan's cases).
+/// Changes to a scene file's settings (a plan's cases, a validation run).
 #[derive(Clone, Debug, Default)]
-pub struct Overrides {
+pub struct Changes {
     pub name: Option<String>,
     pub road: Option<PathBuf>,
     pub speed_km_h: Option<f64>,
     pub duration_s: Option<f64>,
     pub load_case: Option<String>,
     pub hitch_variant: Option<u32>,
+    /// Distance from the front tyres' contact to the road's first obstacle edge [m].
+    pub obstacle_ahead_m: Option<f64>,
 }
 
 /// True when `path` is a scene file (it has a `[scene]` table).
@@ -183,13 +242,31 @@ pub fn has_table(path: &Path, key: &str) -> bool {
 
 /// Reads a scene file.
 pub fn load(path: &Path) -> Result<Scene, InputError> {
-    load_with(path, &Overrides::default())
+    load_with(path, &Changes::default(), &Loader::new())
 }
 
-/// Reads a scene file with some settings replaced.
-pub fn load_with(path: &Path, o: &Overrides) -> Result<Scene, InputError> {
-    let src = Source::read(path)?;
+/// Reads a scene file with some settings replaced (`o`) and the files it reads through
+/// `loader` (its property overrides, plus the scene's own `[[override]]` tables). An
+/// override that matches no file or value read is an error.
+pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, InputError> {
+    let loader = loader.fresh();
+    let src = loader.toml(path)?;
     let f: File = src.parse()?;
+    let loader = loader.extended(
+        f.overrides
+            .iter()
+            .enumerate()
+            .map(|(k, x)| Override {
+                file: x.file.clone(),
+                path: x.path.clone(),
+                value: crate::sweep::toml_text(&x.value),
+                origin: Origin::File {
+                    file: Box::new(src.error(&path!["override", k, "file"], "")),
+                    path: Box::new(src.error(&path!["override", k, "path"], "")),
+                },
+            })
+            .collect(),
+    );
     let dir = path.parent().unwrap_or(Path::new("."));
     let existing = |p: &[crate::input::Seg], rel: &str| -> Result<PathBuf, InputError> {
         let full = dir.join(rel);
@@ -257,8 +334,8 @@ pub fn load_with(path: &Path, o: &Overrides) -> Result<Scene, InputError> {
             &Some(jb.clone()),
         )?;
     }
-    let road = Road::from_file(&road_file)?;
-    let x_offset = match f.road.obstacle_ahead_m {
+    let road = Road::from_file(&road_file, &loader)?;
+    let x_offset = match o.obstacle_ahead_m.or(f.road.obstacle_ahead_m) {
         None => 0.0,
         Some(d) => {
             let d = src.finite(&path!["road", "obstacle_ahead_m"], d)?;
@@ -284,9 +361,9 @@ pub fn load_with(path: &Path, o: &Overrides) -> Result<Scene, InputError> {
         ball_coupling: f.scene.ball_coupling.clone(),
         rear_cross_member: f.scene.rear_cross_member.clone(),
     };
-    let mut v = vehicle::load(&vehicle_file, &opts)?;
+    let mut v = vehicle::load(&vehicle_file, &opts, &loader)?;
     let extra = {
-        let mut b = Builder::new(&mut v.model, None);
+        let mut b = Builder::new(&mut v.model, None, &loader);
         sensors::add(&mut b, &v.handles, &src, &path!["sensor"], &f.sensor)?
     };
     v.handles.sensors.extend(extra);
@@ -299,6 +376,7 @@ pub fn load_with(path: &Path, o: &Overrides) -> Result<Scene, InputError> {
     v.model.outputs = outputs;
     v.model.road = Some(road);
     v.model.accelerations = f.run.accelerations;
+    loader.check_used()?;
     Ok(Scene {
         name: o.name.clone().unwrap_or(f.scene.name.clone()),
         file: path.to_path_buf(),

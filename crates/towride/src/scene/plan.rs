@@ -24,8 +24,8 @@ use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 
-use super::{load_with, Overrides, Scene};
-use crate::input::{InputError, Source};
+use super::{load_with, Changes, Scene};
+use crate::input::{InputError, Loader, Source};
 use crate::path;
 
 #[derive(Deserialize, Debug)]
@@ -57,7 +57,7 @@ struct ObstacleSec {
 #[derive(Clone, Debug)]
 pub struct Case {
     pub name: String,
-    pub overrides: Overrides,
+    pub changes: Changes,
 }
 
 /// A plan read and expanded (scenes are built on demand: [`Plan::scene`]).
@@ -69,9 +69,9 @@ pub struct Plan {
 }
 
 impl Plan {
-    /// The scene of one case.
-    pub fn scene(&self, case: &Case) -> Result<Scene, InputError> {
-        load_with(&self.template, &case.overrides)
+    /// The scene of one case, its files read through `loader`.
+    pub fn scene(&self, case: &Case, loader: &Loader) -> Result<Scene, InputError> {
+        load_with(&self.template, &case.changes, loader)
     }
 
     pub fn case(&self, name: &str) -> Option<&Case> {
@@ -120,13 +120,14 @@ pub fn load(path: &Path) -> Result<Plan, InputError> {
                 let name = format!("{}_{}kmh_{load}", o.name, fmt_speed(v));
                 cases.push(Case {
                     name: name.clone(),
-                    overrides: Overrides {
+                    changes: Changes {
                         name: Some(name),
                         road: Some(road.clone()),
                         speed_km_h: Some(v),
                         duration_s: Some(travel / (v / 3.6) + after),
                         load_case: Some(load.clone()),
                         hitch_variant: None,
+                        obstacle_ahead_m: None,
                     },
                 });
             }

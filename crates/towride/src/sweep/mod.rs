@@ -25,9 +25,10 @@ use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 
-use crate::input::overrides::Override;
+use crate::input::overrides::{Origin, Override};
 use crate::input::{InputError, Source};
 use crate::path;
+use crate::scene::SceneError;
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -56,11 +57,16 @@ struct ParamIn {
 /// One swept parameter.
 #[derive(Clone, Debug)]
 pub struct Parameter {
+    /// Column name in the summary.
     pub name: String,
+    /// The file whose value is swept, matched by the end of its path.
     pub file: String,
+    /// The value's path in that file.
     pub path: String,
     /// Values as TOML text.
     pub values: Vec<String>,
+    /// Where the parameter is written (errors about its file or path point here).
+    pub origin: Origin,
 }
 
 /// A validated sweep.
@@ -104,6 +110,10 @@ impl Sweep {
                 file: p.file.clone(),
                 path: p.path.clone(),
                 values: p.values.iter().map(toml_text).collect(),
+                origin: Origin::File {
+                    file: Box::new(src.error(&path!["parameter", k, "file"], "")),
+                    path: Box::new(src.error(&path!["parameter", k, "path"], "")),
+                },
             });
         }
         Ok(Sweep {
@@ -138,6 +148,7 @@ impl Sweep {
                 file: p.file.clone(),
                 path: p.path.clone(),
                 value: v.clone(),
+                origin: p.origin.clone(),
             })
             .collect();
         Case {
@@ -157,7 +168,7 @@ impl Sweep {
 }
 
 /// A TOML value as it would be written in a file (strings quoted).
-fn toml_text(v: &toml::Value) -> String {
+pub fn toml_text(v: &toml::Value) -> String {
     match v {
         toml::Value::String(s) => format!("{s:?}"),
         other => other.to_string(),
@@ -165,8 +176,8 @@ fn toml_text(v: &toml::Value) -> String {
 }
 
 /// Parses `I/N` (0 <= I < N).
-pub fn parse_shard(s: &str) -> Result<(usize, usize), String> {
-    let bad = || format!("--shard wants I/N with 0 <= I < N, got `{s}`");
+pub fn parse_shard(s: &str) -> Result<(usize, usize), SceneError> {
+    let bad = || SceneError::Shard(format!("--shard wants I/N with 0 <= I < N, got `{s}`"));
     let (a, b) = s.split_once('/').ok_or_else(bad)?;
     let (i, n): (usize, usize) = (
         a.trim().parse().map_err(|_| bad())?,

@@ -71,6 +71,7 @@ pub mod magic;
 pub mod params;
 pub mod point;
 pub mod rig;
+pub mod rig_report;
 pub mod ring;
 pub mod tir;
 
@@ -164,8 +165,12 @@ pub enum Tyre {
 
 impl Tyre {
     /// Reads a `.tir` file and builds the tyre.
-    pub fn from_file(path: &Path, kind: TyreKind) -> Result<Tyre, InputError> {
-        Ok(Tyre::new(TyreParams::from_file(path)?, kind))
+    pub fn from_file(
+        path: &Path,
+        kind: TyreKind,
+        loader: &crate::input::Loader,
+    ) -> Result<Tyre, InputError> {
+        Ok(Tyre::new(TyreParams::from_file(path, loader)?, kind))
     }
 
     pub fn new(p: TyreParams, kind: TyreKind) -> Tyre {

@@ -102,8 +102,8 @@ pub struct Derived {
 
 impl TyreParams {
     /// Reads and checks a `.tir` file.
-    pub fn from_file(path: &Path) -> Result<TyreParams, InputError> {
-        TyreParams::from_tir(&TirFile::read(path)?)
+    pub fn from_file(path: &Path, loader: &crate::input::Loader) -> Result<TyreParams, InputError> {
+        TyreParams::from_tir(&TirFile::read(path, loader)?)
     }
 
     /// Checks a parsed file.

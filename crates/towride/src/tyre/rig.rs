@@ -19,7 +19,7 @@ use std::path::{Path, PathBuf};
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
-use crate::input::{InputError, Source};
+use crate::input::InputError;
 use crate::path;
 use crate::road::Road;
 use towride_solver::ic::consistent_index1;
@@ -541,12 +541,12 @@ pub struct RigCase {
 }
 
 impl RigCase {
-    pub fn from_file(path: &Path) -> Result<RigCase, InputError> {
-        let src = Source::read(path)?;
+    pub fn from_file(path: &Path, loader: &crate::input::Loader) -> Result<RigCase, InputError> {
+        let src = loader.toml(path)?;
         let f: RigFile = src.parse()?;
         let dir = path.parent().unwrap_or(Path::new("."));
-        let tyre = Tyre::from_file(&dir.join(&f.tyre.file), f.tyre.model)?;
-        let road = Road::from_file(&dir.join(&f.road.file))?;
+        let tyre = Tyre::from_file(&dir.join(&f.tyre.file), f.tyre.model, loader)?;
+        let road = Road::from_file(&dir.join(&f.road.file), loader)?;
         let rtol = src.positive(&path!["solver", "rtol"], f.solver.rtol)?;
         let dt = src.positive(&path!["output", "dt_s"], f.output.dt_s)?;
         let setup = match f.rig {

@@ -41,16 +41,35 @@ pub struct TirFile {
 }
 
 impl TirFile {
-    /// Reads and parses `path`.
-    pub fn read(path: &Path) -> Result<TirFile, InputError> {
-        let text = std::fs::read_to_string(path).map_err(|e| InputError {
-            file: path.to_path_buf(),
-            line: None,
-            column: None,
-            field: String::new(),
-            message: format!("cannot read: {e}"),
-        })?;
-        TirFile::parse(path, &text)
+    /// Reads and parses `path`, with the loader's overrides of this file applied (path
+    /// `SECTION.KEY`, value as it would be written in the file).
+    pub fn read(path: &Path, loader: &crate::input::Loader) -> Result<TirFile, InputError> {
+        let text = crate::input::loader::read_text(path)?;
+        let mut t = TirFile::parse(path, &text)?;
+        for e in loader.matching(path) {
+            let o = &e.ov;
+            let (sec, key) = o.path.split_once('.').ok_or_else(|| {
+                o.origin.at_path(format!(
+                    "a .tir value is addressed as `SECTION.KEY`, not `{}`",
+                    o.path
+                ))
+            })?;
+            let s = t.sections.get_mut(sec).ok_or_else(|| {
+                o.origin
+                    .at_path(format!("{} has no section [{sec}]", path.display()))
+            })?;
+            let line = s.line;
+            s.keys
+                .entry(key.to_string())
+                .and_modify(|v| v.value = o.value.trim().to_string())
+                .or_insert(Entry {
+                    value: o.value.trim().to_string(),
+                    line,
+                    column: 1,
+                });
+            e.placed();
+        }
+        Ok(t)
     }
 
     /// Parses `text` as if read from `path`.

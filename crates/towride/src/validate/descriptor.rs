@@ -252,7 +252,7 @@ impl Descriptor {
             ));
         }
         if let Err(msg) = super::trigger::speed_from_foils(&foils) {
-            return Err(src.error(&path!["trigger", "foil"], msg));
+            return Err(src.error(&path!["trigger", "foil"], msg.to_string()));
         }
         let mut channels: Vec<ChannelSpec> = Vec::new();
         if f.channel.is_empty() {

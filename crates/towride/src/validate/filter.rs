@@ -9,6 +9,7 @@
 //! analog acquisition filter does, so its phase lag is reproduced. To stay close to the
 //! analog filter the simulation is filtered on a uniform grid of at least 40 fc.
 
+use super::ValidateError;
 use std::collections::BTreeMap;
 
 use super::descriptor::AcqFilter;
@@ -30,13 +31,17 @@ pub struct Butterworth {
 
 impl Butterworth {
     /// Low-pass of `order` with -3 dB at `cutoff_hz`, for samples at `rate_hz`.
-    pub fn low_pass(order: usize, cutoff_hz: f64, rate_hz: f64) -> Result<Butterworth, String> {
+    pub fn low_pass(
+        order: usize,
+        cutoff_hz: f64,
+        rate_hz: f64,
+    ) -> Result<Butterworth, ValidateError> {
         let ok = cutoff_hz > 0.0 && cutoff_hz < 0.5 * rate_hz;
         if order == 0 || !ok {
-            return Err(format!(
+            return Err(ValidateError::Signal(format!(
                 "Butterworth low-pass needs order >= 1 and 0 < cutoff ({cutoff_hz} Hz) < rate/2 ({} Hz)",
                 0.5 * rate_hz
-            ));
+            )));
         }
         let c = 1.0 / (std::f64::consts::PI * cutoff_hz / rate_hz).tan();
         let n = order as f64;
@@ -152,10 +157,12 @@ impl Acquired {
 
 /// Passes a simulation through the acquisition low-pass: resampled to a uniform grid at
 /// max(its own rate, 40 fc), then filtered.
-pub fn acquire(sim: &SimChannels, f: AcqFilter) -> Result<Acquired, String> {
+pub fn acquire(sim: &SimChannels, f: AcqFilter) -> Result<Acquired, ValidateError> {
     let t = &sim.time_s;
     if t.len() < 3 || !t.windows(2).all(|w| w[1] > w[0]) {
-        return Err("simulation time must have at least 3 increasing samples".into());
+        return Err(ValidateError::Signal(
+            "simulation time must have at least 3 increasing samples".into(),
+        ));
     }
     let mut dts: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).collect();
     dts.sort_by(f64::total_cmp);
@@ -168,11 +175,11 @@ pub fn acquire(sim: &SimChannels, f: AcqFilter) -> Result<Acquired, String> {
     let mut channels = BTreeMap::new();
     for (name, y) in &sim.channels {
         if y.len() != t.len() {
-            return Err(format!(
+            return Err(ValidateError::Signal(format!(
                 "simulated channel {name}: {} samples for {} times",
                 y.len(),
                 t.len()
-            ));
+            )));
         }
         let u: Vec<f64> = grid.iter().map(|&tq| interp(t, y, tq)).collect();
         channels.insert(name.clone(), lp.apply(&u));

@@ -1,6 +1,7 @@
 //! Many runs at once: every descriptor under a folder, one summary table (CSV + JSON).
 //! A run that fails is reported with its error and does not stop the others.
 
+use super::ValidateError;
 use std::path::{Path, PathBuf};
 
 use serde_json::{json, Value};
@@ -20,14 +21,17 @@ pub struct FolderResult {
 }
 
 /// `path` itself if it is a file, else every `*.toml` below it (recursively, sorted).
-pub fn find_descriptors(path: &Path) -> Result<Vec<PathBuf>, String> {
+pub fn find_descriptors(path: &Path) -> Result<Vec<PathBuf>, ValidateError> {
     if path.is_file() {
         return Ok(vec![path.to_path_buf()]);
     }
     let mut out = Vec::new();
     let mut stack = vec![path.to_path_buf()];
     while let Some(dir) = stack.pop() {
-        let entries = std::fs::read_dir(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+        let entries = std::fs::read_dir(&dir).map_err(|e| ValidateError::Io {
+            path: dir.clone(),
+            source: e,
+        })?;
         for e in entries.flatten() {
             let p = e.path();
             if p.is_dir() {
@@ -39,7 +43,10 @@ pub fn find_descriptors(path: &Path) -> Result<Vec<PathBuf>, String> {
     }
     out.sort();
     if out.is_empty() {
-        return Err(format!("{}: no *.toml descriptors found", path.display()));
+        return Err(ValidateError::Signal(format!(
+            "{}: no *.toml descriptors found",
+            path.display()
+        )));
     }
     Ok(out)
 }
@@ -60,7 +67,7 @@ pub fn validate_folder(
         progress(i, f);
         match validate_run(f, sim, opts) {
             Ok(r) => res.runs.push(r),
-            Err(e) => res.failures.push((f.clone(), e)),
+            Err(e) => res.failures.push((f.clone(), e.to_string())),
         }
     }
     res.wall_s = wall.elapsed().as_secs_f64();
@@ -130,8 +137,11 @@ pub fn summary_json(res: &FolderResult) -> Value {
 
 /// Writes `dir/summary.csv` (one row per run and channel, failures last with their
 /// error) and `dir/summary.json`.
-pub fn write_summary(res: &FolderResult, dir: &Path) -> Result<(PathBuf, PathBuf), String> {
-    let e = |x: &dyn std::fmt::Display| format!("{}: {x}", dir.display());
+pub fn write_summary(res: &FolderResult, dir: &Path) -> Result<(PathBuf, PathBuf), ValidateError> {
+    let e = |x: &dyn std::fmt::Display| ValidateError::Io {
+        path: dir.to_path_buf(),
+        source: std::io::Error::other(x.to_string()),
+    };
     std::fs::create_dir_all(dir).map_err(|x| e(&x))?;
     let csv_path = dir.join("summary.csv");
     let mut w = csv::Writer::from_path(&csv_path).map_err(|x| e(&x))?;

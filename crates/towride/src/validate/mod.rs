@@ -23,7 +23,6 @@ pub mod plan;
 pub mod rating;
 mod repair;
 pub mod report;
-pub mod standin;
 pub mod synth;
 pub mod trigger;
 pub mod vehicle_sim;
@@ -34,6 +33,38 @@ use std::path::Path;
 pub use descriptor::Descriptor;
 pub use folder::{validate_folder, write_summary, FolderResult};
 pub use pipeline::{validate_run, Comparison, Options, RunValidation};
+
+use crate::input::InputError;
+use crate::report::ReportError;
+
+/// Why a recorded run could not be validated.
+#[derive(Debug, thiserror::Error)]
+pub enum ValidateError {
+    /// A bad descriptor or measurement file.
+    #[error(transparent)]
+    Input(#[from] InputError),
+    /// A signal the processing chain cannot take (filter design, too few samples,
+    /// trigger pulses).
+    #[error("{0}")]
+    Signal(String),
+    /// Measurement and simulation do not fit together (a channel the model lacks).
+    #[error("{0}")]
+    Mismatch(String),
+    /// The simulator failed.
+    #[error("simulation: {0}")]
+    Simulation(Box<crate::Error>),
+    /// A figure could not be drawn.
+    #[error(transparent)]
+    Report(#[from] ReportError),
+    /// A file could not be written.
+    #[error("{}: {source}", path.display())]
+    Io {
+        /// The file or folder.
+        path: std::path::PathBuf,
+        /// What the system said.
+        source: std::io::Error,
+    },
+}
 
 /// Standard gravity [m/s^2], for channels recorded in g.
 pub const G_MPS2: f64 = 9.80665;
@@ -66,7 +97,7 @@ pub trait Simulator {
         scene: &Path,
         speed_mps: f64,
         load_case: &str,
-    ) -> Result<SimChannels, String>;
+    ) -> Result<SimChannels, crate::Error>;
 
     /// A short name for reports and synthetic-data labels.
     fn name(&self) -> String {

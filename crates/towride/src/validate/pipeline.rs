@@ -1,6 +1,7 @@
 //! One measured run against the simulation: corrected (speed from the foils, time shift
 //! from the cross-correlation) and uncorrected (nominal speed, event timing only).
 
+use super::ValidateError;
 use std::collections::BTreeMap;
 use std::path::Path;
 use std::time::Instant;
@@ -114,31 +115,28 @@ pub fn validate_run(
     descriptor: &Path,
     sim: &dyn Simulator,
     opts: &Options,
-) -> Result<RunValidation, String> {
+) -> Result<RunValidation, ValidateError> {
     let wall = Instant::now();
-    let desc = Descriptor::from_file(descriptor).map_err(|e| e.to_string())?;
-    let mut meas = read_measurement(&desc).map_err(|e| e.to_string())?;
+    let desc = Descriptor::from_file(descriptor)?;
+    let mut meas = read_measurement(&desc)?;
     let foil = speed_from_foils(&desc.trigger.foils)
-        .map_err(|e| format!("{}: {e}", desc.path.display()))?;
-    let run_sim = |v: f64| -> Result<Acquired, String> {
-        let s = sim.simulate(&desc.scene, v, &desc.load_case).map_err(|e| {
-            format!(
-                "{}: simulation of {} at {v:.3} m/s: {e}",
-                desc.path.display(),
-                desc.scene.display()
-            )
-        })?;
+        .map_err(|e| ValidateError::Signal(format!("{}: {e}", desc.path.display())))?;
+    let run_sim = |v: f64| -> Result<Acquired, ValidateError> {
+        let s = sim
+            .simulate(&desc.scene, v, &desc.load_case)
+            .map_err(|e| ValidateError::Simulation(Box::new(e)))?;
         for c in &desc.channels {
             if !s.channels.contains_key(&c.simulated) {
                 let known: Vec<&String> = s.channels.keys().collect();
-                return Err(format!(
+                return Err(ValidateError::Mismatch(format!(
                     "{}: the simulation has no channel `{}` (it has {known:?})",
                     desc.path.display(),
                     c.simulated
-                ));
+                )));
             }
         }
-        acquire(&s, desc.filter).map_err(|e| format!("{}: {e}", desc.path.display()))
+        acquire(&s, desc.filter)
+            .map_err(|e| ValidateError::Signal(format!("{}: {e}", desc.path.display())))
     };
     let mut plain = run_sim(desc.nominal_speed_mps)?;
     let mut fitted = if opts.correct {
@@ -177,11 +175,11 @@ pub fn validate_run(
         .filter(|&k| meas.time_s[k] >= lo && meas.time_s[k] <= hi)
         .collect();
     if idx.len() < 20 {
-        return Err(format!(
+        return Err(ValidateError::Signal(format!(
             "{}: the recording and the simulation overlap on only {} samples ({lo:.3} .. {hi:.3} s)",
             desc.path.display(),
             idx.len()
-        ));
+        )));
     }
     let names: Vec<String> = desc.channels.iter().map(|c| c.simulated.clone()).collect();
     let uncorrected = compare(

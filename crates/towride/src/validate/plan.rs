@@ -1,6 +1,7 @@
 //! The thesis's measurement plan (5.5.3.4): 3 obstacles x 6 speeds x 4 trailer loads =
 //! 72 runs, synthesised with any [`Simulator`].
 
+use super::ValidateError;
 use std::path::{Path, PathBuf};
 
 use super::synth::{make_synthetic, SensorModel, SynthRun, TriggerLayout};
@@ -49,7 +50,7 @@ pub fn write_plan(
     sensor: &SensorModel,
     out: &Path,
     progress: &dyn Fn(usize),
-) -> Result<Vec<PathBuf>, String> {
+) -> Result<Vec<PathBuf>, ValidateError> {
     let mut files = Vec::with_capacity(runs.len());
     for (i, run) in runs.iter().enumerate() {
         let s = SensorModel {

@@ -2,6 +2,7 @@
 //! uncorrected left, corrected right) and a one-page report with the run's figures on
 //! top and every channel's two overlays below; for a batch, an HTML index of the pages.
 
+use super::ValidateError;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -9,6 +10,7 @@ use plotters::prelude::*;
 
 use crate::report::lineplot::{draw_panels, line_panels, Line, LinePanel};
 use crate::report::plot::register_font;
+use crate::report::ReportError;
 
 use super::pipeline::{Comparison, RunValidation};
 
@@ -77,8 +79,11 @@ fn panels_of(run: &RunValidation, i: usize) -> Vec<LinePanel> {
 }
 
 /// Writes `dir/<channel>.png` for every channel; returns the files.
-pub fn overlays(run: &RunValidation, dir: &Path) -> Result<Vec<PathBuf>, String> {
-    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+pub fn overlays(run: &RunValidation, dir: &Path) -> Result<Vec<PathBuf>, ValidateError> {
+    std::fs::create_dir_all(dir).map_err(|e| ValidateError::Io {
+        path: dir.to_path_buf(),
+        source: e,
+    })?;
     let mut files = Vec::new();
     for (i, f) in run.uncorrected.channels.iter().enumerate() {
         let p = dir.join(format!("{}.png", f.channel));
@@ -144,9 +149,9 @@ fn header(run: &RunValidation) -> Vec<(String, RGBColor)> {
 }
 
 /// Writes the one-page report (PNG): figures on top, overlays below.
-pub fn page(run: &RunValidation, path: &Path) -> Result<(), String> {
+pub fn page(run: &RunValidation, path: &Path) -> Result<(), ValidateError> {
     register_font();
-    let e = |x: &dyn std::fmt::Display| format!("{}: {x}", path.display());
+    let e = |x: &dyn std::fmt::Display| ReportError::Plot(format!("{}: {x}", path.display()));
     let rows = run.uncorrected.channels.len();
     let cols = if run.corrected.is_some() { 2 } else { 1 };
     let head_h = 150;
@@ -165,7 +170,8 @@ pub fn page(run: &RunValidation, path: &Path) -> Result<(), String> {
     }
     let panels: Vec<LinePanel> = (0..rows).flat_map(|i| panels_of(run, i)).collect();
     draw_panels(&body, &panels, rows, cols)?;
-    root.present().map_err(|x| e(&x))
+    root.present().map_err(|x| e(&x))?;
+    Ok(())
 }
 
 /// An HTML index of the report pages (relative links), best-rated last.
@@ -173,7 +179,7 @@ pub fn index(
     runs: &[(RunValidation, PathBuf)],
     failures: &[(PathBuf, String)],
     path: &Path,
-) -> Result<(), String> {
+) -> Result<(), ValidateError> {
     let dir = path.parent().unwrap_or(Path::new("."));
     let mut h = String::from("<!doctype html><meta charset=\"utf-8\"><title>towride validate</title>\n<h1>towride validate</h1>\n<table border=1 cellpadding=4><tr><th>run</th><th>synthetic</th><th>rating uncorrected</th><th>rating corrected</th><th>shift [ms]</th></tr>\n");
     let mut sorted: Vec<&(RunValidation, PathBuf)> = runs.iter().collect();
@@ -209,5 +215,8 @@ pub fn index(
             r.name
         );
     }
-    std::fs::write(path, h).map_err(|e| format!("{}: {e}", path.display()))
+    std::fs::write(path, h).map_err(|e| ValidateError::Io {
+        path: path.to_path_buf(),
+        source: e,
+    })
 }

@@ -11,6 +11,7 @@
 //! descriptor keeps gain 1, as if the calibration were unaware); white noise of RMS
 //! `noise_rms_mps2` is added to every sample.
 
+use super::ValidateError;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -132,12 +133,17 @@ pub fn make_synthetic(
     sensor: &SensorModel,
     layout: &TriggerLayout,
     out: &Path,
-) -> Result<PathBuf, String> {
+) -> Result<PathBuf, ValidateError> {
     let s = sensor;
     // The folder must exist before paths can be made relative to it.
-    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    std::fs::create_dir_all(out).map_err(|e| ValidateError::Io {
+        path: out.to_path_buf(),
+        source: e,
+    })?;
     let v_true = run.nominal_speed_kmh / 3.6 / (1.0 + s.speed_error_pct / 100.0);
-    let simulated = sim.simulate(&run.scene, v_true, &run.load_case)?;
+    let simulated = sim
+        .simulate(&run.scene, v_true, &run.load_case)
+        .map_err(|e| ValidateError::Simulation(Box::new(e)))?;
     let acq = acquire(&simulated, s.filter)?;
     // Recording clock: the photocell pulse is stamped 0, trigger_delay after the passage.
     let t_obs = -s.trigger_delay_s - layout.photocell_m / v_true;
@@ -147,10 +153,10 @@ pub fn make_synthetic(
     let k0 = ((s0 + t_obs - acq.obstacle_time_s) * fs).ceil() as i64;
     let k1 = ((s1 - 0.1 + t_obs - acq.obstacle_time_s) * fs).floor() as i64;
     if k1 - k0 < 20 {
-        return Err(format!(
+        return Err(ValidateError::Signal(format!(
             "{}: the simulation is too short to record",
             run.name
-        ));
+        )));
     }
     let mut noise = Noise::new(s.seed);
     let names: Vec<&String> = acq.channels.keys().collect();
@@ -187,7 +193,10 @@ pub fn make_synthetic(
         csv.push('\n');
     }
     let csv_path = out.join(format!("{}.csv", run.name));
-    std::fs::write(&csv_path, csv).map_err(|e| format!("{}: {e}", csv_path.display()))?;
+    std::fs::write(&csv_path, csv).map_err(|e| ValidateError::Io {
+        path: csv_path.clone(),
+        source: e,
+    })?;
     let mut toml = format!(
         "# SYNTHETIC run, not a measurement: {} simulated by the {} and passed through the\n# sensor model of docs/validation.md ({injected}).\nsynthetic = true\nscene = \"{}\"\nobstacle = \"{}\"\nnominal_speed_kmh = {:?}\nload_case = \"{}\"\ndata = \"{}.csv\"\n\n[acquisition]\nfilter = \"butterworth\"\norder = {}\ncutoff_hz = {:?}\n\n[trigger]\nphotocell_position_m = {:?}\nphotocell_time_s = 0.0\n",
         run.name, sim.name(), relative_path(&run.scene, out), run.obstacle, run.nominal_speed_kmh,
@@ -214,6 +223,9 @@ pub fn make_synthetic(
         sim.name(), s.trigger_delay_s, s.speed_error_pct, s.gain_error_pct, s.noise_rms_mps2, s.foil_jitter_s, fs, s.seed
     );
     let desc = out.join(format!("{}.toml", run.name));
-    std::fs::write(&desc, toml).map_err(|e| format!("{}: {e}", desc.display()))?;
+    std::fs::write(&desc, toml).map_err(|e| ValidateError::Io {
+        path: desc.clone(),
+        source: e,
+    })?;
     Ok(desc)
 }

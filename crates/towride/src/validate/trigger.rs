@@ -4,6 +4,7 @@
 //! so the fit is t = t0 + x / v by least squares in t (time regressed on position).
 
 use super::descriptor::Trigger;
+use super::ValidateError;
 
 /// Speed from the foils by least squares.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -15,23 +16,27 @@ pub struct FoilSpeed {
 }
 
 /// Fits t = t0 + x / v through (position [m], time [s]) pairs.
-pub fn speed_from_foils(foils: &[(f64, f64)]) -> Result<FoilSpeed, String> {
+pub fn speed_from_foils(foils: &[(f64, f64)]) -> Result<FoilSpeed, ValidateError> {
     let n = foils.len() as f64;
     if foils.len() < 2 {
-        return Err("at least two foils are needed".into());
+        return Err(ValidateError::Signal(
+            "at least two foils are needed".into(),
+        ));
     }
     let mx = foils.iter().map(|f| f.0).sum::<f64>() / n;
     let mt = foils.iter().map(|f| f.1).sum::<f64>() / n;
     let sxx: f64 = foils.iter().map(|f| (f.0 - mx).powi(2)).sum();
     let sxt: f64 = foils.iter().map(|f| (f.0 - mx) * (f.1 - mt)).sum();
     if sxx <= 0.0 {
-        return Err("the foils must be at different positions".into());
+        return Err(ValidateError::Signal(
+            "the foils must be at different positions".into(),
+        ));
     }
     let slope = sxt / sxx; // s/m
     if !slope.is_finite() || slope <= 0.0 {
-        return Err(format!(
+        return Err(ValidateError::Signal(format!(
             "the pulse times do not increase along the road (fitted {slope:.4e} s/m): the car must pass the foils in +x order"
-        ));
+        )));
     }
     let t0 = mt - slope * mx;
     let ss: f64 = foils.iter().map(|f| (f.1 - t0 - slope * f.0).powi(2)).sum();

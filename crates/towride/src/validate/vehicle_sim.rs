@@ -5,9 +5,12 @@
 
 use std::path::Path;
 
+use super::ValidateError;
 use super::{SimChannels, Simulator};
-use crate::input::overrides::Override;
-use crate::scene::Overrides;
+use crate::input::Loader;
+use crate::job::Job;
+use crate::progress::Silent;
+use crate::scene::Changes;
 
 /// Quiet travel before the obstacle [s] (the alignment needs a lead-in).
 const LEAD_IN_S: f64 = 0.5;
@@ -25,30 +28,24 @@ impl Simulator for VehicleSimulator {
         scene: &Path,
         speed_mps: f64,
         load_case: &str,
-    ) -> Result<SimChannels, String> {
+    ) -> Result<SimChannels, crate::Error> {
         if speed_mps.is_nan() || speed_mps <= 0.0 {
-            return Err(format!("speed must be positive, got {speed_mps} m/s"));
+            return Err(ValidateError::Signal(format!(
+                "speed must be positive, got {speed_mps} m/s"
+            ))
+            .into());
         }
         let ahead = (LEAD_IN_S * speed_mps).max(1.0);
-        let ov = [Override {
-            file: scene.display().to_string(),
-            path: "road.obstacle_ahead_m".into(),
-            value: format!("{ahead:?}"),
-        }];
-        let o = Overrides {
+        let changes = Changes {
             speed_km_h: Some(speed_mps * 3.6),
             duration_s: Some((ahead + TRAVEL_M) / speed_mps + RING_DOWN_S),
             load_case: Some(load_case.to_string()),
+            obstacle_ahead_m: Some(ahead),
             ..Default::default()
         };
-        let r = crate::scene::exec::run(scene, &ov, &o, &|_| {})?;
-        let res = r.result;
-        if let Some((e, t)) = res.error {
-            return Err(format!(
-                "{}: simulation failed at t = {t:.4} s: {e}",
-                scene.display()
-            ));
-        }
+        let r = Job::from_scene_file(scene, &changes, &Loader::new())?.run(&Silent)?;
+        r.require_completed()?;
+        let res = r.samples;
         // The accelerometer channels: what a measurement can be compared with.
         let channels = res
             .channels

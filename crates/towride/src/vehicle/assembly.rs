@@ -41,7 +41,7 @@ use super::{
     body, driveline, hitch, mcpherson, trailer, twist_beam, wheel, Design, Handles, Options,
     TrailerDesign, Vehicle,
 };
-use crate::input::{InputError, Seg, Source};
+use crate::input::{InputError, Loader, Seg, Source};
 use crate::model::math::sub;
 use crate::model::Model;
 use crate::path;
@@ -125,6 +125,7 @@ fn tyre(
     p: &[Seg],
     part: &Part,
     kind: TyreKind,
+    loader: &Loader,
 ) -> Result<Tyre, InputError> {
     let mut at = p.to_vec();
     at.push(Seg::from("tyre"));
@@ -136,12 +137,13 @@ fn tyre(
     if !f.is_file() {
         return Err(src.error(&at, format!("no file {}", f.display())));
     }
-    Tyre::from_file(&f, kind)
+    Tyre::from_file(&f, kind, loader)
 }
 
-/// Reads the assembly file `path` and builds the vehicle.
-pub fn load(path: &Path, opts: &Options) -> Result<Vehicle, InputError> {
-    let src = Source::read(path)?;
+/// Reads the assembly file `path` and builds the vehicle, every file read through
+/// `loader`.
+pub fn load(path: &Path, opts: &Options, loader: &Loader) -> Result<Vehicle, InputError> {
+    let src = loader.toml(path)?;
     let f: File = src.parse()?;
     let dir = path.parent().unwrap_or(Path::new("."));
     for (c, g) in f.vehicle.gravity_m_s2.iter().enumerate() {
@@ -160,7 +162,7 @@ pub fn load(path: &Path, opts: &Options) -> Result<Vehicle, InputError> {
         ..Default::default()
     };
     let car_place = Placement::translate([opts.x_offset, 0.0, 0.0]);
-    let mut b = Builder::new(&mut model, opts.joints_as_bushings.clone());
+    let mut b = Builder::new(&mut model, opts.joints_as_bushings.clone(), loader);
     b.place = car_place;
     let c = &f.car;
     let car_body = body::build(
@@ -168,14 +170,14 @@ pub fn load(path: &Path, opts: &Options) -> Result<Vehicle, InputError> {
         &part(&src, dir, &path!["car", "body"], &c.body, "lumped_body")?,
     )?;
     let car_ref = b.model.marker_index("car_body.cm").expect("body marker");
-    let tf = tyre(&src, dir, &path!["car", "front"], &c.front, kind)?;
+    let tf = tyre(&src, dir, &path!["car", "front"], &c.front, kind, loader)?;
     let front = mcpherson::build(
         &mut b,
         &part(&src, dir, &path!["car", "front"], &c.front, "mcpherson")?,
         car_body,
         &tf,
     )?;
-    let tr = tyre(&src, dir, &path!["car", "rear"], &c.rear, kind)?;
+    let tr = tyre(&src, dir, &path!["car", "rear"], &c.rear, kind, loader)?;
     let rear = twist_beam::build(
         &mut b,
         &part(&src, dir, &path!["car", "rear"], &c.rear, "twist_beam")?,
@@ -246,7 +248,7 @@ pub fn load(path: &Path, opts: &Options) -> Result<Vehicle, InputError> {
         &c.driveline,
         "speed_control",
     )?;
-    let control = driveline::build(&dl, car_ref, opts.speed, &wheels)?;
+    let control = driveline::build(&dl, car_ref, opts.speed, &wheels, loader)?;
     b.model.controls.push(control);
 
     let mut handles = Handles {
@@ -271,9 +273,9 @@ pub fn load(path: &Path, opts: &Options) -> Result<Vehicle, InputError> {
         let h = hitch
             .as_ref()
             .ok_or_else(|| src.error(&tp, "a trailer needs a hitch ([car] hitch = ...)"))?;
-        let tt = tyre(&src, dir, &tp, t, kind)?;
+        let tt = tyre(&src, dir, &tp, t, kind, loader)?;
         let case = opts.load_case.as_deref().or(t.load_case.as_deref());
-        let tf = trailer::read(&file, case)?;
+        let tf = trailer::read(&file, case, loader)?;
         let (place, pitch) = trailer::place(&src, &tf, car_place.point(h.ball))?;
         b.place = place;
         let built = trailer::build(&mut b, &tf, &tt)?;

@@ -7,7 +7,7 @@ use serde::Deserialize;
 
 use super::build::Builder;
 use super::props::MassProps;
-use crate::input::{InputError, Source};
+use crate::input::InputError;
 use crate::path;
 
 #[derive(Deserialize, Debug)]
@@ -18,7 +18,7 @@ struct File {
 
 /// Reads `file` and adds the body `car_body`; returns its index.
 pub fn build(b: &mut Builder, file: &Path) -> Result<usize, InputError> {
-    let src = Source::read(file)?;
+    let src = b.loader.toml(file)?;
     let f: File = src.parse()?;
     let m = f.body.check(&src, &path!["body"])?;
     Ok(b.body("car_body", &m))

@@ -63,16 +63,23 @@ pub struct Builder<'m> {
     pub joints_as_bushings: Option<JointBushing>,
     /// The placement each body was created in (indexed like `Model::bodies`).
     pub body_place: Vec<Placement>,
+    /// Reads the templates' property files with the run's overrides.
+    pub loader: crate::input::Loader,
 }
 
 impl<'m> Builder<'m> {
-    pub fn new(model: &'m mut Model, joints_as_bushings: Option<JointBushing>) -> Builder<'m> {
+    pub fn new(
+        model: &'m mut Model,
+        joints_as_bushings: Option<JointBushing>,
+        loader: &crate::input::Loader,
+    ) -> Builder<'m> {
         let body_place = vec![Placement::translate([0.0; 3]); model.bodies.len()];
         Builder {
             model,
             place: Placement::translate([0.0; 3]),
             joints_as_bushings,
             body_place,
+            loader: loader.clone(),
         }
     }
 

@@ -7,7 +7,7 @@ use std::path::Path;
 use serde::Deserialize;
 
 use super::wheel::WheelHandle;
-use crate::input::{InputError, Source};
+use crate::input::InputError;
 use crate::model::desc::SpeedControl;
 use crate::model::function::TimeFunction;
 use crate::path;
@@ -38,8 +38,9 @@ pub fn build(
     sensor: usize,
     speed: f64,
     wheels: &[WheelHandle],
+    loader: &crate::input::Loader,
 ) -> Result<SpeedControl, InputError> {
-    let src = Source::read(file)?;
+    let src = loader.toml(file)?;
     let f: File = src.parse()?;
     let c = &f.speed_control;
     let p = |k: &str| path!["speed_control", k];

@@ -13,7 +13,7 @@ use super::build::{Builder, Link};
 use super::geom::{IDENTITY, V};
 use super::modal_body;
 use super::props::{joint_bushing, point, BushingProps};
-use crate::input::{InputError, Source};
+use crate::input::InputError;
 use crate::model::desc::JointKind;
 use crate::model::math::add;
 use crate::model::spec::JointBushing;
@@ -95,7 +95,7 @@ pub fn build(
     variant: Option<u32>,
     ball: Option<&str>,
 ) -> Result<HitchHandle, InputError> {
-    let src = Source::read(file)?;
+    let src = b.loader.toml(file)?;
     let f: File = src.parse()?;
     let h = &f.hitch;
     let origin = point(&src, &path!["hitch", "fe_origin_m"], &h.fe_origin_m)?;
@@ -106,7 +106,14 @@ pub fn build(
         &h.inertia_coupling,
     )?;
     let fe = file.parent().unwrap_or(Path::new(".")).join(&h.fe_file);
-    let data = modal_body::load(&src, &path!["hitch", "fe_file"], &fe, Some(variant), None)?;
+    let data = modal_body::load(
+        &src,
+        &path!["hitch", "fe_file"],
+        &fe,
+        Some(variant),
+        None,
+        &b.loader,
+    )?;
     let brackets = modal_body::nodes(
         &src,
         &path!["hitch", "bracket_nodes"],

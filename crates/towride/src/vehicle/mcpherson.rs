@@ -150,7 +150,7 @@ pub fn build(
     body: usize,
     tyre: &Tyre,
 ) -> Result<Front, InputError> {
-    let src = Source::read(file)?;
+    let src = b.loader.toml(file)?;
     let c = read(&src, tyre)?;
     let mut out = Front {
         wheels: Vec::new(),

@@ -24,8 +24,9 @@ pub fn load(
     fe: &Path,
     variant: Option<u32>,
     selection: Option<(&[Seg], &SelectionIn)>,
+    loader: &crate::input::Loader,
 ) -> Result<ModalData, InputError> {
-    let mesh = Mesh::read(fe, variant)?;
+    let mesh = Mesh::read(fe, variant, loader)?;
     let rule = match selection {
         Some((p, s)) => {
             let names: Vec<String> = mesh.interfaces.iter().map(|i| i.name.clone()).collect();
@@ -43,6 +44,7 @@ pub fn load(
         Err(FlexError::Model { file, message }) => {
             Err(src.error(fe_at, format!("{file}: {message}")))
         }
+        Err(FlexError::Selection(message)) => Err(src.error(fe_at, message)),
     }
 }
 

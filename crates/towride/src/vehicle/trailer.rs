@@ -84,8 +84,12 @@ pub struct TrailerFile {
 }
 
 /// Reads `file`, choosing the load case `case` (the first one when `None`).
-pub fn read(file: &Path, case: Option<&str>) -> Result<TrailerFile, InputError> {
-    let src = Source::read(file)?;
+pub fn read(
+    file: &Path,
+    case: Option<&str>,
+    loader: &crate::input::Loader,
+) -> Result<TrailerFile, InputError> {
+    let src = loader.toml(file)?;
     let f: File = src.parse()?;
     let coupling = point(&src, &path!["trailer", "coupling_m"], &f.trailer.coupling_m)?;
     let pivot = point(&src, &path!["hardpoints", "pivot_m"], &f.hardpoints.pivot_m)?;

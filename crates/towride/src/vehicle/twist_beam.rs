@@ -20,7 +20,7 @@ use super::props::{
 use super::swing::{self, Spec};
 use super::twist_flex::{self, CrossMemberProps};
 use super::wheel::{self, WheelHandle};
-use crate::input::{InputError, Source};
+use crate::input::InputError;
 use crate::model::spec::StopSpec;
 use crate::path;
 use crate::tyre::Tyre;
@@ -77,14 +77,14 @@ pub fn build(
     tyre: &Tyre,
     kind: Option<&str>,
 ) -> Result<Rear, InputError> {
-    let src = Source::read(file)?;
+    let src = b.loader.toml(file)?;
     let f: File = src.parse()?;
     let cp = path!["cross_member"];
     let flexible = match (&f.cross_member, kind) {
         (Some(c), _) => {
             let k = kind.unwrap_or(&c.kind);
             twist_flex::is_flexible(&src, &at(&cp, "kind"), k)?
-                .then(|| twist_flex::read(&src, &cp, file, c))
+                .then(|| twist_flex::read(&src, &cp, file, c, &b.loader))
                 .transpose()?
         }
         (None, None | Some("rigid")) => None,

@@ -78,6 +78,7 @@ pub fn read(
     p: &[Seg],
     file: &Path,
     c: &CrossMemberProps,
+    loader: &crate::input::Loader,
 ) -> Result<Flexible, InputError> {
     let origin = point(src, &at(p, "fe_origin_m"), &c.fe_origin_m)?;
     let coupling = modal_body::coupling(src, &at(p, "inertia_coupling"), &c.inertia_coupling)?;
@@ -87,7 +88,7 @@ pub fn read(
     }
     let sel_at = at(p, "selection");
     let selection = c.selection.as_ref().map(|s| (sel_at.as_slice(), s));
-    let data = modal_body::load(src, &at(p, "fe_file"), &fe, None, selection)?;
+    let data = modal_body::load(src, &at(p, "fe_file"), &fe, None, selection, loader)?;
     let np = at(p, "interface_nodes");
     let nodes = modal_body::nodes(src, &np, &data, &fe, &c.interface_nodes)?;
     let pos = nodes.map(|n| add(&origin, &data.nodes[n].position_m));
