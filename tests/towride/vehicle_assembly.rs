@@ -289,7 +289,7 @@ fn modal_hitch_carries_the_fe_mass_properties_for_every_variant() {
             .model
             .markers
             .iter()
-            .filter(|mk| mk.body == Some(h.body) && mk.node.is_some())
+            .filter(|mk| mk.body == Some(h.body.index()) && mk.node.is_some())
         {
             let n = &md.nodes[mk.node.unwrap()];
             for c in 0..3 {
@@ -323,7 +323,10 @@ fn load_cases_move_the_trailer_centre_of_mass_where_the_file_says() {
         for w in v.handles.wheels.iter().filter(|w| w.name.starts_with('t')) {
             let belt = v.model.tyres[w.tyre].tyre.params().belt_mass;
             m += belt;
-            s = add(&s, &marker_world(&v.model, w.centre).map(|x| x * belt));
+            s = add(
+                &s,
+                &marker_world(&v.model, w.centre.index()).map(|x| x * belt),
+            );
         }
         (m, sub(&s.map(|x| x / m), &place.translation))
     };

@@ -231,7 +231,8 @@ fn ride_heights(v: &Vehicle, sys: &System, y: &[f64]) -> Vec<(String, f64)> {
         .iter()
         .map(|(w, mk)| {
             let wc = v.handles.wheels.iter().find(|x| &x.name == w).unwrap();
-            let h = sys.marker_frame(q, *mk).origin[2] - sys.marker_frame(q, wc.centre).origin[2];
+            let h = sys.marker_frame(q, mk.index()).origin[2]
+                - sys.marker_frame(q, wc.centre.index()).origin[2];
             (w.clone(), h)
         })
         .collect()
@@ -314,7 +315,13 @@ fn flexible_scene_runs_over_the_ramp_like_the_rigid_one() {
     }
     let (flex_job, flex) = &runs[1];
     let cm = flex_job.scene.as_ref().unwrap().vehicle.handles.bodies["cross_member"];
-    let eta = &flex.samples.modal.iter().find(|(b, _)| *b == cm).unwrap().1;
+    let eta = &flex
+        .samples
+        .modal
+        .iter()
+        .find(|(b, _)| *b == cm.index())
+        .unwrap()
+        .1;
     let eta_peak = eta
         .iter()
         .flat_map(|r| r.iter())

@@ -50,6 +50,53 @@ impl fmt::Display for InputError {
 
 impl std::error::Error for InputError {}
 
+/// A value refused before it is located in a file: the field's path relative to the
+/// value checked (`bump_stop.clearance_m`, `stiffness_n_m[2]`; empty for the value
+/// itself) and the message. [`Source::locate`] puts it at its file, line and field.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FieldError {
+    /// Path below the checked value, as file keys name it.
+    pub field: Vec<Seg>,
+    /// What is wrong.
+    pub message: String,
+}
+
+impl FieldError {
+    /// An error about the checked value itself.
+    pub fn here(message: impl Into<String>) -> FieldError {
+        FieldError {
+            field: Vec::new(),
+            message: message.into(),
+        }
+    }
+
+    /// An error about the key `key` of the checked value.
+    pub fn at(key: impl Into<Seg>, message: impl Into<String>) -> FieldError {
+        FieldError {
+            field: vec![key.into()],
+            message: message.into(),
+        }
+    }
+
+    /// The same error one level further down: under `key`.
+    pub fn under(mut self, key: impl Into<Seg>) -> FieldError {
+        self.field.insert(0, key.into());
+        self
+    }
+}
+
+impl fmt::Display for FieldError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.field.is_empty() {
+            write!(f, "{}", self.message)
+        } else {
+            write!(f, "field `{}`: {}", path_string(&self.field), self.message)
+        }
+    }
+}
+
+impl std::error::Error for FieldError {}
+
 /// One step of a field path: a table key or an array index.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Seg {
@@ -146,23 +193,60 @@ impl Source {
     /// Deserialises the whole file into `T`; type errors, unknown and missing keys come
     /// back located.
     pub fn parse<T: DeserializeOwned>(&self) -> Result<T, InputError> {
-        toml::from_str(&self.text).map_err(|e| {
-            let span = e.span();
-            let (line, column) = match &span {
-                Some(s) => line_col(&self.text, s.start),
-                None => (None, None),
-            };
-            let field = span
-                .map(|s| path_string(&self.path_at(s)))
-                .unwrap_or_default();
-            InputError {
-                file: self.path.clone(),
-                line,
-                column,
-                field,
-                message: e.message().trim().to_string(),
+        toml::from_str(&self.text).map_err(|e| self.serde_error(e))
+    }
+
+    /// Deserialises only the top-level key `key` into `T` (`None` when the file lacks
+    /// it); errors are located in the whole file.
+    pub fn parse_key<T: DeserializeOwned>(&self, key: &str) -> Result<Option<T>, InputError> {
+        use serde::de::{DeserializeSeed, IgnoredAny, MapAccess, Visitor};
+        use std::marker::PhantomData;
+        struct Pick<'k, T>(&'k str, PhantomData<T>);
+        impl<'de, T: DeserializeOwned> Visitor<'de> for Pick<'_, T> {
+            type Value = Option<T>;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                write!(f, "a table")
             }
-        })
+            fn visit_map<A: MapAccess<'de>>(self, mut m: A) -> Result<Option<T>, A::Error> {
+                let mut out = None;
+                while let Some(k) = m.next_key::<String>()? {
+                    if k == self.0 {
+                        out = Some(m.next_value::<T>()?);
+                    } else {
+                        m.next_value::<IgnoredAny>()?;
+                    }
+                }
+                Ok(out)
+            }
+        }
+        impl<'de, T: DeserializeOwned> DeserializeSeed<'de> for Pick<'_, T> {
+            type Value = Option<T>;
+            fn deserialize<D: serde::Deserializer<'de>>(self, d: D) -> Result<Option<T>, D::Error> {
+                d.deserialize_map(self)
+            }
+        }
+        Pick(key, PhantomData)
+            .deserialize(toml::Deserializer::new(&self.text))
+            .map_err(|e| self.serde_error(e))
+    }
+
+    /// A serde error of this file, located.
+    fn serde_error(&self, e: toml::de::Error) -> InputError {
+        let span = e.span();
+        let (line, column) = match &span {
+            Some(s) => line_col(&self.text, s.start),
+            None => (None, None),
+        };
+        let field = span
+            .map(|s| path_string(&self.path_at(s)))
+            .unwrap_or_default();
+        InputError {
+            file: self.path.clone(),
+            line,
+            column,
+            field,
+            message: e.message().trim().to_string(),
+        }
     }
 
     /// An error about the field at `path`, located at that field (or at its nearest
@@ -179,6 +263,13 @@ impl Source {
             field: path_string(path),
             message: message.into(),
         }
+    }
+
+    /// A [`FieldError`] of the value at `base`, located at its field.
+    pub fn locate(&self, base: &[Seg], e: FieldError) -> InputError {
+        let mut p = base.to_vec();
+        p.extend(e.field);
+        self.error(&p, e.message)
     }
 
     /// Checks that `value` is finite, else an error at `path`.

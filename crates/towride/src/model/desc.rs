@@ -5,7 +5,10 @@
 //! description is independent of where the bodies are; the builders convert the global
 //! hardpoints users write into these local frames once.
 
-use super::function::{Spline, TimeFunction};
+pub use super::elements::{
+    Applied, Bushing, Force, JointBushing, Law, LawSpec, RotSpring, SpringDamper, Stop, StopSpec,
+};
+use super::function::TimeFunction;
 
 /// Body index, `None` for ground.
 pub type BodyId = Option<usize>;
@@ -163,113 +166,6 @@ pub struct Joint {
     pub kind: JointKind,
     pub i: usize,
     pub j: usize,
-}
-
-/// Force law of one direction: linear, or a tabulated (spline) curve.
-#[derive(Clone, Debug)]
-pub enum Law {
-    Linear(f64),
-    Curve(Spline),
-}
-
-impl Law {
-    /// (value, slope, curvature) at x.
-    pub fn eval(&self, x: f64) -> (f64, f64, f64) {
-        match self {
-            Law::Linear(k) => (k * x, *k, 0.0),
-            Law::Curve(s) => s.eval(x),
-        }
-    }
-
-    /// Slope at zero (for frequency estimates).
-    pub fn stiffness(&self) -> f64 {
-        self.eval(0.0).1
-    }
-}
-
-/// A one-sided stop engaged beyond a clearance: F = k pen^e + c pen' (for pen > 0), the
-/// damping blended in over `damping_depth` so the force starts from zero.
-#[derive(Clone, Debug)]
-pub struct Stop {
-    pub clearance: f64,
-    pub stiffness: f64,
-    pub exponent: f64,
-    pub damping: f64,
-    pub damping_depth: f64,
-}
-
-/// Translational spring-damper between marker origins i and j, acting along the line.
-/// Repulsive force = preload - spring(l - free_length) - damper(l').
-#[derive(Clone, Debug)]
-pub struct SpringDamper {
-    pub name: String,
-    pub i: usize,
-    pub j: usize,
-    pub free_length: f64,
-    pub preload: f64,
-    pub spring: Law,
-    pub damper: Law,
-    /// Engages in compression: l < free_length - clearance.
-    pub bump_stop: Option<Stop>,
-    /// Engages in extension: l > free_length + clearance.
-    pub rebound_stop: Option<Stop>,
-}
-
-/// 6-DOF bushing: deflection of marker i relative to marker j in j's axes (translations,
-/// then the rotation vector); force and torque on i = preload - K(d) - C(d').
-#[derive(Clone, Debug)]
-pub struct Bushing {
-    pub name: String,
-    pub i: usize,
-    pub j: usize,
-    pub stiffness: [Law; 6],
-    pub damping: [Law; 6],
-    pub preload: [f64; 6],
-    /// Set when the bushing stands in for an ideal joint.
-    pub replaces: Option<String>,
-}
-
-/// Rotational spring-damper about the common z axis of markers i and j.
-#[derive(Clone, Debug)]
-pub struct RotSpring {
-    pub name: String,
-    pub i: usize,
-    pub j: usize,
-    pub free_angle: f64,
-    pub preload: f64,
-    pub spring: Law,
-    pub damper: Law,
-}
-
-/// A force and a torque of time on marker i, components in world axes or in i's axes.
-#[derive(Clone, Debug)]
-pub struct Applied {
-    pub name: String,
-    pub i: usize,
-    pub force: [Option<TimeFunction>; 3],
-    pub torque: [Option<TimeFunction>; 3],
-    pub in_marker_axes: bool,
-}
-
-// A model holds a handful of elements; boxing the large bushing would buy nothing.
-#[allow(clippy::large_enum_variant)]
-#[derive(Clone, Debug)]
-pub enum Force {
-    Spring(SpringDamper),
-    Bushing(Bushing),
-    Rot(RotSpring),
-    Applied(Applied),
-}
-
-impl Force {
-    pub fn name(&self) -> &str {
-        match self {
-            Force::Spring(s) => &s.name,
-            Force::Bushing(b) => &b.name,
-            Force::Rot(r) => &r.name,
-            Force::Applied(a) => &a.name,
-        }
-    }
 }
 
 /// What a motion prescribes: the joint's translation along or rotation about J's z.
@@ -483,33 +379,5 @@ impl Model {
 
     pub fn marker_index(&self, name: &str) -> Option<usize> {
         self.markers.iter().position(|m| m.name == name)
-    }
-
-    /// Adds a marker at a world point with world axes, given the bodies' initial poses.
-    pub fn add_marker_world(
-        &mut self,
-        name: String,
-        body: BodyId,
-        point: [f64; 3],
-        axes_world: [[f64; 3]; 3],
-    ) -> usize {
-        use super::math::{mm, mtv, rot, sub, transpose};
-        let (r, a) = match body {
-            None => (
-                [0.0; 3],
-                [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
-            ),
-            Some(k) => (self.bodies[k].position, rot(&self.bodies[k].orientation)),
-        };
-        let position = mtv(&a, &sub(&point, &r));
-        let axes = mm(&transpose(&a), &axes_world);
-        self.markers.push(Marker {
-            name,
-            body,
-            position,
-            axes,
-            node: None,
-        });
-        self.markers.len() - 1
     }
 }

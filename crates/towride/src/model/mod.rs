@@ -6,11 +6,12 @@
 //! Data flows one way: a mechanism file ([`spec`]) or a vehicle template produces a
 //! validated [`desc::Model`]; [`system::System`] turns it into equations.
 
+pub mod builder;
 pub mod desc;
 pub mod doctor;
 pub mod dual;
+pub mod elements;
 pub mod energy;
-pub mod force;
 pub mod function;
 pub mod ic;
 pub mod joint;
@@ -34,14 +35,12 @@ use towride_solver::SolverError;
 pub enum ModelError {
     /// A value the model builder refuses, before it is located in a file: `item` names
     /// the body or element, `field` the value (as the file keys name it).
-    #[error("{item}: field `{field}`: {message}")]
+    #[error("{item}: {error}")]
     Build {
         /// The body or element, e.g. `spring 'damper_fl'`.
         item: String,
-        /// The value's key, e.g. `bump_stop.clearance_m`.
-        field: String,
-        /// What is wrong.
-        message: String,
+        /// The field refused, as the file keys name it, and why.
+        error: crate::input::FieldError,
     },
     /// Something the solver cannot run (a motion on a direction the joints lock).
     #[error("{0}")]

@@ -2,8 +2,8 @@
 //! from a solver state (y, y') and laid out as named channels with units.
 
 use super::desc::{
-    Accelerations, Axes, ElementQuantity, Force, JointQuantity, MarkerQuantity, ModalQuantity,
-    Model, MotionDof, Output, Request, TyreQuantity,
+    Accelerations, Axes, ElementQuantity, JointQuantity, MarkerQuantity, ModalQuantity, Model,
+    MotionDof, Output, Request, TyreQuantity,
 };
 use super::joint::joint_coordinate;
 use super::math::{add, cross, mtv, mv, rot, sub};
@@ -111,42 +111,23 @@ fn raw_channels(m: &Model, o: &Output) -> Vec<ChannelInfo> {
             }
         },
         Request::Element { element, quantity } => {
-            let f = &m.forces[*element];
-            let names: Vec<(String, &'static str, bool)> = match f {
-                Force::Spring(_) => vec![(
-                    o.name.clone(),
-                    match quantity {
-                        ElementQuantity::Force => "N",
-                        ElementQuantity::Deflection => "m",
-                        ElementQuantity::Velocity => "m/s",
-                    },
-                    false,
-                )],
-                Force::Rot(_) => vec![(
-                    o.name.clone(),
-                    match quantity {
-                        ElementQuantity::Force => "N m",
-                        ElementQuantity::Deflection => "rad",
-                        ElementQuantity::Velocity => "rad/s",
-                    },
-                    *quantity == ElementQuantity::Deflection,
-                )],
-                Force::Bushing(_) | Force::Applied(_) => ["x", "y", "z", "rx", "ry", "rz"]
-                    .iter()
-                    .enumerate()
-                    .map(|(a, c)| {
-                        let unit = match (quantity, a < 3) {
-                            (ElementQuantity::Force, true) => "N",
-                            (ElementQuantity::Force, false) => "N m",
-                            (ElementQuantity::Deflection, true) => "m",
-                            (ElementQuantity::Deflection, false) => "rad",
-                            (ElementQuantity::Velocity, true) => "m/s",
-                            (ElementQuantity::Velocity, false) => "rad/s",
-                        };
-                        (format!("{}.{c}", o.name), unit, false)
-                    })
-                    .collect(),
+            let q = match quantity {
+                ElementQuantity::Force => 0,
+                ElementQuantity::Deflection => 1,
+                ElementQuantity::Velocity => 2,
             };
+            let names: Vec<(String, &'static str, bool)> = m.forces[*element]
+                .measures()
+                .into_iter()
+                .map(|ms| {
+                    (
+                        ms.suffix
+                            .map_or(o.name.clone(), |sfx| format!("{}.{sfx}", o.name)),
+                        ms.units[q],
+                        ms.angle && q == 1,
+                    )
+                })
+                .collect();
             out.extend(names.into_iter().map(|(name, unit, angle)| ChannelInfo {
                 name,
                 unit,

@@ -45,9 +45,9 @@ pub fn standard(v: &Vehicle) -> (Vec<Output>, Vec<Channel>) {
     out.push(named(
         "speed",
         Request::Marker {
-            marker: h.car_ref,
+            marker: h.car_ref.index(),
             quantity: MarkerQuantity::Velocity,
-            axes: Axes::Marker(h.car_ref),
+            axes: Axes::Marker(h.car_ref.index()),
         },
         &["speed", "", ""],
         1.0,
@@ -57,9 +57,9 @@ pub fn standard(v: &Vehicle) -> (Vec<Output>, Vec<Channel>) {
         Some((Link::Joint(joint), _)) => out.push(named(
             "hitch_f",
             Request::Joint {
-                joint,
+                joint: joint.index(),
                 quantity: JointQuantity::Force,
-                axes: Axes::Marker(h.car_ref),
+                axes: Axes::Marker(h.car_ref.index()),
             },
             &hitch,
             1.0,
@@ -67,7 +67,7 @@ pub fn standard(v: &Vehicle) -> (Vec<Output>, Vec<Channel>) {
         Some((Link::Bushing(element), _)) => out.push(named(
             "hitch_f",
             Request::Element {
-                element,
+                element: element.index(),
                 quantity: ElementQuantity::Force,
             },
             &[hitch[0], hitch[1], hitch[2], "", "", ""],
@@ -79,9 +79,9 @@ pub fn standard(v: &Vehicle) -> (Vec<Output>, Vec<Channel>) {
         out.push(named(
             "trailer_a",
             Request::Marker {
-                marker: t,
+                marker: t.index(),
                 quantity: MarkerQuantity::Acceleration,
-                axes: Axes::Marker(t),
+                axes: Axes::Marker(t.index()),
             },
             &["trailer_ax", "", ""],
             1.0,
@@ -103,9 +103,9 @@ pub fn standard(v: &Vehicle) -> (Vec<Output>, Vec<Channel>) {
         out.push(named(
             &format!("acc_{}", s.name),
             Request::Marker {
-                marker: s.marker,
+                marker: s.marker.index(),
                 quantity: MarkerQuantity::Acceleration,
-                axes: Axes::Marker(s.marker),
+                axes: Axes::Marker(s.marker.index()),
             },
             &refs,
             1.0,
@@ -120,7 +120,7 @@ pub fn standard(v: &Vehicle) -> (Vec<Output>, Vec<Channel>) {
             out.push(named(
                 &name,
                 Request::Tyre {
-                    tyre: w.tyre,
+                    tyre: w.tyre.index(),
                     quantity: q,
                 },
                 &[name.as_str()],
@@ -134,7 +134,7 @@ pub fn standard(v: &Vehicle) -> (Vec<Output>, Vec<Channel>) {
         out.push(named(
             "hitch_eta",
             Request::Modal {
-                body: hh.body,
+                body: hh.body.index(),
                 quantity: ModalQuantity::Coordinates,
             },
             &refs,
@@ -143,14 +143,14 @@ pub fn standard(v: &Vehicle) -> (Vec<Output>, Vec<Channel>) {
         out.push(named(
             "hitch_strain_energy",
             Request::Modal {
-                body: hh.body,
+                body: hh.body.index(),
                 quantity: ModalQuantity::StrainEnergy,
             },
             &["hitch_strain_energy"],
             1.0,
         ));
         // The ball's elastic displacement relative to the brackets.
-        if let Some(md) = &v.model.bodies[hh.body].modal {
+        if let Some(md) = &v.model.bodies[hh.body.index()].modal {
             let reference: Vec<usize> = md
                 .data
                 .nodes
@@ -162,7 +162,7 @@ pub fn standard(v: &Vehicle) -> (Vec<Output>, Vec<Channel>) {
             out.push(named(
                 "hitch_deflection",
                 Request::Modal {
-                    body: hh.body,
+                    body: hh.body.index(),
                     quantity: ModalQuantity::Deflection {
                         node: hh.ball_node,
                         reference,

@@ -47,7 +47,8 @@ pub use channels::Channel;
 
 use crate::input::overrides::Origin;
 use crate::input::{InputError, Loader, Override};
-use crate::model::spec::JointBushing;
+use crate::model::builder::ModelBuilder;
+use crate::model::elements::JointBushing;
 use crate::model::{Model, System};
 use crate::path;
 use crate::road::Road;
@@ -363,8 +364,11 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
     };
     let mut v = vehicle::load(&vehicle_file, &opts, &loader)?;
     let extra = {
-        let mut b = Builder::new(&mut v.model, None, &loader);
-        sensors::add(&mut b, &v.handles, &src, &path!["sensor"], &f.sensor)?
+        let model = std::mem::take(&mut v.model);
+        let mut b = Builder::new(ModelBuilder::from_model(model), &loader);
+        let extra = sensors::add(&mut b, &v.handles, &src, &path!["sensor"], &f.sensor);
+        v.model = b.mb.finish();
+        extra?
     };
     v.handles.sensors.extend(extra);
     let (outputs, channels) = channels::standard(&v);

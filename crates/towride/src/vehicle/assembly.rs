@@ -36,12 +36,13 @@ use serde::Deserialize;
 use super::build::Builder;
 use super::design::{self, centre_of_mass};
 use super::geom::{Placement, IDENTITY, V};
+use super::props::at;
 use super::sensors::{self, SensorSpec};
 use super::{
-    body, driveline, hitch, mcpherson, trailer, twist_beam, wheel, Design, Handles, Options,
-    TrailerDesign, Vehicle,
+    axle, body, driveline, hitch, trailer, wheel, Design, Handles, Options, TrailerDesign, Vehicle,
 };
 use crate::input::{InputError, Loader, Seg, Source};
+use crate::model::builder::{BodyHandle, ModelBuilder};
 use crate::model::math::sub;
 use crate::model::Model;
 use crate::path;
@@ -98,25 +99,43 @@ fn part(
     part: &Part,
     template: &str,
 ) -> Result<PathBuf, InputError> {
-    let at = |k: &str| {
-        let mut v = p.to_vec();
-        v.push(Seg::from(k));
-        v
-    };
     if part.template != template {
         return Err(src.error(
-            &at("template"),
+            &at(p, "template"),
             format!(
                 "'{}': this slot takes the template '{template}'",
                 part.template
             ),
         ));
     }
+    file(src, dir, p, part)
+}
+
+/// A part's file, checked for existence.
+fn file(src: &Source, dir: &Path, p: &[Seg], part: &Part) -> Result<PathBuf, InputError> {
     let f = dir.join(&part.file);
     if !f.is_file() {
-        return Err(src.error(&at("file"), format!("no file {}", f.display())));
+        return Err(src.error(&at(p, "file"), format!("no file {}", f.display())));
     }
     Ok(f)
+}
+
+/// An axle slot's template, from the registry.
+fn axle_template(
+    src: &Source,
+    p: &[Seg],
+    part: &Part,
+) -> Result<&'static dyn axle::AxleTemplate, InputError> {
+    axle::template(&part.template).ok_or_else(|| {
+        src.error(
+            &at(p, "template"),
+            format!(
+                "'{}': an axle slot takes one of the axle templates ({})",
+                part.template,
+                axle::names().join(", ")
+            ),
+        )
+    })
 }
 
 fn tyre(
@@ -156,35 +175,43 @@ pub fn load(path: &Path, opts: &Options, loader: &Loader) -> Result<Vehicle, Inp
         ));
     }
     let kind = opts.tyre_kind.unwrap_or(f.vehicle.tyre_model);
-    let mut model = Model {
-        name: f.vehicle.name.clone(),
-        gravity: f.vehicle.gravity_m_s2,
-        ..Default::default()
-    };
+    let mut mb = ModelBuilder::new(&f.vehicle.name, f.vehicle.gravity_m_s2);
+    mb.set_joints_as_bushings(opts.joints_as_bushings.clone())
+        .map_err(|e| src.locate(&path!["vehicle"], e.into_field()))?;
     let car_place = Placement::translate([opts.x_offset, 0.0, 0.0]);
-    let mut b = Builder::new(&mut model, opts.joints_as_bushings.clone(), loader);
-    b.place = car_place;
+    let mut b = Builder::new(mb, loader);
+    b.set_place(car_place);
     let c = &f.car;
     let car_body = body::build(
         &mut b,
         &part(&src, dir, &path!["car", "body"], &c.body, "lumped_body")?,
     )?;
-    let car_ref = b.model.marker_index("car_body.cm").expect("body marker");
-    let tf = tyre(&src, dir, &path!["car", "front"], &c.front, kind, loader)?;
-    let front = mcpherson::build(
-        &mut b,
-        &part(&src, dir, &path!["car", "front"], &c.front, "mcpherson")?,
-        car_body,
-        &tf,
-    )?;
-    let tr = tyre(&src, dir, &path!["car", "rear"], &c.rear, kind, loader)?;
-    let rear = twist_beam::build(
-        &mut b,
-        &part(&src, dir, &path!["car", "rear"], &c.rear, "twist_beam")?,
-        car_body,
-        &tr,
-        opts.rear_cross_member.as_deref(),
-    )?;
+    let car_ref = b.mb.marker_by_name("car_body.cm").expect("body marker");
+    let mut axles = Vec::new();
+    for (slot, p, wheels, variant) in [
+        (&c.front, path!["car", "front"], ["fl", "fr"], None),
+        (
+            &c.rear,
+            path!["car", "rear"],
+            ["rl", "rr"],
+            opts.rear_cross_member.as_deref(),
+        ),
+    ] {
+        let template = axle_template(&src, &p, slot)?;
+        let t = tyre(&src, dir, &p, slot, kind, loader)?;
+        let axle = template.build(
+            &mut b,
+            &file(&src, dir, &p, slot)?,
+            &axle::AxleSlot {
+                carrier: car_body,
+                tyre: &t,
+                wheels,
+                variant,
+            },
+        )?;
+        axles.push(axle);
+    }
+    let rear_x = axles[1].wheels[0].design_centre[0];
     let hitch = match &c.hitch {
         Some(h) => {
             let file = part(&src, dir, &path!["car", "hitch"], h, "modal_hitch")?;
@@ -195,7 +222,6 @@ pub fn load(path: &Path, opts: &Options, loader: &Loader) -> Result<Vehicle, Inp
                 opts.hitch_variant,
                 opts.ball_coupling.as_deref(),
             )?;
-            let rear_x = rear.wheels[0].design_centre[0];
             if (hh.fe_origin[0] - rear_x).abs() > HITCH_ORIGIN_TOLERANCE_M {
                 let mut e = hh.origin_complaint.clone();
                 e.message = format!(
@@ -209,38 +235,39 @@ pub fn load(path: &Path, opts: &Options, loader: &Loader) -> Result<Vehicle, Inp
     };
     // Design statics of the car alone: its weight shared by the axles (lever rule), then
     // across each axle.
-    let parts = masses(b.model, &car_place, &[&front.wheels, &rear.wheels]);
+    let wheel_sets: Vec<&Vec<wheel::WheelHandle>> = axles.iter().map(|a| &a.wheels).collect();
+    let parts = masses(b.model(), &car_place, &wheel_sets);
     let (car_mass, car_cm) = centre_of_mass(&parts);
-    let w = car_mass * super::geom::norm(&b.model.gravity);
+    let w = car_mass * super::geom::norm(&b.model().gravity);
     let (xf, xr) = (
-        front.wheels[0].design_centre[0],
-        rear.wheels[0].design_centre[0],
+        axles[0].wheels[0].design_centre[0],
+        axles[1].wheels[0].design_centre[0],
     );
     let (ff, fr) = design::lever(w, car_cm[0], xf, xr);
     let mut car_corners = Vec::new();
-    for (axle_load, corners, wheels) in [
-        (ff, front.corners, &front.wheels),
-        (fr, rear.corners, &rear.wheels),
-    ] {
-        let (yl, yr) = (wheels[0].design_centre[1], wheels[1].design_centre[1]);
+    let mut ride = Vec::new();
+    let mut wheels = Vec::new();
+    for (axle_load, axle) in [ff, fr].into_iter().zip(axles) {
+        let (yl, yr) = (
+            axle.wheels[0].design_centre[1],
+            axle.wheels[1].design_centre[1],
+        );
         let (fl, fr) = design::lever(axle_load, car_cm[1], yl, yr);
-        for (corner, load) in corners.into_iter().zip([fl, fr]) {
+        for (corner, load) in axle.corners.into_iter().zip([fl, fr]) {
             car_corners.push(design::finish(&mut b, corner, load)?);
         }
+        for (w, p) in axle.wheels.iter().zip(&axle.body_mounts) {
+            ride.push((w.name.clone(), *p));
+        }
+        wheels.extend(axle.wheels);
     }
-    let mut ride = Vec::new();
-    for (w, p) in front
-        .wheels
-        .iter()
-        .zip(&front.top_mounts)
-        .chain(rear.wheels.iter().zip(&rear.spring_tops))
-    {
-        ride.push((
-            w.name.clone(),
-            b.marker(&format!("ride_{}", w.name), Some(car_body), *p, &IDENTITY),
-        ));
-    }
-    let mut wheels: Vec<_> = front.wheels.iter().chain(&rear.wheels).cloned().collect();
+    let ride = ride
+        .into_iter()
+        .map(|(w, p)| {
+            let m = b.marker(&format!("ride_{w}"), Some(car_body), p, &IDENTITY)?;
+            Ok((w, m))
+        })
+        .collect::<Result<Vec<_>, InputError>>()?;
     let dl = part(
         &src,
         dir,
@@ -249,7 +276,7 @@ pub fn load(path: &Path, opts: &Options, loader: &Loader) -> Result<Vehicle, Inp
         "speed_control",
     )?;
     let control = driveline::build(&dl, car_ref, opts.speed, &wheels, loader)?;
-    b.model.controls.push(control);
+    b.mb.speed_control(control);
 
     let mut handles = Handles {
         car_body,
@@ -277,12 +304,17 @@ pub fn load(path: &Path, opts: &Options, loader: &Loader) -> Result<Vehicle, Inp
         let case = opts.load_case.as_deref().or(t.load_case.as_deref());
         let tf = trailer::read(&file, case, loader)?;
         let (place, pitch) = trailer::place(&src, &tf, car_place.point(h.ball))?;
-        b.place = place;
+        b.set_place(place);
         let built = trailer::build(&mut b, &tf, &tt)?;
-        b.place = car_place;
-        handles.ball = Some(hitch::couple(&mut b, h, built.body));
+        b.set_place(car_place);
+        handles.ball = Some(hitch::couple(
+            &mut b,
+            h,
+            built.body,
+            opts.joints_as_bushings.as_ref(),
+        )?);
         handles.trailer_body = Some(built.body);
-        handles.trailer_ref = b.model.marker_index("trailer_box.cm");
+        handles.trailer_ref = b.mb.marker_by_name("trailer_box.cm");
         handles.trailer_place = Some(place);
         wheels.extend(built.wheels.iter().cloned());
         trailer_design = Some(TrailerDesign {
@@ -295,21 +327,22 @@ pub fn load(path: &Path, opts: &Options, loader: &Loader) -> Result<Vehicle, Inp
         });
     }
     handles.bodies = b
-        .model
+        .model()
         .bodies
         .iter()
         .enumerate()
-        .map(|(k, x)| (x.name.clone(), k))
+        .map(|(k, x)| (x.name.clone(), BodyHandle(k)))
         .collect();
-    handles.body_place = b.body_place.clone();
+    handles.body_place = b.mb.body_places().to_vec();
     handles.sensors = sensors::add(&mut b, &handles, &src, &path!["sensor"], &f.sensor)?;
-    wheel::set_speed(b.model, &wheels, opts.speed);
+    wheel::set_speed(b.model_mut(), &wheels, opts.speed);
     handles.wheels = wheels;
+    let model = b.mb.finish();
     let total: f64 = model.bodies.iter().map(|x| x.mass).sum::<f64>()
         + handles
             .wheels
             .iter()
-            .map(|w| wheel::tyre_own_mass(&model.tyres[w.tyre].tyre))
+            .map(|w| wheel::tyre_own_mass(&model.tyres[w.tyre.index()].tyre))
             .sum::<f64>();
     Ok(Vehicle {
         model,
@@ -332,7 +365,10 @@ fn masses(m: &Model, place: &Placement, axles: &[&Vec<wheel::WheelHandle>]) -> V
         .map(|b| (b.mass, sub(&b.position, &place.translation)))
         .collect();
     for w in axles.iter().flat_map(|a| a.iter()) {
-        parts.push((wheel::tyre_own_mass(&m.tyres[w.tyre].tyre), w.design_centre));
+        parts.push((
+            wheel::tyre_own_mass(&m.tyres[w.tyre.index()].tyre),
+            w.design_centre,
+        ));
     }
     parts
 }

@@ -8,6 +8,7 @@ use serde::Deserialize;
 use super::build::Builder;
 use super::props::MassProps;
 use crate::input::InputError;
+use crate::model::builder::BodyHandle;
 use crate::path;
 
 #[derive(Deserialize, Debug)]
@@ -17,9 +18,9 @@ struct File {
 }
 
 /// Reads `file` and adds the body `car_body`; returns its index.
-pub fn build(b: &mut Builder, file: &Path) -> Result<usize, InputError> {
-    let src = b.loader.toml(file)?;
+pub fn build(b: &mut Builder, file: &Path) -> Result<BodyHandle, InputError> {
+    let src = b.read(file)?;
     let f: File = src.parse()?;
     let m = f.body.check(&src, &path!["body"])?;
-    Ok(b.body("car_body", &m))
+    b.body("car_body", &m)
 }

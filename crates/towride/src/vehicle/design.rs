@@ -16,19 +16,20 @@
 
 use serde::Serialize;
 
-use super::build::{Builder, Line};
+use super::build::Builder;
 use super::geom::{distance, norm, V};
 use crate::input::InputError;
+use crate::model::builder::{ElementHandle, SpringLine};
 use crate::model::desc::{Force, Law};
 use crate::model::math::{add, dot, scale};
 
 /// The element of a corner that carries the static load, before its preload is known.
 pub enum Preloaded {
     /// A coil spring (rate [N/m]) along `line`; its free length follows from the preload.
-    Coil { line: Box<Line>, rate: f64 },
+    Coil { line: Box<SpringLine>, rate: f64 },
     /// A bushing (index in `Model::forces`) whose torque about its z axis carries the
     /// load (a rubber torsion spring); rate of the torsion [N m/rad].
-    Torsion { force: usize, rate: f64 },
+    Torsion { force: ElementHandle, rate: f64 },
 }
 
 /// One corner of an axle: its mechanism rates and its load-carrying element.
@@ -43,7 +44,7 @@ pub struct Corner {
 /// Sets the corner's element so it holds the design position under `load` [N]; returns
 /// what was found.
 pub fn finish(b: &mut Builder, c: Corner, load: f64) -> Result<CornerDesign, InputError> {
-    let g = b.model.gravity;
+    let g = b.model().gravity;
     let p = preload(&c.rates, g, load);
     let mr = motion_ratio(&c.rates, g);
     let unsprung_kg = reduced_mass(&c.rates, g);
@@ -61,11 +62,11 @@ pub fn finish(b: &mut Builder, c: Corner, load: f64) -> Result<CornerDesign, Inp
             line.preload = 0.0;
             line.spring = Law::Linear(rate);
             let free = line.free_length;
-            b.line(*line);
+            b.line(*line)?;
             (rate, Some(free))
         }
         Preloaded::Torsion { force, rate } => {
-            if let Force::Bushing(bu) = &mut b.model.forces[force] {
+            if let Force::Bushing(bu) = &mut b.model_mut().forces[force.index()] {
                 bu.preload[5] = p;
             }
             (rate, None)

@@ -8,6 +8,7 @@ use serde::Deserialize;
 
 use super::wheel::WheelHandle;
 use crate::input::InputError;
+use crate::model::builder::MarkerHandle;
 use crate::model::desc::SpeedControl;
 use crate::model::function::TimeFunction;
 use crate::path;
@@ -35,7 +36,7 @@ struct Control {
 /// marker `sensor`, driving the named `wheels`.
 pub fn build(
     file: &Path,
-    sensor: usize,
+    sensor: MarkerHandle,
     speed: f64,
     wheels: &[WheelHandle],
     loader: &crate::input::Loader,
@@ -59,11 +60,11 @@ pub fn build(
                 format!("no wheel '{name}' (the car has {})", known.join(", ")),
             )
         })?;
-        driven.push((w.centre, w.carrier_centre));
+        driven.push((w.centre.index(), w.carrier_centre.index()));
     }
     Ok(SpeedControl {
         name: "driveline".into(),
-        sensor,
+        sensor: sensor.index(),
         target: TimeFunction::Constant { value: speed },
         kp,
         ki,

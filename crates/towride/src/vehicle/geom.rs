@@ -5,62 +5,13 @@
 //! the front axle with the car at its design ride height. Trailer coordinates: the same
 //! axes, origin on the ground under the coupling's ball centre.
 
-use crate::model::math::{add, cross, dot, mv, scale, sub};
+use crate::model::math::{cross, dot, scale, sub};
 
-pub type V = [f64; 3];
-/// A frame's axes as columns.
-pub type Axes = [[f64; 3]; 3];
-
-pub const IDENTITY: Axes = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+pub use crate::model::builder::{Axes, Placement, IDENTITY, V};
 
 /// A frame with its z axis along y (columns x, -z, y): revolute axes of wheel bearings
 /// and axle pivots.
 pub const Z_ALONG_Y: Axes = [[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]];
-
-/// A rigid placement of subsystem coordinates in the world: p_world = R p + t.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Placement {
-    pub rotation: Axes,
-    pub translation: V,
-}
-
-impl Placement {
-    pub fn translate(t: V) -> Placement {
-        Placement {
-            rotation: IDENTITY,
-            translation: t,
-        }
-    }
-
-    /// Rotation by `angle` [rad] about the y axis through `pivot` (subsystem
-    /// coordinates), then the translation `t`.
-    pub fn pitched(pivot: V, angle: f64, t: V) -> Placement {
-        let (s, c) = angle.sin_cos();
-        let r = [[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]];
-        let shift = sub(&pivot, &mv(&r, &pivot));
-        Placement {
-            rotation: r,
-            translation: add(&shift, &t),
-        }
-    }
-
-    pub fn point(&self, p: V) -> V {
-        add(&mv(&self.rotation, &p), &self.translation)
-    }
-
-    pub fn vector(&self, v: V) -> V {
-        mv(&self.rotation, &v)
-    }
-
-    /// A vector given in world axes, in subsystem axes.
-    pub fn vector_local(&self, v: V) -> V {
-        crate::model::math::mtv(&self.rotation, &v)
-    }
-
-    pub fn axes(&self, a: &Axes) -> Axes {
-        crate::model::math::mm(&self.rotation, a)
-    }
-}
 
 /// The right-side image of a left-side point.
 pub fn mirror(p: V) -> V {

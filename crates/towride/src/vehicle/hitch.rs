@@ -14,9 +14,10 @@ use super::geom::{IDENTITY, V};
 use super::modal_body;
 use super::props::{joint_bushing, point, BushingProps};
 use crate::input::InputError;
+use crate::model::builder::BodyHandle;
 use crate::model::desc::JointKind;
+use crate::model::elements::JointBushing;
 use crate::model::math::add;
-use crate::model::spec::JointBushing;
 use crate::path;
 
 #[derive(Deserialize, Debug)]
@@ -68,7 +69,7 @@ pub enum BallKind {
 /// What the rest of the vehicle needs of the hitch.
 #[derive(Clone, Debug)]
 pub struct HitchHandle {
-    pub body: usize,
+    pub body: BodyHandle,
     /// Ball centre, vehicle coordinates [m].
     pub ball: V,
     /// Index of the ball interface node in the modal data.
@@ -91,11 +92,11 @@ pub struct HitchHandle {
 pub fn build(
     b: &mut Builder,
     file: &Path,
-    body: usize,
+    body: BodyHandle,
     variant: Option<u32>,
     ball: Option<&str>,
 ) -> Result<HitchHandle, InputError> {
-    let src = b.loader.toml(file)?;
+    let src = b.read(file)?;
     let f: File = src.parse()?;
     let h = &f.hitch;
     let origin = point(&src, &path!["hitch", "fe_origin_m"], &h.fe_origin_m)?;
@@ -170,7 +171,7 @@ pub fn build(
         at(&data.nodes[sensor_node].position_m),
     );
     let modes = data.modes.len();
-    let hb = modal_body::add_body(b, "hitch", data, origin, coupling);
+    let hb = modal_body::add_body(b, "hitch", data, origin, coupling)?;
     for (k, &n) in brackets.iter().enumerate() {
         let p = modal_body::node_position(b, hb, origin, n);
         let name = format!("hitch_bracket_{}", ["left", "right"][k]);
@@ -182,7 +183,7 @@ pub fn build(
                 Some(body),
                 p,
                 &bushing.axes,
-            )
+            )?
         } else {
             Link::Bushing(b.bushing(
                 &name,
@@ -192,7 +193,7 @@ pub fn build(
                 &bushing.axes,
                 &bushing,
                 [0.0; 6],
-            ))
+            )?)
         };
         modal_body::pin(b, link, true, n);
     }
@@ -215,9 +216,14 @@ pub fn build(
 /// the drawbar's force on the car. Bushing: I = drawbar, J = hitch ball, so its force in
 /// J's axes is minus the force on the car in (nearly) car axes.
 /// A model-wide switch of joints to bushings turns the ball joint into that bushing.
-pub fn couple(b: &mut Builder, h: &HitchHandle, drawbar: usize) -> (Link, BallKind) {
+pub fn couple(
+    b: &mut Builder,
+    h: &HitchHandle,
+    drawbar: BodyHandle,
+    joints_as_bushings: Option<&JointBushing>,
+) -> Result<(Link, BallKind), InputError> {
     let name = "ball_coupling";
-    let kind = match (&h.ball_kind, &b.joints_as_bushings) {
+    let kind = match (&h.ball_kind, joints_as_bushings) {
         (BallKind::Spherical, Some(g)) => BallKind::Bushing(g.clone()),
         (k, _) => k.clone(),
     };
@@ -231,7 +237,7 @@ pub fn couple(b: &mut Builder, h: &HitchHandle, drawbar: usize) -> (Link, BallKi
                 h.ball,
                 &IDENTITY,
                 None,
-            );
+            )?;
             modal_body::pin(b, link, true, h.ball_node);
             link
         }
@@ -244,10 +250,10 @@ pub fn couple(b: &mut Builder, h: &HitchHandle, drawbar: usize) -> (Link, BallKi
                 h.ball,
                 &IDENTITY,
                 Some(jb),
-            );
+            )?;
             modal_body::pin(b, link, false, h.ball_node);
             link
         }
     };
-    (link, kind)
+    Ok((link, kind))
 }

@@ -12,7 +12,10 @@
 
 use serde::Deserialize;
 
-use super::build::{Builder, Line};
+use std::path::Path;
+
+use super::axle::{Axle, AxleSlot, AxleTemplate};
+use super::build::Builder;
 use super::design::{Corner, CornerRates, Preloaded};
 use super::geom::{frame, unit, V};
 use super::props::{
@@ -22,9 +25,10 @@ use super::props::{
 use super::strut::{rates, Pts};
 use super::wheel::{self, WheelHandle};
 use crate::input::{InputError, Source};
+use crate::model::builder::{BodyHandle, SpringLine};
 use crate::model::desc::{JointKind, Law, Stop};
+use crate::model::elements::{JointBushing, StopSpec};
 use crate::model::math::{cross, scale, sub};
-use crate::model::spec::{JointBushing, StopSpec};
 use crate::path;
 use crate::tyre::Tyre;
 
@@ -68,12 +72,17 @@ struct Spring {
     stiffness_n_m: f64,
 }
 
-/// The built front axle: wheels (left, right) and the corners awaiting their loads.
-pub struct Front {
-    pub wheels: Vec<WheelHandle>,
-    pub corners: Vec<Corner>,
-    /// Top-mount centres (left, right), vehicle coordinates.
-    pub top_mounts: Vec<V>,
+/// The McPherson strut axle template.
+pub struct McPherson;
+
+impl AxleTemplate for McPherson {
+    fn name(&self) -> &'static str {
+        "mcpherson"
+    }
+
+    fn build(&self, b: &mut Builder, file: &Path, slot: &AxleSlot) -> Result<Axle, InputError> {
+        build(b, file, slot)
+    }
 }
 
 /// The property file, checked (left side).
@@ -143,25 +152,26 @@ fn read(src: &Source, tyre: &Tyre) -> Result<Props, InputError> {
     })
 }
 
-/// Reads `file` and adds both sides, attached to the car body `body`.
-pub fn build(
-    b: &mut Builder,
-    file: &std::path::Path,
-    body: usize,
-    tyre: &Tyre,
-) -> Result<Front, InputError> {
-    let src = b.loader.toml(file)?;
-    let c = read(&src, tyre)?;
-    let mut out = Front {
+/// Reads `file` and adds both sides at `slot`.
+fn build(b: &mut Builder, file: &Path, slot: &AxleSlot) -> Result<Axle, InputError> {
+    if slot.variant.is_some() {
+        return Err(b.refused(crate::model::ModelError::Unsupported(
+            "the McPherson axle has no variants".into(),
+        )));
+    }
+    let src = b.read(file)?;
+    let c = read(&src, slot.tyre)?;
+    let mut out = Axle {
         wheels: Vec::new(),
         corners: Vec::new(),
-        top_mounts: Vec::new(),
+        body_mounts: Vec::new(),
+        flexible: None,
     };
-    for (right, name) in [(false, "fl"), (true, "fr")] {
-        let (wheel, corner, top) = side(b, &src, &c, body, right, name, tyre)?;
+    for (right, name) in [(false, slot.wheels[0]), (true, slot.wheels[1])] {
+        let (wheel, corner, top) = side(b, &src, &c, slot.carrier, right, name, slot.tyre)?;
         out.wheels.push(wheel);
         out.corners.push(corner);
-        out.top_mounts.push(top);
+        out.body_mounts.push(top);
     }
     Ok(out)
 }
@@ -171,7 +181,7 @@ fn side(
     b: &mut Builder,
     src: &Source,
     c: &Props,
-    body: usize,
+    body: BodyHandle,
     right: bool,
     name: &str,
     tyre: &Tyre,
@@ -183,10 +193,10 @@ fn side(
         c.rod.side(right),
         c.tie.side(right),
     );
-    let lca = b.body(&format!("lca_{name}"), &lca_m);
-    let kn = b.body(&format!("knuckle_{name}"), &kn_m);
-    let rod = b.body(&format!("strut_rod_{name}"), &rod_m);
-    let tie = b.body(&format!("tie_rod_{name}"), &tie_m);
+    let lca = b.body(&format!("lca_{name}"), &lca_m)?;
+    let kn = b.body(&format!("knuckle_{name}"), &kn_m)?;
+    let rod = b.body(&format!("strut_rod_{name}"), &rod_m)?;
+    let tie = b.body(&format!("tie_rod_{name}"), &tie_m)?;
     for (what, laws, bi, at) in [
         ("lca_front_bushing", &c.lca_front, lca, p.af),
         ("lca_rear_bushing", &c.lca_rear, lca, p.ar),
@@ -201,7 +211,7 @@ fn side(
             &l.axes,
             &l,
             [0.0; 6],
-        );
+        )?;
     }
     let strut_axes =
         frame(unit(&sub(&p.t, &p.l)), Some([1.0, 0.0, 0.0])).expect("strut axis not along x");
@@ -240,15 +250,15 @@ fn side(
             at,
             axes,
             jb,
-        );
+        )?;
     }
-    let mut damper = Line::new(format!("damper_{name}"), Some(kn), p.l, Some(rod), p.t);
+    let mut damper = SpringLine::new(&format!("damper_{name}"), Some(kn), p.l, Some(rod), p.t);
     damper.damper = c.damper.clone();
     damper.bump_stop = c.bump.clone();
     damper.rebound_stop = c.rebound.clone();
-    b.line(damper);
+    b.line(damper)?;
     let rim = c.rim.side(right);
-    let wheel = wheel::add(b, name, kn, &rim, tyre);
+    let wheel = wheel::add(b, name, kn, &rim, tyre)?;
     let v = rates(&p, src, &[kn_m.cm, lca_m.cm, rod_m.cm, tie_m.cm])?;
     let rates = CornerRates {
         masses: vec![
@@ -266,8 +276,8 @@ fn side(
         wheel: name.to_string(),
         rates,
         element: Preloaded::Coil {
-            line: Box::new(Line::new(
-                format!("spring_{name}"),
+            line: Box::new(SpringLine::new(
+                &format!("spring_{name}"),
                 Some(kn),
                 p.q,
                 Some(body),

@@ -21,6 +21,7 @@
 //! of the hitch and the cross member).
 
 pub mod assembly;
+pub mod axle;
 pub mod body;
 pub mod build;
 pub mod design;
@@ -50,7 +51,8 @@ pub use hitch::{BallKind, HitchHandle};
 pub use sensors::Sensor;
 pub use wheel::WheelHandle;
 
-use crate::model::spec::JointBushing;
+use crate::model::builder::{BodyHandle, MarkerHandle};
+use crate::model::elements::JointBushing;
 use crate::model::Model;
 use crate::tyre::TyreKind;
 
@@ -90,24 +92,25 @@ pub struct Vehicle {
 /// Named parts a scene needs.
 #[derive(Clone, Debug)]
 pub struct Handles {
-    pub car_body: usize,
+    /// The car body.
+    pub car_body: BodyHandle,
     /// Marker at the car body's centre of mass with the vehicle's axes (speed sensor,
     /// axes of the hitch force).
-    pub car_ref: usize,
+    pub car_ref: MarkerHandle,
     /// Wheels fl, fr, rl, rr, then the trailer's tl, tr.
     pub wheels: Vec<WheelHandle>,
     pub hitch: Option<HitchHandle>,
     /// The ball coupling (joint or bushing) and what it became.
     pub ball: Option<(Link, BallKind)>,
-    pub trailer_body: Option<usize>,
+    pub trailer_body: Option<BodyHandle>,
     /// Marker at the trailer box's centre of mass with its axes.
-    pub trailer_ref: Option<usize>,
+    pub trailer_ref: Option<MarkerHandle>,
     /// Markers on the car body above each car wheel (top mounts, upper spring seats),
     /// by wheel name: ride heights are measured between them and the wheel centres.
-    pub ride: Vec<(String, usize)>,
+    pub ride: Vec<(String, MarkerHandle)>,
     pub sensors: Vec<Sensor>,
     /// Every body by name.
-    pub bodies: BTreeMap<String, usize>,
+    pub bodies: BTreeMap<String, BodyHandle>,
     pub car_place: Placement,
     pub trailer_place: Option<Placement>,
     /// The placement of each body's subsystem (indexed like `Model::bodies`): sensor

@@ -11,7 +11,8 @@ use super::props::{at, Mass};
 use crate::flex::input::SelectionIn;
 use crate::flex::{FlexBody, FlexError, Mesh, ModalData, Options, Rule};
 use crate::input::{InputError, Seg, Source};
-use crate::model::desc::{Coupling, Force, Modal};
+use crate::model::builder::BodyHandle;
+use crate::model::desc::{Coupling, Modal};
 use crate::model::math::add;
 
 /// The selected modes of the FE model `fe` (`variant`, None for the base sections); its
@@ -101,20 +102,20 @@ pub fn add_body(
     data: ModalData,
     origin: V,
     coupling: Coupling,
-) -> usize {
+) -> Result<BodyHandle, InputError> {
     let mass = Mass {
         mass: data.mass_kg,
         cm: add(&origin, &data.com_m),
         inertia: data.inertia_com_kg_m2,
     };
-    let k = b.body(name, &mass);
-    b.model.bodies[k].modal = Some(Box::new(Modal { data, coupling }));
-    k
+    let k = b.body(name, &mass)?;
+    b.model_mut().bodies[k.index()].modal = Some(Box::new(Modal { data, coupling }));
+    Ok(k)
 }
 
 /// Position of node `n` of the modal body `body` in subsystem coordinates.
-pub fn node_position(b: &Builder, body: usize, origin: V, n: usize) -> V {
-    let data = &b.model.bodies[body]
+pub fn node_position(b: &Builder, body: BodyHandle, origin: V, n: usize) -> V {
+    let data = &b.model().bodies[body.index()]
         .modal
         .as_ref()
         .expect("a modal body")
@@ -125,25 +126,18 @@ pub fn node_position(b: &Builder, body: usize, origin: V, n: usize) -> V {
 /// Moves the modal body's marker of `link` (its I marker when `on_i`, else its J marker)
 /// onto node `n`, so the joint or bushing acts there and follows the node's deformation.
 pub fn pin(b: &mut Builder, link: Link, on_i: bool, n: usize) {
-    let marker = match link {
-        Link::Joint(j) => {
-            let jt = &b.model.joints[j];
-            if on_i {
-                jt.i
-            } else {
-                jt.j
-            }
+    let m = b.model();
+    let (i, j) = match link {
+        Link::Joint(k) => {
+            let jt = &m.joints[k.index()];
+            (jt.i, Some(jt.j))
         }
-        Link::Bushing(f) => match &b.model.forces[f] {
-            Force::Bushing(bu) => {
-                if on_i {
-                    bu.i
-                } else {
-                    bu.j
-                }
-            }
-            _ => unreachable!("a link's force is a bushing"),
-        },
+        Link::Bushing(k) => m.forces[k.index()].markers(),
     };
-    b.model.markers[marker].node = Some(n);
+    let marker = if on_i {
+        i
+    } else {
+        j.expect("a link has two markers")
+    };
+    b.model_mut().markers[marker].node = Some(n);
 }

@@ -5,9 +5,8 @@ use serde::Deserialize;
 
 use super::geom::{frame, Axes, V};
 use crate::input::{InputError, Seg, Source};
-use crate::model::desc::{Law, Stop};
-use crate::model::function::Spline;
-use crate::model::spec::{JointBushing, LawSpec, StopSpec};
+use crate::model::builder::inertia_tensor;
+use crate::model::elements::{JointBushing, Law, LawSpec, Stop, StopSpec};
 
 /// `p` extended by one key or index.
 pub fn at(p: &[Seg], k: impl Into<Seg>) -> Vec<Seg> {
@@ -66,39 +65,15 @@ impl MassProps {
     }
 }
 
-/// A physical inertia tensor: positive principal moments obeying the triangle inequality.
+/// A physical inertia tensor (the model builder's rule), located at `p`.
 pub fn inertia(src: &Source, p: &[Seg], v: &[f64]) -> Result<[[f64; 3]; 3], InputError> {
-    for (c, x) in v.iter().enumerate() {
-        src.finite(&at(p, c), *x)?;
-    }
-    let (ixx, iyy, izz, ixy, ixz, iyz) = match v.len() {
-        3 => (v[0], v[1], v[2], 0.0, 0.0, 0.0),
-        6 => (v[0], v[1], v[2], v[3], v[4], v[5]),
-        n => {
-            return Err(src.error(
-                p,
-                format!("give 3 (Ixx, Iyy, Izz) or 6 (plus Ixy, Ixz, Iyz) values, not {n}"),
-            ))
-        }
-    };
-    let t = [[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]];
-    let e = nalgebra::Matrix3::from_fn(|r, c| t[r][c]).symmetric_eigenvalues();
-    let (a, b, c) = (e[0], e[1], e[2]);
-    let tol = 1e-9 * (a + b + c).abs();
-    if a <= 0.0 || b <= 0.0 || c <= 0.0 || a + b < c - tol || a + c < b - tol || b + c < a - tol {
-        return Err(src.error(p, format!("not a physical inertia tensor (principal moments {a:.4e}, {b:.4e}, {c:.4e} must be positive and satisfy the triangle inequality)")));
-    }
-    Ok(t)
+    inertia_tensor(v).map_err(|e| src.locate(p, e))
 }
 
-/// A linear coefficient (non-negative) or a table (natural cubic spline).
+/// A linear coefficient (non-negative) or a table (natural cubic spline), checked by the
+/// one rule of `LawSpec::check`, located at `p`.
 pub fn law(src: &Source, p: &[Seg], l: &LawSpec) -> Result<Law, InputError> {
-    match l {
-        LawSpec::Linear(k) => Ok(Law::Linear(src.non_negative(p, *k)?)),
-        LawSpec::Table { x, y } => Spline::new(x, y)
-            .map(Law::Curve)
-            .map_err(|e| src.error(p, e)),
-    }
+    l.check().map_err(|e| src.locate(p, e))
 }
 
 /// A 6-DOF rubber bushing: axes (z along `z_axis`), and per axis stiffness and damping.
@@ -187,29 +162,17 @@ impl DamperProps {
                 ));
             }
         }
-        Spline::new(&self.velocity_m_s, &self.force_n)
+        crate::model::function::Spline::new(&self.velocity_m_s, &self.force_n)
             .map(Law::Curve)
             .map_err(|e| src.error(&at(p, "velocity_m_s"), e))
     }
 }
 
-/// A bump or rebound stop, checked.
+/// A bump or rebound stop, checked by the one rule of `StopSpec::check`.
 pub fn stop(src: &Source, p: &[Seg], s: &Option<StopSpec>) -> Result<Option<Stop>, InputError> {
-    let Some(s) = s else { return Ok(None) };
-    let exponent = src.finite(&at(p, "exponent"), s.exponent)?;
-    if exponent < 1.0 {
-        return Err(src.error(
-            &at(p, "exponent"),
-            "must be at least 1 (a force that starts from zero)",
-        ));
-    }
-    Ok(Some(Stop {
-        clearance: src.positive(&at(p, "clearance_m"), s.clearance_m)?,
-        stiffness: src.positive(&at(p, "stiffness_n_m"), s.stiffness_n_m)?,
-        exponent,
-        damping: src.non_negative(&at(p, "damping_n_s_m"), s.damping_n_s_m)?,
-        damping_depth: src.non_negative(&at(p, "damping_depth_m"), s.damping_depth_m)?,
-    }))
+    s.as_ref()
+        .map(|s| s.check().map_err(|e| src.locate(p, e)))
+        .transpose()
 }
 
 /// A template's ideal joints: kept, or all replaced by one bushing (thesis 6b: stiff,
@@ -238,10 +201,7 @@ pub fn joint_bushing(
     jb: &Option<JointBushing>,
 ) -> Result<Option<JointBushing>, InputError> {
     let Some(jb) = jb else { return Ok(None) };
-    src.positive(&at(p, "stiffness_n_m"), jb.stiffness_n_m)?;
-    src.positive(&at(p, "stiffness_n_m_rad"), jb.stiffness_n_m_rad)?;
-    src.non_negative(&at(p, "damping_n_s_m"), jb.damping_n_s_m)?;
-    src.non_negative(&at(p, "damping_n_m_s_rad"), jb.damping_n_m_s_rad)?;
+    jb.check().map_err(|e| src.locate(p, e))?;
     Ok(Some(jb.clone()))
 }
 

@@ -9,6 +9,7 @@ use super::geom::IDENTITY;
 use super::props::point;
 use super::Handles;
 use crate::input::{InputError, Seg, Source};
+use crate::model::builder::MarkerHandle;
 
 /// A sensor as written in a file.
 #[derive(Deserialize, Debug, Clone)]
@@ -29,7 +30,7 @@ pub struct SensorSpec {
 #[derive(Clone, Debug)]
 pub struct Sensor {
     pub name: String,
-    pub marker: usize,
+    pub marker: MarkerHandle,
     /// Which of x, y, z it measures.
     pub axes: [bool; 3],
 }
@@ -82,15 +83,18 @@ pub fn add(
             return Err(src.error(&at("axes"), "name at least one axis"));
         }
         let name = format!("sensor_{}", s.name);
-        let place = h.body_place[body];
+        let place = h.body_place[body.index()];
         let marker = match (&s.node, &s.position_m) {
             (Some(node), None) => {
-                let modal = b.model.bodies[body].modal.as_ref().ok_or_else(|| {
-                    src.error(
-                        &at("node"),
-                        format!("body '{}' is rigid: give position_m", s.body),
-                    )
-                })?;
+                let modal = b.model().bodies[body.index()]
+                    .modal
+                    .as_ref()
+                    .ok_or_else(|| {
+                        src.error(
+                            &at("node"),
+                            format!("body '{}' is rigid: give position_m", s.body),
+                        )
+                    })?;
                 let n = modal
                     .data
                     .nodes
@@ -103,20 +107,20 @@ pub fn add(
                 let cm = modal.data.com_m;
                 // Node position relative to the body's centre of mass, in world axes.
                 let rel = place.vector(crate::model::math::sub(&pos, &cm));
-                let world = crate::model::math::add(&b.model.bodies[body].position, &rel);
-                let k = b
-                    .model
-                    .add_marker_world(name, Some(body), world, place.rotation);
-                b.model.markers[k].node = Some(n);
+                let world = crate::model::math::add(&b.model().bodies[body.index()].position, &rel);
+                let k =
+                    b.mb.world_marker(&name, Some(body), world, place.rotation)
+                        .map_err(|e| src.locate(&at("name"), e.into_field()))?;
+                b.mb.pin_to_node(k, n);
                 k
             }
             (None, Some(pos)) => {
                 let pos = point(src, &at("position_m"), pos)?;
-                let saved = b.place;
-                b.place = place;
+                let saved = b.mb.place();
+                b.set_place(place);
                 let k = b.marker(&name, Some(body), pos, &IDENTITY);
-                b.place = saved;
-                k
+                b.set_place(saved);
+                k?
             }
             _ => return Err(src.error(&at("position_m"), "give exactly one of position_m or node")),
         };

@@ -14,9 +14,11 @@ use super::design::CornerRates;
 use super::geom::{mirror, turning, Axes, V, Z_ALONG_Y};
 use super::props::{BushingLaws, Mass};
 use super::wheel::{self, WheelHandle};
+use crate::input::InputError;
+use crate::model::builder::{BodyHandle, ElementHandle};
 use crate::model::desc::{JointKind, Law};
+use crate::model::elements::JointBushing;
 use crate::model::math::dot;
-use crate::model::spec::JointBushing;
 use crate::tyre::Tyre;
 
 /// A swinging-half axle described by its left side.
@@ -28,7 +30,7 @@ pub struct Spec<'a> {
     /// Name of the centre joint and torsion element.
     pub centre: &'a str,
     /// The body the axle hangs on.
-    pub carrier: usize,
+    pub carrier: BodyHandle,
     pub pivot: V,
     pub half: Mass,
     pub rim: Mass,
@@ -38,10 +40,10 @@ pub struct Spec<'a> {
 }
 
 pub struct Built {
-    pub halves: [usize; 2],
+    pub halves: [BodyHandle; 2],
     pub wheels: Vec<WheelHandle>,
-    /// Pivot bushings (indices in `Model::forces`).
-    pub bushings: [usize; 2],
+    /// Pivot bushings.
+    pub bushings: [ElementHandle; 2],
     /// Per side: velocities per unit rotation of the half about +y (`element_rate` 0:
     /// the caller names the load-carrying element).
     pub rates: Vec<CornerRates>,
@@ -51,11 +53,11 @@ pub struct Built {
 
 /// The halves on their bushings with their wheels; [`join`] adds the centre joint (a
 /// flexible cross member joins them otherwise).
-pub fn build(b: &mut Builder, s: &Spec, tyre: &Tyre) -> Built {
+pub fn build(b: &mut Builder, s: &Spec, tyre: &Tyre) -> Result<Built, InputError> {
     let y = [0.0, 1.0, 0.0];
     let belt = wheel::tyre_own_mass(tyre);
-    let mut halves = [0; 2];
-    let mut bushings = [0; 2];
+    let mut halves = Vec::new();
+    let mut bushings = Vec::new();
     let mut wheels = Vec::new();
     let mut rates = Vec::new();
     let mut bushing_rates = [0.0; 2];
@@ -63,7 +65,7 @@ pub fn build(b: &mut Builder, s: &Spec, tyre: &Tyre) -> Built {
         let name = s.wheels[k];
         let (half, rim) = (s.half.side(side), s.rim.side(side));
         let pivot = if side { mirror(s.pivot) } else { s.pivot };
-        let h = b.body(&format!("{}_{name}", s.prefix), &half);
+        let h = b.body(&format!("{}_{name}", s.prefix), &half)?;
         let laws = s.bushing.side(side);
         let bu = b.bushing(
             &format!("{}_bushing_{name}", s.prefix),
@@ -73,8 +75,8 @@ pub fn build(b: &mut Builder, s: &Spec, tyre: &Tyre) -> Built {
             &laws.axes,
             &laws,
             [0.0; 6],
-        );
-        let wh = wheel::add(b, name, h, &rim, tyre);
+        )?;
+        let wh = wheel::add(b, name, h, &rim, tyre)?;
         let vw = turning(&pivot, &y, &rim.cm);
         rates.push(CornerRates {
             masses: vec![
@@ -86,21 +88,21 @@ pub fn build(b: &mut Builder, s: &Spec, tyre: &Tyre) -> Built {
             element_rate: 0.0,
         });
         bushing_rates[k] = dot(&col(&laws.axes, 2), &y);
-        halves[k] = h;
-        bushings[k] = bu;
+        halves.push(h);
+        bushings.push(bu);
         wheels.push(wh);
     }
-    Built {
-        halves,
+    Ok(Built {
+        halves: [halves[0], halves[1]],
         wheels,
-        bushings,
+        bushings: [bushings[0], bushings[1]],
         rates,
         bushing_rates,
-    }
+    })
 }
 
 /// Joins the halves on the centreline: a revolute joint about y with the torsion element.
-pub fn join(b: &mut Builder, s: &Spec, halves: [usize; 2]) {
+pub fn join(b: &mut Builder, s: &Spec, halves: [BodyHandle; 2]) -> Result<(), InputError> {
     let axes = Z_ALONG_Y;
     let centre = [s.pivot[0], 0.0, s.pivot[2]];
     b.joint(
@@ -111,7 +113,7 @@ pub fn join(b: &mut Builder, s: &Spec, halves: [usize; 2]) {
         centre,
         &axes,
         s.joints_as_bushings.as_ref(),
-    );
+    )?;
     b.torsion(
         &format!("{}_torsion", s.centre),
         Some(halves[0]),
@@ -120,7 +122,8 @@ pub fn join(b: &mut Builder, s: &Spec, halves: [usize; 2]) {
         &axes,
         s.torsion.0.clone(),
         s.torsion.1.clone(),
-    );
+    )?;
+    Ok(())
 }
 
 fn col(a: &Axes, k: usize) -> V {

@@ -22,8 +22,9 @@ use super::props::{
 use super::swing::{self, Spec};
 use super::wheel::{self, WheelHandle};
 use crate::input::{InputError, Source};
+use crate::model::builder::BodyHandle;
+use crate::model::elements::JointBushing;
 use crate::model::math::{add, scale, sub};
-use crate::model::spec::JointBushing;
 use crate::path;
 use crate::tyre::Tyre;
 
@@ -175,7 +176,7 @@ pub fn merge(a: &Mass, b: &Mass) -> Mass {
 
 /// The built trailer.
 pub struct Trailer {
-    pub body: usize,
+    pub body: BodyHandle,
     pub wheels: Vec<WheelHandle>,
     /// Design statics of the empty trailer (the rubber's preload).
     pub corners: Vec<CornerDesign>,
@@ -194,7 +195,7 @@ pub fn build(b: &mut Builder, t: &TrailerFile, tyre: &Tyre) -> Result<Trailer, I
         Some(p) => merge(&t.box_mass, p),
         None => t.box_mass.clone(),
     };
-    let body = b.body("trailer_box", &loaded);
+    let body = b.body("trailer_box", &loaded)?;
     let spec = Spec {
         prefix: "trailer_arm",
         wheels: ["tl", "tr"],
@@ -207,8 +208,8 @@ pub fn build(b: &mut Builder, t: &TrailerFile, tyre: &Tyre) -> Result<Trailer, I
         torsion: t.torsion.clone(),
         joints_as_bushings: t.joints_as_bushings.clone(),
     };
-    let built = swing::build(b, &spec, tyre);
-    swing::join(b, &spec, built.halves);
+    let built = swing::build(b, &spec, tyre)?;
+    swing::join(b, &spec, built.halves)?;
     // Design statics of the empty trailer: ball and axle share its weight.
     let belt = wheel::tyre_own_mass(tyre);
     let mut parts = vec![(t.box_mass.mass, t.box_mass.cm)];
@@ -218,7 +219,7 @@ pub fn build(b: &mut Builder, t: &TrailerFile, tyre: &Tyre) -> Result<Trailer, I
         parts.push((rim.mass + belt, m(t.wheel_centre)));
     }
     let (m_empty, cm_empty) = centre_of_mass(&parts);
-    let g = b.model.gravity;
+    let g = b.model().gravity;
     let w = m_empty * super::geom::norm(&g);
     let (ball, axle) = design::lever(w, cm_empty[0], t.coupling[0], t.wheel_centre[0]);
     let mut corners = Vec::new();

@@ -10,7 +10,8 @@
 
 use serde::Deserialize;
 
-use super::build::{Builder, Line};
+use super::axle::{Axle, AxleSlot, AxleTemplate};
+use super::build::Builder;
 use super::design::{Corner, Preloaded};
 use super::geom::{length_rate, mirror, turning, V};
 use super::props::{
@@ -19,11 +20,11 @@ use super::props::{
 };
 use super::swing::{self, Spec};
 use super::twist_flex::{self, CrossMemberProps};
-use super::wheel::{self, WheelHandle};
+use super::wheel::{self};
 use crate::input::InputError;
-use crate::model::spec::StopSpec;
+use crate::model::builder::SpringLine;
+use crate::model::elements::StopSpec;
 use crate::path;
-use crate::tyre::Tyre;
 
 #[derive(Deserialize, Debug)]
 #[serde(deny_unknown_fields)]
@@ -59,25 +60,29 @@ struct Spring {
     stiffness_n_m: f64,
 }
 
-pub struct Rear {
-    pub wheels: Vec<WheelHandle>,
-    pub corners: Vec<Corner>,
-    /// Upper spring seats (left, right), vehicle coordinates: where the body sensors sit.
-    pub spring_tops: Vec<V>,
-    /// The flexible cross member's body and its number of selected modes.
-    pub cross_member: Option<(usize, usize)>,
+/// The twist-beam axle template.
+pub struct TwistBeam;
+
+impl AxleTemplate for TwistBeam {
+    fn name(&self) -> &'static str {
+        "twist_beam"
+    }
+
+    fn build(
+        &self,
+        b: &mut Builder,
+        file: &std::path::Path,
+        slot: &AxleSlot,
+    ) -> Result<Axle, InputError> {
+        build(b, file, slot)
+    }
 }
 
-/// Reads `file` and adds the axle to the car body `body`; `kind` ("rigid" or
+/// Reads `file` and adds the axle at `slot`; the slot's variant ("rigid" or
 /// "flexible") overrides the file's cross member.
-pub fn build(
-    b: &mut Builder,
-    file: &std::path::Path,
-    body: usize,
-    tyre: &Tyre,
-    kind: Option<&str>,
-) -> Result<Rear, InputError> {
-    let src = b.loader.toml(file)?;
+fn build(b: &mut Builder, file: &std::path::Path, slot: &AxleSlot) -> Result<Axle, InputError> {
+    let (body, tyre, kind) = (slot.carrier, slot.tyre, slot.variant);
+    let src = b.read(file)?;
     let f: File = src.parse()?;
     let cp = path!["cross_member"];
     let flexible = match (&f.cross_member, kind) {
@@ -127,7 +132,7 @@ pub fn build(
     let jb = joints(&src, &path!["joints"], &f.joints)?;
     let spec = Spec {
         prefix: "arm",
-        wheels: ["rl", "rr"],
+        wheels: slot.wheels,
         centre: "twist_beam",
         carrier: body,
         pivot,
@@ -137,15 +142,15 @@ pub fn build(
         torsion,
         joints_as_bushings: jb,
     };
-    let mut built = swing::build(b, &spec, tyre);
+    let mut built = swing::build(b, &spec, tyre)?;
     let y = [0.0, 1.0, 0.0];
     let cross_member = match flexible {
         None => {
-            swing::join(b, &spec, built.halves);
+            swing::join(b, &spec, built.halves)?;
             None
         }
         Some(x) => {
-            let j = twist_flex::join(b, x, built.halves, spec.joints_as_bushings.as_ref());
+            let j = twist_flex::join(b, x, built.halves, spec.joints_as_bushings.as_ref())?;
             // Heave turns both arms alike, so the cross member turns with them about
             // the pivot axis: half its mass rides on each corner.
             for (k, r) in built.rates.iter_mut().enumerate() {
@@ -162,19 +167,19 @@ pub fn build(
         let name = built.wheels[k].name.clone();
         let arm = Some(built.halves[k]);
         let piv = m(pivot);
-        let mut damper = Line::new(format!("damper_{name}"), arm, m(dl), Some(body), m(du));
+        let mut damper = SpringLine::new(&format!("damper_{name}"), arm, m(dl), Some(body), m(du));
         damper.damper = damper_law.clone();
         damper.bump_stop = bump.clone();
         damper.rebound_stop = rebound.clone();
-        b.line(damper);
+        b.line(damper)?;
         let mut rates = built.rates[k].clone();
         rates.element_rate = length_rate(&m(sl), &turning(&piv, &y, &m(sl)), &m(su));
         corners.push(Corner {
             wheel: name.clone(),
             rates,
             element: Preloaded::Coil {
-                line: Box::new(Line::new(
-                    format!("spring_{name}"),
+                line: Box::new(SpringLine::new(
+                    &format!("spring_{name}"),
                     arm,
                     m(sl),
                     Some(body),
@@ -186,10 +191,10 @@ pub fn build(
         });
         spring_tops.push(m(su));
     }
-    Ok(Rear {
+    Ok(Axle {
         wheels: built.wheels,
         corners,
-        spring_tops,
-        cross_member,
+        body_mounts: spring_tops,
+        flexible: cross_member,
     })
 }

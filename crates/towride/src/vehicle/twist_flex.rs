@@ -15,9 +15,10 @@ use super::props::{at, point, BushingLaws, BushingProps, Mass, MassProps};
 use crate::flex::input::SelectionIn;
 use crate::flex::ModalData;
 use crate::input::{InputError, Seg, Source};
+use crate::model::builder::BodyHandle;
 use crate::model::desc::{Coupling, JointKind};
+use crate::model::elements::JointBushing;
 use crate::model::math::{add, sub};
-use crate::model::spec::JointBushing;
 
 /// The two interface nodes must be mirror images within this [m]: the design statics
 /// treat the right side as the left one's image.
@@ -133,7 +134,7 @@ pub fn read(
 
 /// What the cross member added.
 pub struct Joined {
-    pub body: usize,
+    pub body: BodyHandle,
     /// Its mass [kg] and undeformed centre of mass (vehicle coordinates).
     pub mass: f64,
     pub cm: V,
@@ -143,10 +144,15 @@ pub struct Joined {
 
 /// Adds the cross member and fixes it to the arms `arms` (left, right). Fixed joints
 /// follow the axle's `[joints]` switch (`jb`) like the rigid variant's centre joint.
-pub fn join(b: &mut Builder, f: Flexible, arms: [usize; 2], jb: Option<&JointBushing>) -> Joined {
+pub fn join(
+    b: &mut Builder,
+    f: Flexible,
+    arms: [BodyHandle; 2],
+    jb: Option<&JointBushing>,
+) -> Result<Joined, InputError> {
     let (mass, cm) = (f.data.mass_kg, add(&f.origin, &f.data.com_m));
     let modes = f.data.modes.len();
-    let body = modal_body::add_body(b, "cross_member", f.data, f.origin, f.coupling);
+    let body = modal_body::add_body(b, "cross_member", f.data, f.origin, f.coupling)?;
     for (k, side) in ["left", "right"].into_iter().enumerate() {
         let n = f.nodes[k];
         let p = modal_body::node_position(b, body, f.origin, n);
@@ -166,7 +172,7 @@ pub fn join(b: &mut Builder, f: Flexible, arms: [usize; 2], jb: Option<&JointBus
                     p,
                     &axes,
                     jb,
-                )
+                )?
             }
             Mount::Bushing(laws) => {
                 let laws = laws.side(k == 1);
@@ -178,15 +184,15 @@ pub fn join(b: &mut Builder, f: Flexible, arms: [usize; 2], jb: Option<&JointBus
                     &laws.axes,
                     &laws,
                     [0.0; 6],
-                ))
+                )?)
             }
         };
         modal_body::pin(b, link, true, n);
     }
-    Joined {
+    Ok(Joined {
         body,
         mass,
         cm,
         modes,
-    }
+    })
 }

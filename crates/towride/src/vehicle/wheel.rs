@@ -12,7 +12,8 @@ use super::build::{Builder, Link};
 use super::geom::{IDENTITY, V, Z_ALONG_Y};
 use super::props::{at, Mass, WheelProps};
 use crate::input::{InputError, Seg, Source};
-use crate::model::desc::{JointKind, Model, TyreElem};
+use crate::model::builder::{BodyHandle, MarkerHandle, TyreHandle};
+use crate::model::desc::{JointKind, Model};
 use crate::tyre::Tyre;
 
 /// What the scene and the outputs need of a wheel.
@@ -21,16 +22,17 @@ pub struct WheelHandle {
     /// Short name: fl, fr, rl, rr, tl, tr.
     pub name: String,
     /// The rim body.
-    pub body: usize,
+    pub body: BodyHandle,
     /// The body the bearing sits on.
-    pub carrier: usize,
+    pub carrier: BodyHandle,
     /// Marker on the rim at the wheel centre, axes of the subsystem (y = spin axis, left).
-    pub centre: usize,
+    pub centre: MarkerHandle,
     /// Marker on the carrier at the wheel centre, same axes (takes the drive reaction).
-    pub carrier_centre: usize,
+    pub carrier_centre: MarkerHandle,
+    /// The bearing.
     pub bearing: Link,
-    /// Index in `Model::tyres`.
-    pub tyre: usize,
+    /// The tyre.
+    pub tyre: TyreHandle,
     /// Wheel centre at the design position, subsystem coordinates [m].
     pub design_centre: V,
 }
@@ -82,9 +84,15 @@ pub fn tyre_own_mass(tyre: &Tyre) -> f64 {
 }
 
 /// Adds the rim body `wheel_<name>`, its bearing on `carrier` and the tyre `tyre_<name>`.
-pub fn add(b: &mut Builder, name: &str, carrier: usize, rim: &Mass, tyre: &Tyre) -> WheelHandle {
+pub fn add(
+    b: &mut Builder,
+    name: &str,
+    carrier: BodyHandle,
+    rim: &Mass,
+    tyre: &Tyre,
+) -> Result<WheelHandle, InputError> {
     let centre = rim.cm;
-    let body = b.body(&format!("wheel_{name}"), rim);
+    let body = b.body(&format!("wheel_{name}"), rim)?;
     // The bearing stays an ideal revolute joint even when the other joints become
     // bushings: a bushing's rotation-vector deflection cannot follow the wheel's spin.
     let link = b.ideal_joint(
@@ -94,32 +102,28 @@ pub fn add(b: &mut Builder, name: &str, carrier: usize, rim: &Mass, tyre: &Tyre)
         Some(carrier),
         centre,
         &Z_ALONG_Y,
-    );
+    )?;
     let centre_marker = b.marker(
         &format!("wheel_{name}.centre"),
         Some(body),
         centre,
         &IDENTITY,
-    );
-    let carrier_centre = b.marker(&format!("hub_{name}"), Some(carrier), centre, &IDENTITY);
+    )?;
+    let carrier_centre = b.marker(&format!("hub_{name}"), Some(carrier), centre, &IDENTITY)?;
     let mut tyre = tyre.clone();
-    let g = b.model.gravity;
+    let g = b.model().gravity;
     tyre.set_gravity(Vector3::new(g[0], g[1], g[2]));
-    b.model.tyres.push(TyreElem {
-        name: format!("tyre_{name}"),
-        marker: centre_marker,
-        tyre,
-    });
-    WheelHandle {
+    let tyre = b.mb.tyre(&format!("tyre_{name}"), centre_marker, tyre);
+    Ok(WheelHandle {
         name: name.to_string(),
         body,
         carrier,
         centre: centre_marker,
         carrier_centre,
         bearing: link,
-        tyre: b.model.tyres.len() - 1,
+        tyre,
         design_centre: centre,
-    }
+    })
 }
 
 /// Every body moves forward at `speed`; wheels spin at the free-rolling rate of their
@@ -130,12 +134,12 @@ pub fn set_speed(model: &mut Model, wheels: &[WheelHandle], speed: f64) {
         body.angular_velocity = [0.0; 3];
     }
     for w in wheels {
-        let p = model.tyres[w.tyre].tyre.params().clone();
+        let p = model.tyres[w.tyre.index()].tyre.params().clone();
         let rho = p.r0 - w.design_centre[2];
         let mut omega = speed / p.r0;
         for _ in 0..50 {
             omega = speed / p.rolling_radius(rho, omega);
         }
-        model.bodies[w.body].angular_velocity = [0.0, omega, 0.0];
+        model.bodies[w.body.index()].angular_velocity = [0.0, omega, 0.0];
     }
 }

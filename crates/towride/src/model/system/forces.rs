@@ -9,11 +9,10 @@
 
 use super::flexmarker::FlexFrame;
 use super::System;
-use crate::model::desc::Force;
 use crate::model::dual::{Dual, Scalar};
-use crate::model::force::{element_load, generalised, Rate};
+use crate::model::elements::{generalised, Rate};
 use crate::model::joint::MFrame;
-use crate::model::math::{cross, cst3, cst33, mvc, qdot, qmul, quat_from_matrix, rot, Q4, V3};
+use crate::model::math::{cross, cst33, mvc, qdot, qmul, quat_from_matrix, rot, Q4, V3};
 
 /// A body's (r, p, u, omega) in some scalar.
 pub type BodyPose<S> = (V3<S>, Q4<S>, V3<S>, V3<S>);
@@ -87,40 +86,17 @@ impl System {
                     }
                 }
             };
-        let ((fi, qi), ffi) = rate_frame(mi, 0, bi);
-        let mut ffj = None;
-        let measures;
-        let (force, torque);
-        match &self.model.forces[k] {
-            Force::Applied(app) => {
-                let ax = app.in_marker_axes;
-                let comp = |fs: &[Option<crate::model::function::TimeFunction>; 3]| -> V3<S> {
-                    let local: [f64; 3] =
-                        std::array::from_fn(|c| fs[c].as_ref().map_or(0.0, |f| f.eval(t).0));
-                    if ax {
-                        let a: [[S; 3]; 3] = fi.axes.map(|r| r.map(|x| x.v));
-                        mvc(&a, &local)
-                    } else {
-                        cst3(&local)
-                    }
-                };
-                force = comp(&app.force);
-                torque = comp(&app.torque);
-                measures = (0..3)
-                    .map(|c| (force[c], S::cst(0.0), S::cst(0.0)))
-                    .chain((0..3).map(|c| (torque[c], S::cst(0.0), S::cst(0.0))))
-                    .collect();
+        let (frame_i, ffi) = rate_frame(mi, 0, bi);
+        let (frame_j, ffj) = match mj {
+            Some(mj) => {
+                let (f, ff) = rate_frame(mj, 1, bj);
+                (Some(f), ff)
             }
-            f => {
-                let mj = mj.expect("two-marker element");
-                let ((fj, qj), ff) = rate_frame(mj, 1, bj);
-                ffj = ff;
-                let l = element_load(f, &fi, &fj, &qi, &qj);
-                force = l.force;
-                torque = l.torque;
-                measures = l.measures;
-            }
-        }
+            None => (None, None),
+        };
+        let l = self.model.forces[k].load(t, &frame_i, frame_j.as_ref());
+        let (force, torque, measures) = (l.force, l.torque, l.measures);
+        let fi = &frame_i.0;
         let p: V3<S> = fi.origin.map(|x| x.v);
         let on = |ff: &Option<FlexFrame>, b: usize, side: usize, f: &V3<S>, tq: &V3<S>| -> Vec<S> {
             if let Some(ff) = ff {

@@ -29,7 +29,7 @@
 
 use nalgebra::DMatrix;
 
-use super::desc::{Force, Model};
+use super::desc::Model;
 use super::joint::{rows, Row};
 use super::math::{cst33, mvc, qdot, quat_from_matrix, rot};
 use towride_solver::problem::{DaeProblem, JacobianSink, VarKind};
@@ -165,11 +165,9 @@ impl System {
             .forces
             .iter()
             .enumerate()
-            .map(|(k, f)| match f {
-                Force::Spring(s) => (k, s.i, Some(s.j)),
-                Force::Bushing(b) => (k, b.i, Some(b.j)),
-                Force::Rot(r) => (k, r.i, Some(r.j)),
-                Force::Applied(a) => (k, a.i, None),
+            .map(|(k, f)| {
+                let (i, j) = f.markers();
+                (k, i, j)
             })
             .collect();
         let (mut qo, mut vo, mut nm) = (Vec::new(), Vec::new(), Vec::new());

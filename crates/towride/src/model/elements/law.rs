@@ -1,0 +1,220 @@
+//! Force laws and one-sided stops, shared by the force elements, with their one set of
+//! checks: mechanism files, vehicle property files and Rust callers all go through
+//! [`LawSpec::check`], [`StopSpec::check`] and [`JointBushing::check`].
+
+use serde::Deserialize;
+
+use super::FieldError;
+use crate::model::dual::Scalar;
+use crate::model::function::Spline;
+
+/// Force law of one direction: linear, or a tabulated (spline) curve.
+#[derive(Clone, Debug)]
+pub enum Law {
+    /// Force = k x.
+    Linear(f64),
+    /// Force = spline(x) (natural cubic through the table).
+    Curve(Spline),
+}
+
+impl Law {
+    /// (value, slope, curvature) at x.
+    pub fn eval(&self, x: f64) -> (f64, f64, f64) {
+        match self {
+            Law::Linear(k) => (k * x, *k, 0.0),
+            Law::Curve(s) => s.eval(x),
+        }
+    }
+
+    /// Slope at zero (for frequency estimates).
+    pub fn stiffness(&self) -> f64 {
+        self.eval(0.0).1
+    }
+
+    /// The law at a generic scalar (derivatives carried by the chain rule).
+    pub fn at<S: Scalar>(&self, x: S) -> S {
+        match self {
+            Law::Linear(k) => x * *k,
+            Law::Curve(s) => {
+                let (f, df, d2f) = s.eval(x.re());
+                x.chain(f, df, d2f)
+            }
+        }
+    }
+}
+
+/// A law as written in a file: a number (the linear coefficient) or a table.
+#[derive(Deserialize, Debug, Clone)]
+#[serde(untagged)]
+pub enum LawSpec {
+    /// Linear coefficient (non-negative).
+    Linear(f64),
+    /// Table of x and y (strictly increasing x).
+    Table {
+        /// Deflection or rate.
+        x: Vec<f64>,
+        /// Force or torque.
+        y: Vec<f64>,
+    },
+}
+
+impl LawSpec {
+    /// The law, checked: a linear coefficient is finite and not negative (a negative
+    /// stiffness or damping feeds energy in); a table makes a spline.
+    pub fn check(&self) -> Result<Law, FieldError> {
+        match self {
+            LawSpec::Linear(k) => non_negative(*k).map(Law::Linear).map_err(FieldError::here),
+            LawSpec::Table { x, y } => Spline::new(x, y).map(Law::Curve).map_err(FieldError::here),
+        }
+    }
+}
+
+/// A one-sided stop engaged beyond a clearance: F = k pen^e + c pen' (for pen > 0), the
+/// damping blended in over `damping_depth` so the force starts from zero.
+#[derive(Clone, Debug)]
+pub struct Stop {
+    /// Free travel before the stop engages [m] (>= 0).
+    pub clearance: f64,
+    /// Stiffness coefficient [N/m^e].
+    pub stiffness: f64,
+    /// Exponent e >= 1.
+    pub exponent: f64,
+    /// Damping [N s/m].
+    pub damping: f64,
+    /// Penetration over which the damping blends in [m].
+    pub damping_depth: f64,
+}
+
+impl Stop {
+    /// Force of the stop for penetration `pen` with rate `pen_rate`.
+    pub fn force<S: Scalar>(&self, pen: S, pen_rate: S) -> S {
+        if pen.re() <= 0.0 {
+            return S::cst(0.0);
+        }
+        // pen^e = exp(e ln pen) written through chain to stay generic.
+        let p = pen.re();
+        let e = self.exponent;
+        let elastic = pen.chain(
+            p.powf(e),
+            e * p.powf(e - 1.0),
+            e * (e - 1.0) * p.powf(e - 2.0),
+        );
+        let ramp = if self.damping_depth > 0.0 && p < self.damping_depth {
+            let s = p / self.damping_depth;
+            let h = self.damping_depth;
+            pen.chain(
+                s * s * (3.0 - 2.0 * s),
+                6.0 * s * (1.0 - s) / h,
+                (6.0 - 12.0 * s) / (h * h),
+            )
+        } else {
+            S::cst(1.0)
+        };
+        elastic * self.stiffness + ramp * pen_rate * self.damping
+    }
+}
+
+/// A stop as written in a file.
+#[derive(Deserialize, Debug, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct StopSpec {
+    /// Free travel before the stop engages [m].
+    pub clearance_m: f64,
+    /// Stiffness coefficient [N/m^e].
+    pub stiffness_n_m: f64,
+    /// Exponent of the penetration (default 1).
+    #[serde(default = "one")]
+    pub exponent: f64,
+    /// Damping [N s/m].
+    #[serde(default)]
+    pub damping_n_s_m: f64,
+    /// Penetration over which the damping blends in [m].
+    #[serde(default)]
+    pub damping_depth_m: f64,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+impl StopSpec {
+    /// The stop, checked. A clearance of zero is allowed: the stop then engages at the
+    /// reference length, and its force still starts from zero (exponent >= 1, damping
+    /// blended in), so it is a one-sided spring, not a jump; a negative clearance would
+    /// start preloaded and is refused.
+    pub fn check(&self) -> Result<Stop, FieldError> {
+        let exponent = finite(self.exponent).map_err(|m| FieldError::at("exponent", m))?;
+        if exponent < 1.0 {
+            return Err(FieldError::at(
+                "exponent",
+                "must be at least 1 (a force that starts from zero)",
+            ));
+        }
+        Ok(Stop {
+            clearance: non_negative(self.clearance_m)
+                .map_err(|m| FieldError::at("clearance_m", m))?,
+            stiffness: positive(self.stiffness_n_m)
+                .map_err(|m| FieldError::at("stiffness_n_m", m))?,
+            exponent,
+            damping: non_negative(self.damping_n_s_m)
+                .map_err(|m| FieldError::at("damping_n_s_m", m))?,
+            damping_depth: non_negative(self.damping_depth_m)
+                .map_err(|m| FieldError::at("damping_depth_m", m))?,
+        })
+    }
+}
+
+/// The bushing that replaces an ideal joint: stiff, lightly damped, acting only in the
+/// directions the joint locks.
+#[derive(Deserialize, Debug, Clone, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct JointBushing {
+    /// Translational stiffness [N/m].
+    pub stiffness_n_m: f64,
+    /// Translational damping [N s/m].
+    pub damping_n_s_m: f64,
+    /// Rotational stiffness [N m/rad].
+    pub stiffness_n_m_rad: f64,
+    /// Rotational damping [N m s/rad].
+    pub damping_n_m_s_rad: f64,
+}
+
+impl JointBushing {
+    /// Stiffnesses positive, dampings not negative.
+    pub fn check(&self) -> Result<(), FieldError> {
+        positive(self.stiffness_n_m).map_err(|m| FieldError::at("stiffness_n_m", m))?;
+        positive(self.stiffness_n_m_rad).map_err(|m| FieldError::at("stiffness_n_m_rad", m))?;
+        non_negative(self.damping_n_s_m).map_err(|m| FieldError::at("damping_n_s_m", m))?;
+        non_negative(self.damping_n_m_s_rad).map_err(|m| FieldError::at("damping_n_m_s_rad", m))?;
+        Ok(())
+    }
+}
+
+/// `v` if finite.
+pub fn finite(v: f64) -> Result<f64, String> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(format!("must be a finite number, got {v}"))
+    }
+}
+
+/// `v` if finite and > 0.
+pub fn positive(v: f64) -> Result<f64, String> {
+    finite(v)?;
+    if v > 0.0 {
+        Ok(v)
+    } else {
+        Err(format!("must be positive, got {v}"))
+    }
+}
+
+/// `v` if finite and >= 0.
+pub fn non_negative(v: f64) -> Result<f64, String> {
+    finite(v)?;
+    if v >= 0.0 {
+        Ok(v)
+    } else {
+        Err(format!("must not be negative, got {v}"))
+    }
+}
