@@ -14,6 +14,7 @@
 //! free-free-like mode table of the body (the procedure of MSC Adams/Flex and Altair's
 //! "Craig-Bampton modes" for multibody use; Exudyn's ComputeHurtyCraigBamptonModes).
 
+use super::FlexError;
 use faer::{Mat, Side};
 use nalgebra::Vector3;
 
@@ -72,9 +73,9 @@ pub struct ModeRow {
 }
 
 /// Reduces the assembled model with `n_fixed` fixed-interface modes.
-pub fn reduce(mesh: &Mesh, asm: &Assembly, n_fixed: usize) -> Result<CraigBampton, String> {
+pub fn reduce(mesh: &Mesh, asm: &Assembly, n_fixed: usize) -> Result<CraigBampton, FlexError> {
     if mesh.interfaces.is_empty() {
-        return Err("Craig-Bampton reduction needs at least one interface node".into());
+        return Err(FlexError::Numerics("Craig-Bampton reduction needs at least one interface node".into()));
     }
     let boundary: Vec<usize> = mesh
         .interfaces
@@ -84,9 +85,9 @@ pub fn reduce(mesh: &Mesh, asm: &Assembly, n_fixed: usize) -> Result<CraigBampto
     let interior: Vec<usize> = (0..asm.n_dof).filter(|d| !boundary.contains(d)).collect();
     let (nb, ni) = (boundary.len(), interior.len());
     if n_fixed > ni {
-        return Err(format!(
+        return Err(FlexError::Numerics(format!(
             "{n_fixed} fixed-interface modes asked, the model has only {ni} interior DOFs"
-        ));
+        )));
     }
     let kii = submatrix(asm.k.as_ref(), &interior, &interior);
     let kib = submatrix(asm.k.as_ref(), &interior, &boundary);
@@ -94,9 +95,11 @@ pub fn reduce(mesh: &Mesh, asm: &Assembly, n_fixed: usize) -> Result<CraigBampto
 
     // Constraint modes: Psi = -K_ii^-1 K_ib.
     let llt = kii.llt(Side::Lower).map_err(|_| {
-        "the model held at its interface nodes is a mechanism: some part is not \
-         connected to any interface"
-            .to_string()
+        FlexError::Numerics(
+            "the model held at its interface nodes is a mechanism: some part is not \
+             connected to any interface"
+                .to_string(),
+        )
     })?;
     let mut psi = -&kib;
     faer::linalg::solvers::Solve::solve_in_place(&llt, psi.as_mut());

@@ -51,6 +51,10 @@ pub enum FlexError {
     /// A mode selection that cannot be made as asked.
     #[error("{0}")]
     Selection(String),
+    /// The matrices refuse a factorisation or an eigensolution (a mechanism, a massless
+    /// part, too many modes asked).
+    #[error("{0}")]
+    Numerics(String),
 }
 
 /// Choices that override the file's.
@@ -89,9 +93,9 @@ impl FlexBody {
     }
 
     pub fn from_mesh(mesh: Mesh, options: &Options) -> Result<FlexBody, FlexError> {
-        let model_err = |message: String| FlexError::Model {
+        let model_err = |e: FlexError| FlexError::Model {
             file: mesh.path.display().to_string(),
-            message,
+            message: e.to_string(),
         };
         let assembly = Assembly::new(&mesh);
         let n_fixed = options

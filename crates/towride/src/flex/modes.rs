@@ -7,6 +7,7 @@
 //! modes come out mass-orthonormal (phi^T M phi = I) with omega^2 ascending. Dense
 //! O(n^3): fine for the few hundred to ~1500 DOF of beam models.
 
+use super::FlexError;
 use faer::linalg::triangular_solve::{
     solve_lower_triangular_in_place, solve_upper_triangular_in_place,
 };
@@ -43,11 +44,13 @@ pub fn submatrix(a: MatRef<'_, f64>, rows: &[usize], cols: &[usize]) -> Mat<f64>
 }
 
 /// Solves K phi = omega^2 M phi for all pairs; M must be positive definite.
-pub fn generalized_eigen(k: MatRef<'_, f64>, m: MatRef<'_, f64>) -> Result<Eigen, String> {
+pub fn generalized_eigen(k: MatRef<'_, f64>, m: MatRef<'_, f64>) -> Result<Eigen, FlexError> {
     let n = k.nrows();
     let llt = m
         .llt(Side::Lower)
-        .map_err(|e| format!("the mass matrix is not positive definite ({e:?})"))?;
+        .map_err(|e| {
+            FlexError::Numerics(format!("the mass matrix is not positive definite ({e:?})"))
+        })?;
     let l = llt.L();
     // C = L^-1 K L^-T: X = L^-1 K, then C = L^-1 X^T (K symmetric).
     let mut x = k.to_owned();
@@ -57,7 +60,7 @@ pub fn generalized_eigen(k: MatRef<'_, f64>, m: MatRef<'_, f64>) -> Result<Eigen
     symmetrize(&mut c);
     let evd = c
         .self_adjoint_eigen(Side::Lower)
-        .map_err(|e| format!("eigensolver failed ({e:?})"))?;
+        .map_err(|e| FlexError::Numerics(format!("eigensolver failed ({e:?})")))?;
     let mut v = evd.U().to_owned();
     solve_upper_triangular_in_place(l.transpose(), v.as_mut(), Par::Seq);
     let s = evd.S();
@@ -71,7 +74,7 @@ pub fn constrained_eigen(
     k: MatRef<'_, f64>,
     m: MatRef<'_, f64>,
     fixed: &[usize],
-) -> Result<Eigen, String> {
+) -> Result<Eigen, FlexError> {
     let n = k.nrows();
     let free: Vec<usize> = (0..n).filter(|i| !fixed.contains(i)).collect();
     let e = generalized_eigen(
@@ -91,12 +94,14 @@ pub fn constrained_eigen(
 }
 
 /// Static solution of K u = f with the DOFs in `fixed` held at zero.
-pub fn static_solution(k: MatRef<'_, f64>, fixed: &[usize], f: &[f64]) -> Result<Vec<f64>, String> {
+pub fn static_solution(k: MatRef<'_, f64>, fixed: &[usize], f: &[f64]) -> Result<Vec<f64>, FlexError> {
     let n = k.nrows();
     let free: Vec<usize> = (0..n).filter(|i| !fixed.contains(i)).collect();
     let kf = submatrix(k, &free, &free);
     let llt = kf.llt(Side::Lower).map_err(|_| {
-        "the held structure is a mechanism (stiffness not positive definite)".to_string()
+        FlexError::Numerics(
+            "the held structure is a mechanism (stiffness not positive definite)".to_string(),
+        )
     })?;
     let mut rhs = Mat::from_fn(free.len(), 1, |i, _| f[free[i]]);
     faer::linalg::solvers::Solve::solve_in_place(&llt, rhs.as_mut());
@@ -109,24 +114,24 @@ pub fn static_solution(k: MatRef<'_, f64>, fixed: &[usize], f: &[f64]) -> Result
 
 /// Number of rigid-body modes at the start of an ascending spectrum of a free body:
 /// six, whose eigenvalues must be rounding-level next to the first elastic one.
-pub fn count_rigid(omega2: &[f64]) -> Result<usize, String> {
+pub fn count_rigid(omega2: &[f64]) -> Result<usize, FlexError> {
     if omega2.len() < 7 {
-        return Err(format!(
+        return Err(FlexError::Numerics(format!(
             "{} modes cannot hold six rigid-body modes and an elastic one",
             omega2.len()
-        ));
+        )));
     }
     let first_elastic = omega2[6];
     let sixth = omega2[5].abs();
     // Rounding puts rigid-body eigenvalues near eps * omega^2_max; a gap of six orders
     // (three in frequency) separates them from any physical mode of a connected body.
     if !(first_elastic > 0.0 && sixth < 1e-6 * first_elastic) {
-        return Err(format!(
+        return Err(FlexError::Numerics(format!(
             "cannot separate six rigid-body modes: mode 6 at {:.4} Hz, mode 7 at {:.4} Hz \
              (a mechanism, or a body held somewhere)",
             frequency_hz(omega2[5]),
             frequency_hz(omega2[6])
-        ));
+        )));
     }
     Ok(6)
 }

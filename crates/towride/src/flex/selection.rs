@@ -24,6 +24,7 @@
 //! that has already converged). With a single interface (nothing to hold) the free
 //! body's inertia-relief response is used: p_k = φ_k(i, d).
 
+use super::FlexError;
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 
 use super::input::{RuleIn, SelectionIn};
@@ -226,7 +227,7 @@ fn interface_rows(body: &ModalData, n: usize) -> DMatrix<f64> {
 }
 
 /// Weighted strain-energy shares of every mode for every load case of `rule`.
-pub fn load_path_cases(body: &ModalData, rule: &LoadPath) -> Result<Vec<LoadCase>, String> {
+pub fn load_path_cases(body: &ModalData, rule: &LoadPath) -> Result<Vec<LoadCase>, FlexError> {
     let nm = body.modes.len();
     let interfaces: Vec<usize> = (0..body.nodes.len())
         .filter(|&n| body.nodes[n].kind == NodeKind::Interface)
@@ -241,7 +242,7 @@ pub fn load_path_cases(body: &ModalData, rule: &LoadPath) -> Result<Vec<LoadCase
                     .iter()
                     .copied()
                     .find(|&n| &body.nodes[n].name == name)
-                    .ok_or_else(|| format!("no interface `{name}`"))
+                    .ok_or_else(|| FlexError::Selection(format!("no interface `{name}`")))
             })
             .collect::<Result<_, _>>()?
     };
@@ -288,9 +289,11 @@ pub fn load_path_cases(body: &ModalData, rule: &LoadPath) -> Result<Vec<LoadCase
                     let mut rhs = DVector::zeros(6 + nm + nc);
                     rhs.rows_mut(0, 6 + nm).copy_from(&g);
                     let z = lu.solve(&rhs).ok_or_else(|| {
-                        "the interface nodes held do not hold the body (singular load-path \
-                         system)"
-                            .to_string()
+                        FlexError::Numerics(
+                            "the interface nodes held do not hold the body (singular \
+                             load-path system)"
+                                .to_string(),
+                        )
                     })?;
                     (0..nm)
                         .map(|k| body.modes[k].stiffness * z[6 + k])
@@ -316,7 +319,7 @@ pub fn load_path_cases(body: &ModalData, rule: &LoadPath) -> Result<Vec<LoadCase
 }
 
 /// Applies `rule` to `body`'s modes.
-pub fn select(body: &ModalData, rule: &Rule) -> Result<Selection, String> {
+pub fn select(body: &ModalData, rule: &Rule) -> Result<Selection, FlexError> {
     let nm = body.modes.len();
     match rule {
         Rule::All => Ok(Selection {
@@ -340,9 +343,9 @@ pub fn select(body: &ModalData, rule: &Rule) -> Result<Selection, String> {
                         body.modes.first().map_or(0, |m| m.number),
                         body.modes.last().map_or(0, |m| m.number),
                     );
-                    return Err(format!(
+                    return Err(FlexError::Selection(format!(
                         "mode {n} is not an elastic mode of the table ({a}..{b})"
-                    ));
+                    )));
                 }
             }
             Ok(Selection {

@@ -400,8 +400,8 @@ impl ModelBuilder {
         Ok(())
     }
 
-    /// The body named `name` (`ground`: `None`), or a message naming the missing one.
-    pub fn body_by_name(&self, name: &str) -> Result<Option<BodyHandle>, String> {
+    /// The body named `name` (`ground`: `None`), or an error naming the missing one.
+    pub fn body_by_name(&self, name: &str) -> Result<Option<BodyHandle>, FieldError> {
         if name == "ground" {
             return Ok(None);
         }
@@ -410,7 +410,7 @@ impl ModelBuilder {
             .iter()
             .position(|b| b.name == name)
             .map(|k| Some(BodyHandle(k)))
-            .ok_or_else(|| format!("names a body '{name}' that does not exist"))
+            .ok_or_else(|| FieldError::here(format!("names a body '{name}' that does not exist")))
     }
 
     /// The marker named `name`.
@@ -813,17 +813,10 @@ impl ModelBuilder {
                 ))
             }
         };
-        function.check().map_err(|m| {
+        function.check().map_err(|e| {
             build(
                 &item,
-                FieldError::at(
-                    if is_velocity {
-                        "velocity"
-                    } else {
-                        "displacement"
-                    },
-                    m,
-                ),
+                e.under(if is_velocity { "velocity" } else { "displacement" }),
             )
         })?;
         self.model.motions.push(Motion {

@@ -1,6 +1,7 @@
 //! Functions of time (applied loads, prescribed motions) and tabulated curves
 //! (force-deflection, force-velocity), each with the derivatives the solver needs.
 
+use crate::input::FieldError;
 use serde::Deserialize;
 
 /// A function of time, written in a mechanism file as an inline table, e.g.
@@ -41,13 +42,13 @@ pub enum TimeFunction {
 }
 
 impl TimeFunction {
-    /// Checks the parameters; returns a message for the offending field.
-    pub fn check(&self) -> Result<(), String> {
+    /// Checks the parameters; the error names the offending field.
+    pub fn check(&self) -> Result<(), FieldError> {
         let finite = |x: f64, what: &str| {
             if x.is_finite() {
                 Ok(())
             } else {
-                Err(format!("{what} must be finite"))
+                Err(FieldError::at(what, format!("{what} must be finite")))
             }
         };
         match self {
@@ -71,7 +72,7 @@ impl TimeFunction {
                     finite(*x, w)?;
                 }
                 if t1_s <= t0_s {
-                    return Err("t1_s must be later than t0_s".into());
+                    return Err(FieldError::at("t1_s", "t1_s must be later than t0_s"));
                 }
                 Ok(())
             }
@@ -91,9 +92,7 @@ impl TimeFunction {
                 }
                 Ok(())
             }
-            TimeFunction::Table { time_s, value } => Spline::new(time_s, value)
-                .map(|_| ())
-                .map_err(|e| e.to_string()),
+            TimeFunction::Table { time_s, value } => Spline::new(time_s, value).map(|_| ()),
         }
     }
 
@@ -243,18 +242,18 @@ pub struct Spline {
 
 impl Spline {
     /// Builds the spline; needs >= 2 strictly increasing, finite abscissae.
-    pub fn new(x: &[f64], y: &[f64]) -> Result<Spline, &'static str> {
+    pub fn new(x: &[f64], y: &[f64]) -> Result<Spline, FieldError> {
         if x.len() != y.len() {
-            return Err("the two columns differ in length");
+            return Err(FieldError::here("the two columns differ in length"));
         }
         if x.len() < 2 {
-            return Err("a table needs at least two points");
+            return Err(FieldError::here("a table needs at least two points"));
         }
         if x.iter().chain(y).any(|v| !v.is_finite()) {
-            return Err("table values must be finite");
+            return Err(FieldError::here("table values must be finite"));
         }
         if x.windows(2).any(|w| w[1] <= w[0]) {
-            return Err("abscissae must increase strictly");
+            return Err(FieldError::here("abscissae must increase strictly"));
         }
         let n = x.len();
         let mut m = vec![0.0; n];

@@ -16,7 +16,7 @@ use super::desc::{
     MotionDof, Output, Request,
 };
 pub use super::elements::JointBushing;
-use super::elements::{self, FieldError};
+use super::elements;
 use super::function::TimeFunction;
 use crate::input::{InputError, Loader, Source};
 use crate::path;
@@ -270,7 +270,7 @@ pub fn build(src: &Source, f: File) -> Result<Mechanism, InputError> {
         let at = path!["marker", k];
         let body = b
             .body_by_name(&s.body)
-            .map_err(|m| src.locate(&at, FieldError::at("body", m)))?;
+            .map_err(|e| src.locate(&at, e.under("body")))?;
         let axes = b
             .axes_from(s.z_axis, s.x_axis)
             .map_err(|e| src.locate(&at, e))?;
@@ -284,10 +284,10 @@ pub fn build(src: &Source, f: File) -> Result<Mechanism, InputError> {
         })?;
         let bi = b
             .body_by_name(&s.body_i)
-            .map_err(|m| src.locate(&at, FieldError::at("body_i", m)))?;
+            .map_err(|e| src.locate(&at, e.under("body_i")))?;
         let bj = b
             .body_by_name(&s.body_j)
-            .map_err(|m| src.locate(&at, FieldError::at("body_j", m)))?;
+            .map_err(|e| src.locate(&at, e.under("body_j")))?;
         let axes = b
             .axes_from(s.z_axis, s.x_axis)
             .map_err(|e| src.locate(&at, e))?;

@@ -45,7 +45,9 @@ pub fn load(
         Err(FlexError::Model { file, message }) => {
             Err(src.error(fe_at, format!("{file}: {message}")))
         }
-        Err(FlexError::Selection(message)) => Err(src.error(fe_at, message)),
+        Err(e @ (FlexError::Selection(_) | FlexError::Numerics(_))) => {
+            Err(src.error(fe_at, e.to_string()))
+        }
     }
 }
 

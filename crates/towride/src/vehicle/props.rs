@@ -164,7 +164,7 @@ impl DamperProps {
         }
         crate::model::function::Spline::new(&self.velocity_m_s, &self.force_n)
             .map(Law::Curve)
-            .map_err(|e| src.error(&at(p, "velocity_m_s"), e))
+            .map_err(|e| src.locate(&at(p, "velocity_m_s"), e))
     }
 }
 

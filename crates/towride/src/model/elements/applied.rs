@@ -44,7 +44,7 @@ impl ForceElement for Applied {
         for (key, fs) in [("force_n", &self.force), ("torque_n_m", &self.torque)] {
             for (c, f) in fs.iter().enumerate() {
                 if let Some(f) = f {
-                    f.check().map_err(|m| FieldError::at(c, m).under(key))?;
+                    f.check().map_err(|e| e.under(c).under(key))?;
                 }
             }
         }
@@ -82,7 +82,7 @@ impl ForceElement for Applied {
     fn add_from_file(s: &AppliedSpec, b: &mut ModelBuilder) -> Result<(), FieldError> {
         let body = b
             .body_by_name(&s.body)
-            .map_err(|m| FieldError::at("body", m))?;
+            .map_err(|e| e.under("body"))?;
         let axes = b.axes_from(s.z_axis, s.x_axis)?;
         let in_marker_axes = match s.axes.as_str() {
             "world" => false,

@@ -64,7 +64,7 @@ impl LawSpec {
     pub fn check(&self) -> Result<Law, FieldError> {
         match self {
             LawSpec::Linear(k) => non_negative(*k).map(Law::Linear).map_err(FieldError::here),
-            LawSpec::Table { x, y } => Spline::new(x, y).map(Law::Curve).map_err(FieldError::here),
+            LawSpec::Table { x, y } => Spline::new(x, y).map(Law::Curve),
         }
     }
 }
@@ -191,7 +191,7 @@ impl JointBushing {
 }
 
 /// `v` if finite.
-pub fn finite(v: f64) -> Result<f64, String> {
+pub(crate) fn finite(v: f64) -> Result<f64, String> {
     if v.is_finite() {
         Ok(v)
     } else {
@@ -200,7 +200,7 @@ pub fn finite(v: f64) -> Result<f64, String> {
 }
 
 /// `v` if finite and > 0.
-pub fn positive(v: f64) -> Result<f64, String> {
+pub(crate) fn positive(v: f64) -> Result<f64, String> {
     finite(v)?;
     if v > 0.0 {
         Ok(v)
@@ -210,7 +210,7 @@ pub fn positive(v: f64) -> Result<f64, String> {
 }
 
 /// `v` if finite and >= 0.
-pub fn non_negative(v: f64) -> Result<f64, String> {
+pub(crate) fn non_negative(v: f64) -> Result<f64, String> {
     finite(v)?;
     if v >= 0.0 {
         Ok(v)
