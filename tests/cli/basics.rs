@@ -171,3 +171,32 @@ fn plan_lists_its_cases_on_the_command_line() {
     assert_eq!(text.lines().count(), 72);
     assert!(text.lines().any(|l| l == "ramp_50mm_50kmh_empty"));
 }
+
+#[test]
+fn set_replaces_a_value_for_one_run_and_a_set_that_matches_nothing_is_refused() {
+    let dir = std::env::temp_dir().join(format!("towride-set-{}", std::process::id()));
+    let d = dir.to_str().unwrap();
+    let pendulum = repo!("scenes/examples/pendulum.toml");
+    let peak_tension = |extra: &[&str]| {
+        let mut args = vec!["run", pendulum, "--out", d, "--json"];
+        args.extend_from_slice(extra);
+        let out = towride(&args);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        v["channels"]["pivot.force.z"]["max"].as_f64().unwrap()
+    };
+    // Released from horizontal, the link tension peaks at 3 m g at the bottom.
+    let one = peak_tension(&[]);
+    let two = peak_tension(&["--set", "pendulum.toml:body[0].mass_kg=2.0"]);
+    assert!((one / (3.0 * 9.81) - 1.0).abs() < 1e-4, "{one}");
+    assert!((two / (3.0 * 2.0 * 9.81) - 1.0).abs() < 1e-4, "{two}");
+
+    let out = towride(&["run", pendulum, "--out", d, "--set", "pendulm.toml:body[0].mass_kg=2.0"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("--set pendulm.toml:body[0].mass_kg=2.0") && err.contains("matches no file"), "{err}");
+    let out = towride(&["run", pendulum, "--set", "pendulum.toml=2"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("FILE:PATH=VALUE"));
+    std::fs::remove_dir_all(&dir).ok();
+}
