@@ -181,7 +181,11 @@ fn set_replaces_a_value_for_one_run_and_a_set_that_matches_nothing_is_refused() 
         let mut args = vec!["run", pendulum, "--out", d, "--json"];
         args.extend_from_slice(extra);
         let out = towride(&args);
-        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
         let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
         v["channels"]["pivot.force.z"]["max"].as_f64().unwrap()
     };
@@ -191,10 +195,20 @@ fn set_replaces_a_value_for_one_run_and_a_set_that_matches_nothing_is_refused() 
     assert!((one / (3.0 * 9.81) - 1.0).abs() < 1e-4, "{one}");
     assert!((two / (3.0 * 2.0 * 9.81) - 1.0).abs() < 1e-4, "{two}");
 
-    let out = towride(&["run", pendulum, "--out", d, "--set", "pendulm.toml:body[0].mass_kg=2.0"]);
+    let out = towride(&[
+        "run",
+        pendulum,
+        "--out",
+        d,
+        "--set",
+        "pendulm.toml:body[0].mass_kg=2.0",
+    ]);
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("--set pendulm.toml:body[0].mass_kg=2.0") && err.contains("matches no file"), "{err}");
+    assert!(
+        err.contains("--set pendulm.toml:body[0].mass_kg=2.0") && err.contains("matches no file"),
+        "{err}"
+    );
     let out = towride(&["run", pendulum, "--set", "pendulum.toml=2"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("FILE:PATH=VALUE"));

@@ -157,11 +157,9 @@ fn plan_of_72_runs_with_one_bad_file() {
         rate_hz: 1000.0,
         ..Analytic::default()
     };
-    let obstacles: Vec<(String, PathBuf)> = ["bump_25mm", "bump_50mm", "ramp_50mm"]
-        .iter()
-        .map(|n| (n.to_string(), PathBuf::from("unused.toml")))
-        .collect();
-    let runs = plan(&obstacles);
+    let p = towride::scene::plan::load(std::path::Path::new(repo!("scenes/measurement_plan.toml")))
+        .unwrap();
+    let runs = plan(&p);
     assert_eq!(runs.len(), 72);
     let mut names: Vec<&str> = runs.iter().map(|r| r.name.as_str()).collect();
     names.sort();

@@ -59,11 +59,21 @@ fn a_tir_override_reaches_the_tyre_and_a_sweep_over_it_changes_the_results() {
     let front = &s.model().tyres[0];
     assert_eq!(front.name, "tyre_fl");
     assert_eq!(front.tyre.params().cz, 260000.0);
-    let trailer = s.model().tyres.iter().find(|t| t.name == "tyre_tl").unwrap();
+    let trailer = s
+        .model()
+        .tyres
+        .iter()
+        .find(|t| t.name == "tyre_tl")
+        .unwrap();
     assert_eq!(trailer.tyre.params().cz, {
         // The trailer's tyre is another file: untouched.
         let plain = scene::load(default).unwrap();
-        let t = plain.model().tyres.iter().find(|t| t.name == "tyre_tl").unwrap();
+        let t = plain
+            .model()
+            .tyres
+            .iter()
+            .find(|t| t.name == "tyre_tl")
+            .unwrap();
         t.tyre.params().cz
     });
 
@@ -107,9 +117,16 @@ fn a_sweep_parameter_that_matches_nothing_is_an_error_at_its_line_and_field() {
     let res = run_sweep(&sw, (0, 1), 1, &Silent).unwrap();
     assert_eq!(res.failed, 1);
     let e = res.rows[0].error.clone().unwrap();
-    let want = format!("{}:{}:", sweep.display(), line_of(&text, "file = \"pendulm"));
+    let want = format!(
+        "{}:{}:",
+        sweep.display(),
+        line_of(&text, "file = \"pendulm")
+    );
     assert!(e.starts_with(&want), "{e}");
-    assert!(e.contains("parameter[0].file") && e.contains("pendulm.toml"), "{e}");
+    assert!(
+        e.contains("parameter[0].file") && e.contains("pendulm.toml"),
+        "{e}"
+    );
     assert!(e.contains("pendulum.toml"), "lists the files read: {e}");
 
     // The file matches but the path does not (a .tir section that does not exist).
@@ -120,7 +137,10 @@ fn a_sweep_parameter_that_matches_nothing_is_an_error_at_its_line_and_field() {
     let res = run_sweep(&Sweep::load(&sweep).unwrap(), (0, 1), 1, &Silent).unwrap();
     let e = res.rows[0].error.clone().unwrap();
     let want = format!("{}:{}:", sweep.display(), line_of(&text, "path = \"bodies"));
-    assert!(e.starts_with(&want) && e.contains("parameter[0].path"), "{e}");
+    assert!(
+        e.starts_with(&want) && e.contains("parameter[0].path"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -137,7 +157,10 @@ fn a_scene_override_table_changes_a_vehicle_file_and_a_bad_one_is_located() {
     );
     let s = scene::load(&d.write("good.toml", &good)).unwrap();
     let (_, kind) = s.vehicle.handles.ball.as_ref().unwrap();
-    assert!(matches!(kind, towride::vehicle::BallKind::Bushing(_)), "{kind:?}");
+    assert!(
+        matches!(kind, towride::vehicle::BallKind::Bushing(_)),
+        "{kind:?}"
+    );
     let bad = good.replace("fabia/hitch.toml", "fabia/hitchh.toml");
     let path = d.write("bad.toml", &bad);
     let e = scene::load(&path).unwrap_err();
@@ -162,7 +185,11 @@ fn a_bump_stop_clearance_of_zero_is_accepted_and_a_negative_one_refused_on_both_
     // Mechanism file.
     let d = Scratch::new("stops");
     let text = std::fs::read_to_string(repo!("scenes/examples/elements.toml")).unwrap();
-    let zero = text.replacen("bump_stop = { clearance_m = 0.02", "bump_stop = { clearance_m = 0.0", 1);
+    let zero = text.replacen(
+        "bump_stop = { clearance_m = 0.02",
+        "bump_stop = { clearance_m = 0.0",
+        1,
+    );
     assert_ne!(zero, text);
     mechanism(&d, "zero.toml", &zero).unwrap();
     let negative = text.replacen(
@@ -171,15 +198,31 @@ fn a_bump_stop_clearance_of_zero_is_accepted_and_a_negative_one_refused_on_both_
         1,
     );
     let e = input_error(mechanism(&d, "neg.toml", &negative).err().unwrap());
-    assert_eq!(e.line, Some(line_of(&negative, "clearance_m = -0.01")), "{e}");
-    assert!(e.field.ends_with("bump_stop.clearance_m") && e.field.starts_with("spring["), "{e}");
+    assert_eq!(
+        e.line,
+        Some(line_of(&negative, "clearance_m = -0.01")),
+        "{e}"
+    );
+    assert!(
+        e.field.ends_with("bump_stop.clearance_m") && e.field.starts_with("spring["),
+        "{e}"
+    );
     assert!(e.message.contains("must not be negative"), "{e}");
 
     // Vehicle property file (the front axle's bump stop), through an override.
     let front = "fabia/front_mcpherson.toml";
     let load = |v: &str| {
-        let l = Loader::with_overrides(vec![Override::program(front, "bump_stop.clearance_m", v, "test")]);
-        vehicle::load(Path::new(repo!("vehicles/fabia_trailer.toml")), &Options::default(), &l)
+        let l = Loader::with_overrides(vec![Override::program(
+            front,
+            "bump_stop.clearance_m",
+            v,
+            "test",
+        )]);
+        vehicle::load(
+            Path::new(repo!("vehicles/fabia_trailer.toml")),
+            &Options::default(),
+            &l,
+        )
     };
     load("0.0").unwrap();
     let e = load("-0.01").unwrap_err();
@@ -214,7 +257,10 @@ fn duplicate_joints_self_bushings_and_unknown_tables_are_refused_with_their_line
     let unknown = format!("{text}\n[[sprng]]\nname = \"x\"\n");
     let e = input_error(mechanism(&d, "unknown.toml", &unknown).err().unwrap());
     assert_eq!(e.field, "sprng", "{e}");
-    assert!(e.message.contains("spring") && e.message.contains("rotational_spring"), "{e}");
+    assert!(
+        e.message.contains("spring") && e.message.contains("rotational_spring"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -228,8 +274,15 @@ fn an_axle_slot_takes_any_registered_axle_template_and_names_them_when_wrong() {
         "\"trailing_arm\"",
         "test",
     )]);
-    let e = vehicle::load(Path::new(repo!("vehicles/fabia_trailer.toml")), &Options::default(), &l)
-        .unwrap_err();
+    let e = vehicle::load(
+        Path::new(repo!("vehicles/fabia_trailer.toml")),
+        &Options::default(),
+        &l,
+    )
+    .unwrap_err();
     assert_eq!(e.field, "car.rear.template", "{e}");
-    assert!(e.message.contains("mcpherson") && e.message.contains("twist_beam"), "{e}");
+    assert!(
+        e.message.contains("mcpherson") && e.message.contains("twist_beam"),
+        "{e}"
+    );
 }

@@ -46,12 +46,10 @@ struct SynthArgs {
     /// Output folder.
     #[arg(long)]
     out: PathBuf,
-    /// All 72 runs of the measurement plan (3 obstacles x 6 speeds x 4 loads).
-    #[arg(long)]
-    plan: bool,
-    /// Plan obstacles as NAME=SCENE (repeatable; default the three thesis scenes).
-    #[arg(long = "plan-scene")]
-    plan_scenes: Vec<String>,
+    /// Every run of a plan file (default: the 72-run measurement plan,
+    /// scenes/measurement_plan.toml: 3 obstacles x 6 speeds x 4 loads).
+    #[arg(long, num_args = 0..=1, default_missing_value = "scenes/measurement_plan.toml")]
+    plan: Option<PathBuf>,
     /// Single run: the scene file.
     #[arg(long, required_unless_present = "plan")]
     scene: Option<PathBuf>,
@@ -181,20 +179,8 @@ fn synth(a: &SynthArgs) -> CliResult {
         seed: a.seed,
     };
     let sim = default_simulator();
-    let files = if a.plan {
-        let obstacles = if a.plan_scenes.is_empty() {
-            plan::default_obstacles()
-        } else {
-            a.plan_scenes
-                .iter()
-                .map(|s| {
-                    s.split_once('=')
-                        .map(|(n, p)| (n.to_string(), PathBuf::from(p)))
-                        .ok_or_else(|| format!("--plan-scene {s}: expected NAME=FILE"))
-                })
-                .collect::<Result<Vec<_>, String>>()?
-        };
-        let runs = plan::plan(&obstacles);
+    let files = if let Some(file) = &a.plan {
+        let runs = plan::plan(&towride::scene::plan::load(file)?);
         let pb = crate::progress(runs.len() as u64, false);
         let files = plan::write_plan(sim.as_ref(), &runs, &sensor, &a.out, &|i| {
             pb.set_position(i as u64)

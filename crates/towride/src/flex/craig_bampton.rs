@@ -75,7 +75,9 @@ pub struct ModeRow {
 /// Reduces the assembled model with `n_fixed` fixed-interface modes.
 pub fn reduce(mesh: &Mesh, asm: &Assembly, n_fixed: usize) -> Result<CraigBampton, FlexError> {
     if mesh.interfaces.is_empty() {
-        return Err(FlexError::Numerics("Craig-Bampton reduction needs at least one interface node".into()));
+        return Err(FlexError::Numerics(
+            "Craig-Bampton reduction needs at least one interface node".into(),
+        ));
     }
     let boundary: Vec<usize> = mesh
         .interfaces

@@ -46,11 +46,9 @@ pub fn submatrix(a: MatRef<'_, f64>, rows: &[usize], cols: &[usize]) -> Mat<f64>
 /// Solves K phi = omega^2 M phi for all pairs; M must be positive definite.
 pub fn generalized_eigen(k: MatRef<'_, f64>, m: MatRef<'_, f64>) -> Result<Eigen, FlexError> {
     let n = k.nrows();
-    let llt = m
-        .llt(Side::Lower)
-        .map_err(|e| {
-            FlexError::Numerics(format!("the mass matrix is not positive definite ({e:?})"))
-        })?;
+    let llt = m.llt(Side::Lower).map_err(|e| {
+        FlexError::Numerics(format!("the mass matrix is not positive definite ({e:?})"))
+    })?;
     let l = llt.L();
     // C = L^-1 K L^-T: X = L^-1 K, then C = L^-1 X^T (K symmetric).
     let mut x = k.to_owned();
@@ -94,7 +92,11 @@ pub fn constrained_eigen(
 }
 
 /// Static solution of K u = f with the DOFs in `fixed` held at zero.
-pub fn static_solution(k: MatRef<'_, f64>, fixed: &[usize], f: &[f64]) -> Result<Vec<f64>, FlexError> {
+pub fn static_solution(
+    k: MatRef<'_, f64>,
+    fixed: &[usize],
+    f: &[f64],
+) -> Result<Vec<f64>, FlexError> {
     let n = k.nrows();
     let free: Vec<usize> = (0..n).filter(|i| !fixed.contains(i)).collect();
     let kf = submatrix(k, &free, &free);

@@ -816,7 +816,11 @@ impl ModelBuilder {
         function.check().map_err(|e| {
             build(
                 &item,
-                e.under(if is_velocity { "velocity" } else { "displacement" }),
+                e.under(if is_velocity {
+                    "velocity"
+                } else {
+                    "displacement"
+                }),
             )
         })?;
         self.model.motions.push(Motion {

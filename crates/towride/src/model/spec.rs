@@ -15,8 +15,8 @@ use super::desc::{
     Accelerations, Axes, ElementQuantity, JointKind, JointQuantity, MarkerQuantity, Model,
     MotionDof, Output, Request,
 };
-pub use super::elements::JointBushing;
 use super::elements;
+pub use super::elements::JointBushing;
 use super::function::TimeFunction;
 use crate::input::{InputError, Loader, Source};
 use crate::path;

@@ -1,10 +1,11 @@
-//! A plan: one template scene run over obstacles x speeds x trailer load cases, like the
+//! A plan: scenes (one per obstacle) run over speeds x trailer load cases, like the
 //! thesis's measurement plan (5.5.3.4: 3 obstacles x 6 speeds x 4 loads = 72 passes).
+//! `scenes/measurement_plan.toml` is the plan's one definition: runs and the synthetic
+//! measurement set (`validate::plan`) both expand it.
 //!
 //! ```toml
 //! [plan]
 //! name = "measurement_plan"
-//! template = "default.toml"
 //! speeds_km_h = [10.0, 20.0, 30.0, 40.0, 50.0, 60.0]
 //! load_cases = ["empty", "200kg_over_axle", "200kg_ahead_of_axle", "200kg_behind_axle"]
 //! # Each run lasts travel_m / speed + after_s: long enough for the trailer's wheels to
@@ -14,7 +15,7 @@
 //!
 //! [[obstacle]]
 //! name = "ramp_50mm"
-//! road = "../roads/ramp_thesis.toml"
+//! scene = "default.toml"       # the scene that drives over it
 //! ```
 //!
 //! Case names are `<obstacle>_<speed>kmh_<load case>`, e.g. `ramp_50mm_50kmh_empty` (the
@@ -39,7 +40,6 @@ struct File {
 #[serde(deny_unknown_fields)]
 struct PlanSec {
     name: String,
-    template: String,
     speeds_km_h: Vec<f64>,
     load_cases: Vec<String>,
     travel_m: f64,
@@ -50,28 +50,39 @@ struct PlanSec {
 #[serde(deny_unknown_fields)]
 struct ObstacleSec {
     name: String,
-    road: String,
+    scene: String,
 }
 
 /// One run of a plan.
 #[derive(Clone, Debug)]
 pub struct Case {
+    /// `<obstacle>_<speed>kmh_<load case>`.
     pub name: String,
+    /// The obstacle's name.
+    pub obstacle: String,
+    /// The scene that drives over it.
+    pub scene: PathBuf,
+    /// Nominal speed [km/h].
+    pub speed_km_h: f64,
+    /// Trailer load case.
+    pub load_case: String,
+    /// The scene settings the case changes.
     pub changes: Changes,
 }
 
 /// A plan read and expanded (scenes are built on demand: [`Plan::scene`]).
 #[derive(Clone, Debug)]
 pub struct Plan {
+    /// The plan's name.
     pub name: String,
-    pub template: PathBuf,
+    /// Every case, obstacle-major, then speed, then load case.
     pub cases: Vec<Case>,
 }
 
 impl Plan {
     /// The scene of one case, its files read through `loader`.
     pub fn scene(&self, case: &Case, loader: &Loader) -> Result<Scene, InputError> {
-        load_with(&self.template, &case.changes, loader)
+        load_with(&case.scene, &case.changes, loader)
     }
 
     pub fn case(&self, name: &str) -> Option<&Case> {
@@ -90,13 +101,6 @@ pub fn load(path: &Path) -> Result<Plan, InputError> {
     let f: File = src.parse()?;
     let dir = path.parent().unwrap_or(Path::new("."));
     let p = &f.plan;
-    let template = dir.join(&p.template);
-    if !template.is_file() {
-        return Err(src.error(
-            &path!["plan", "template"],
-            format!("no file {}", template.display()),
-        ));
-    }
     let travel = src.positive(&path!["plan", "travel_m"], p.travel_m)?;
     let after = src.non_negative(&path!["plan", "after_s"], p.after_s)?;
     if f.obstacle.is_empty() || p.speeds_km_h.is_empty() || p.load_cases.is_empty() {
@@ -107,11 +111,17 @@ pub fn load(path: &Path) -> Result<Plan, InputError> {
     }
     let mut cases = Vec::new();
     for (i, o) in f.obstacle.iter().enumerate() {
-        let road = dir.join(&o.road);
-        if !road.is_file() {
+        let scene = dir.join(&o.scene);
+        if !scene.is_file() {
             return Err(src.error(
-                &path!["obstacle", i, "road"],
-                format!("no file {}", road.display()),
+                &path!["obstacle", i, "scene"],
+                format!("no file {}", scene.display()),
+            ));
+        }
+        if f.obstacle[..i].iter().any(|q| q.name == o.name) {
+            return Err(src.error(
+                &path!["obstacle", i, "name"],
+                format!("obstacle '{}' defined twice", o.name),
             ));
         }
         for (j, &v) in p.speeds_km_h.iter().enumerate() {
@@ -120,9 +130,13 @@ pub fn load(path: &Path) -> Result<Plan, InputError> {
                 let name = format!("{}_{}kmh_{load}", o.name, fmt_speed(v));
                 cases.push(Case {
                     name: name.clone(),
+                    obstacle: o.name.clone(),
+                    scene: scene.clone(),
+                    speed_km_h: v,
+                    load_case: load.clone(),
                     changes: Changes {
                         name: Some(name),
-                        road: Some(road.clone()),
+                        road: None,
                         speed_km_h: Some(v),
                         duration_s: Some(travel / (v / 3.6) + after),
                         load_case: Some(load.clone()),
@@ -135,7 +149,6 @@ pub fn load(path: &Path) -> Result<Plan, InputError> {
     }
     Ok(Plan {
         name: p.name.clone(),
-        template,
         cases,
     })
 }

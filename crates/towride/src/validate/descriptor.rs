@@ -10,7 +10,7 @@ use serde::Deserialize;
 use crate::input::{InputError, Source};
 use crate::path;
 
-use super::{G_MPS2, LOAD_CASES};
+use super::G_MPS2;
 
 /// Physical unit of a recorded channel.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -204,13 +204,14 @@ impl Descriptor {
         nonempty("obstacle", &f.obstacle)?;
         nonempty("data", &f.data)?;
         let speed = src.positive(&path!["nominal_speed_kmh"], f.nominal_speed_kmh)?;
-        if !LOAD_CASES.contains(&f.load_case.as_str()) {
+        let known = super::plan::load_cases();
+        if !known.contains(&f.load_case) {
             return Err(src.error(
                 &path!["load_case"],
                 format!(
-                    "unknown load case `{}` (known: {})",
+                    "unknown load case `{}` (the measurement plan's: {})",
                     f.load_case,
-                    LOAD_CASES.join(", ")
+                    known.join(", ")
                 ),
             ));
         }

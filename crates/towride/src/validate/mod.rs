@@ -69,14 +69,6 @@ pub enum ValidateError {
 /// Standard gravity [m/s^2], for channels recorded in g.
 pub const G_MPS2: f64 = 9.80665;
 
-/// The trailer load cases of the measurement plan (thesis 5.5.3.4).
-pub const LOAD_CASES: [&str; 4] = [
-    "empty",
-    "200kg_over_axle",
-    "200kg_ahead_of_axle",
-    "200kg_behind_axle",
-];
-
 /// A simulated run: sampled channels in SI units on one time grid.
 #[derive(Clone, Debug, Default)]
 pub struct SimChannels {
@@ -90,8 +82,8 @@ pub struct SimChannels {
 
 /// Anything that can simulate a measured run: the vehicle model, or a stand-in.
 pub trait Simulator {
-    /// Simulates `scene` driven at `speed_mps` with trailer load case `load_case` (one of
-    /// [`LOAD_CASES`]).
+    /// Simulates `scene` driven at `speed_mps` with trailer load case `load_case` (a
+    /// load case of the scene's trailer file).
     fn simulate(
         &self,
         scene: &Path,

@@ -1,45 +1,46 @@
-//! The thesis's measurement plan (5.5.3.4): 3 obstacles x 6 speeds x 4 trailer loads =
-//! 72 runs, synthesised with any [`Simulator`].
+//! The measurement plan's runs synthesised with any [`Simulator`]: the plan is the one
+//! of `scenes/measurement_plan.toml` (3 obstacles x 6 speeds x 4 trailer loads = 72
+//! runs, thesis 5.5.3.4), read by [`crate::scene::plan::load`].
 
 use super::ValidateError;
 use std::path::{Path, PathBuf};
 
 use super::synth::{make_synthetic, SensorModel, SynthRun, TriggerLayout};
-use super::{Simulator, LOAD_CASES};
+use super::Simulator;
+use crate::scene::plan::Plan;
 
-/// Nominal speeds of the plan [km/h].
-pub const SPEEDS_KMH: [f64; 6] = [10.0, 20.0, 30.0, 40.0, 50.0, 60.0];
+/// The shipped measurement plan's text, its one definition.
+const SHIPPED_PLAN: &str = include_str!("../../../../scenes/measurement_plan.toml");
 
-/// The plan's obstacles and the vehicle scenes that drive over them (`--plan-scene
-/// NAME=FILE` replaces one).
-pub fn default_obstacles() -> Vec<(String, PathBuf)> {
-    [
-        ("bump_25mm", "scenes/bump_25mm.toml"),
-        ("bump_50mm", "scenes/bump_50mm.toml"),
-        ("ramp_50mm", "scenes/default.toml"),
-    ]
-    .iter()
-    .map(|(n, p)| (n.to_string(), PathBuf::from(p)))
-    .collect()
+/// The trailer load cases of the shipped measurement plan (thesis 5.5.3.4), read from
+/// `scenes/measurement_plan.toml`: the load cases a recorded run may name.
+pub fn load_cases() -> Vec<String> {
+    #[derive(serde::Deserialize)]
+    struct File {
+        plan: Head,
+    }
+    #[derive(serde::Deserialize)]
+    struct Head {
+        load_cases: Vec<String>,
+    }
+    // The file is part of the source tree and its test reads it: it parses.
+    toml::from_str::<File>(SHIPPED_PLAN)
+        .map(|f| f.plan.load_cases)
+        .unwrap_or_default()
 }
 
-/// Every run of the plan, obstacle-major.
-pub fn plan(obstacles: &[(String, PathBuf)]) -> Vec<SynthRun> {
-    let mut runs = Vec::new();
-    for (name, scene) in obstacles {
-        for v in SPEEDS_KMH {
-            for load in LOAD_CASES {
-                runs.push(SynthRun {
-                    name: format!("{name}_{v:02.0}kmh_{load}"),
-                    scene: scene.clone(),
-                    obstacle: name.clone(),
-                    nominal_speed_kmh: v,
-                    load_case: load.to_string(),
-                });
-            }
-        }
-    }
-    runs
+/// Every run of the plan, in the plan's order (obstacle-major).
+pub fn plan(p: &Plan) -> Vec<SynthRun> {
+    p.cases
+        .iter()
+        .map(|c| SynthRun {
+            name: c.name.clone(),
+            scene: c.scene.clone(),
+            obstacle: c.obstacle.clone(),
+            nominal_speed_kmh: c.speed_km_h,
+            load_case: c.load_case.clone(),
+        })
+        .collect()
 }
 
 /// Writes the plan's runs into `out` (seed + run index as each run's noise seed);
@@ -67,4 +68,20 @@ pub fn write_plan(
         progress(i + 1);
     }
     Ok(files)
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn the_shipped_plan_has_its_four_load_cases() {
+        assert_eq!(
+            super::load_cases(),
+            [
+                "empty",
+                "200kg_over_axle",
+                "200kg_ahead_of_axle",
+                "200kg_behind_axle"
+            ]
+        );
+    }
 }

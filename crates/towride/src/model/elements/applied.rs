@@ -80,9 +80,7 @@ impl ForceElement for Applied {
     }
 
     fn add_from_file(s: &AppliedSpec, b: &mut ModelBuilder) -> Result<(), FieldError> {
-        let body = b
-            .body_by_name(&s.body)
-            .map_err(|e| e.under("body"))?;
+        let body = b.body_by_name(&s.body).map_err(|e| e.under("body"))?;
         let axes = b.axes_from(s.z_axis, s.x_axis)?;
         let in_marker_axes = match s.axes.as_str() {
             "world" => false,

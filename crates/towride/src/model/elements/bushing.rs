@@ -84,12 +84,8 @@ impl ForceElement for Bushing {
     }
 
     fn add_from_file(s: &BushingSpec, b: &mut ModelBuilder) -> Result<(), FieldError> {
-        let body_i = b
-            .body_by_name(&s.body_i)
-            .map_err(|e| e.under("body_i"))?;
-        let body_j = b
-            .body_by_name(&s.body_j)
-            .map_err(|e| e.under("body_j"))?;
+        let body_i = b.body_by_name(&s.body_i).map_err(|e| e.under("body_i"))?;
+        let body_j = b.body_by_name(&s.body_j).map_err(|e| e.under("body_j"))?;
         let axes = b.axes_from(s.z_axis, s.x_axis)?;
         let laws = |key: &str, t: &[LawSpec; 3], r: &[LawSpec; 3]| {
             let rot = format!("{key}_rad");

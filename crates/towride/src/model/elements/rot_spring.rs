@@ -75,12 +75,8 @@ impl ForceElement for RotSpring {
     }
 
     fn add_from_file(s: &RotSpringSpec, b: &mut ModelBuilder) -> Result<(), FieldError> {
-        let body_i = b
-            .body_by_name(&s.body_i)
-            .map_err(|e| e.under("body_i"))?;
-        let body_j = b
-            .body_by_name(&s.body_j)
-            .map_err(|e| e.under("body_j"))?;
+        let body_i = b.body_by_name(&s.body_i).map_err(|e| e.under("body_i"))?;
+        let body_j = b.body_by_name(&s.body_j).map_err(|e| e.under("body_j"))?;
         let axes = b.axes_from(Some(s.z_axis), s.x_axis)?;
         b.rot_spring(RotLine {
             name: s.name.clone(),

@@ -84,12 +84,8 @@ impl ForceElement for SpringDamper {
     }
 
     fn add_from_file(s: &SpringSpec, b: &mut ModelBuilder) -> Result<(), FieldError> {
-        let body_i = b
-            .body_by_name(&s.body_i)
-            .map_err(|e| e.under("body_i"))?;
-        let body_j = b
-            .body_by_name(&s.body_j)
-            .map_err(|e| e.under("body_j"))?;
+        let body_i = b.body_by_name(&s.body_i).map_err(|e| e.under("body_i"))?;
+        let body_j = b.body_by_name(&s.body_j).map_err(|e| e.under("body_j"))?;
         let mut line = SpringLine::new(&s.name, body_i, s.point_i_m, body_j, s.point_j_m);
         if let Some(l) = s.free_length_m {
             line.free_length = l;
