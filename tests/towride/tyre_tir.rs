@@ -116,7 +116,7 @@ fn shipped_files_reproduce_their_ring_data() {
         let r = p.d.r_loaded0;
         let cx = 1.0 / (1.0 / p.d.c_b + r * r / p.d.c_theta + 1.0 / p.d.c_rx);
         assert!((cx / t("STRUCTURAL", "LONGITUDINAL_STIFFNESS") - 1.0).abs() < 1e-12);
-        // The bands for the car tyre.
+        // Plausible bands for a passenger-car tyre.
         if file == CAR {
             assert!((150e3..=250e3).contains(&t("VERTICAL", "VERTICAL_STIFFNESS")));
             assert!((t("DIMENSION", "UNLOADED_RADIUS") - 0.29).abs() < 0.01);

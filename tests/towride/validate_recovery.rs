@@ -17,7 +17,7 @@ fn injected_errors_are_recovered() {
     let dir = tmp("recovery");
     let sim = Analytic::default();
     let sensor = SensorModel::default();
-    // The values, spelled out here rather than trusted from the defaults.
+    // The sensor model's documented values (docs/validation.md), spelled out here rather than trusted from the defaults.
     let (delay, speed_err, gain_err) = (0.037, 0.03, 0.05);
     let sensor = SensorModel {
         trigger_delay_s: delay,

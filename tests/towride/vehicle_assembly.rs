@@ -171,7 +171,7 @@ fn total_mass_is_the_sum_of_the_property_files() {
         assert!((v.design.total_mass_kg - (car + tr)).abs() < 1e-9 * (car + tr));
         assert!((v.design.car_mass_kg - car).abs() < 1e-9 * car);
     }
-    // The classes: a ~1100 kg car, a 100 kg empty trailer.
+    // The vehicle classes the templates model: a ~1100 kg car, a 100 kg empty trailer.
     assert!((car - 1100.0).abs() < 30.0, "car {car} kg");
     assert!((tr - 100.0).abs() < 1e-9, "trailer {tr} kg");
 }

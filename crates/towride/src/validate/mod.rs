@@ -1,4 +1,4 @@
-//! Validation against recorded accelerometer data (issue 7).
+//! Validation against recorded accelerometer data.
 //!
 //! A measured run is a CSV of time plus channels and a TOML descriptor ([`descriptor`]).
 //! [`validate_run`] reads both, derives the true speed from the foil pulses
