@@ -1,7 +1,7 @@
 //! An index-1 DAE with an analytical solution: consistent initial values from a wrong
 //! guess, then integration, both against the closed form.
 
-use towride_solver::{ic::consistent_index1, solve_to, DaeProblem, SolverOptions, VarKind};
+use towride_solver::{consistent_index1, solve_to, DaeProblem, SolverOptions, VarKind};
 
 /// y1' = -y1 + y2, 0 = y2 - 2 y1 - 1  =>  y1' = y1 + 1, y1 = (y1(0) + 1) e^t - 1.
 struct Linear;

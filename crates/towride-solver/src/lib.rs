@@ -8,13 +8,14 @@
 
 // Numerical kernels index several arrays in step; iterator chains would obscure them.
 #![allow(clippy::needless_range_loop)]
+#![warn(missing_docs)]
 
-pub mod bdf;
-pub mod error;
-pub mod ggl;
-pub mod ic;
+mod bdf;
+mod error;
+mod ggl;
+mod ic;
 pub mod linear;
-pub mod options;
+mod options;
 pub mod problem;
 mod sparse_lu;
 pub mod testset;
@@ -22,6 +23,7 @@ pub mod testset;
 pub use bdf::{Advance, Bdf};
 pub use error::SolverError;
 pub use ggl::{Ggl, MechanicalDae};
+pub use ic::consistent_index1;
 pub use options::{
     AlgebraicControl, JacobianSource, LinearSolver, MatrixRebuilds, Method, SolverOptions, Stats,
 };

@@ -4,6 +4,7 @@
 
 // Numerical kernels index several arrays in step; iterator chains would obscure them.
 #![allow(clippy::needless_range_loop)]
+#![warn(missing_docs)]
 
 pub mod error;
 pub mod flex;

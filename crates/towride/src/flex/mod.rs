@@ -8,15 +8,15 @@
 //! at interface and marker nodes, invariants, damping, selection). [`FlexBody::load`]
 //! runs it all. Formulas and sources: `docs/flex.md`.
 
-pub mod assemble;
+pub(crate) mod assemble;
 pub mod beam;
 pub mod craig_bampton;
-pub mod damping;
-pub mod input;
-pub mod invariants;
-pub mod material;
-pub mod mesh;
-pub mod modal;
+pub(crate) mod damping;
+pub(crate) mod input;
+pub(crate) mod invariants;
+pub(crate) mod material;
+pub(crate) mod mesh;
+pub(crate) mod modal;
 pub mod modes;
 pub mod report;
 pub mod section;

@@ -5,12 +5,12 @@
 //! checks that follow (a negative mass, a joint naming a missing body, NaN) are reported
 //! as `file:line:column: field `path`: message`, the line found from the TOML spans.
 
-pub mod csv_table;
-pub mod loader;
-pub mod overrides;
+pub(crate) mod csv_table;
+pub(crate) mod loader;
+pub(crate) mod overrides;
 
 pub use loader::Loader;
-pub use overrides::Override;
+pub use overrides::{Origin, Override};
 
 use std::fmt;
 use std::ops::Range;

@@ -21,9 +21,9 @@
 //! height at the face is the value just after it. The file format and the ramp convention
 //! are documented in `docs/road_tyre.md`.
 
-pub mod mesh;
-pub mod obstacle;
-pub mod profile;
+pub(crate) mod mesh;
+pub(crate) mod obstacle;
+pub(crate) mod profile;
 
 use std::path::{Path, PathBuf};
 

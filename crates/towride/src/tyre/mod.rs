@@ -66,13 +66,13 @@
 //!
 //! The equations are written out in `docs/road_tyre.md`.
 
-pub mod envelope;
-pub mod magic;
+pub(crate) mod envelope;
+pub(crate) mod magic;
 pub mod params;
-pub mod point;
+pub(crate) mod point;
 pub mod rig;
 pub mod rig_report;
-pub mod ring;
+pub(crate) mod ring;
 pub mod tir;
 
 use std::path::Path;

@@ -22,7 +22,7 @@ use serde::{Deserialize, Serialize};
 use crate::input::InputError;
 use crate::path;
 use crate::road::Road;
-use towride_solver::ic::consistent_index1;
+use towride_solver::consistent_index1;
 use towride_solver::{Advance, Bdf, DaeProblem, SolverError, SolverOptions, Stats, VarKind};
 
 use super::{Tyre, TyreKind, WheelKinematics};

@@ -12,20 +12,20 @@
 //! takes its simulator from [`default_simulator`], the one place to swap in the vehicle
 //! model. [`synth`] and [`plan`] make clearly labelled synthetic runs from any simulator.
 
-pub mod align;
+pub(crate) mod align;
 pub mod csv_reader;
 pub mod descriptor;
 pub mod filter;
 pub mod folder;
-pub mod metrics;
+pub(crate) mod metrics;
 pub mod pipeline;
 pub mod plan;
 pub mod rating;
 mod repair;
 pub mod report;
 pub mod synth;
-pub mod trigger;
-pub mod vehicle_sim;
+pub(crate) mod trigger;
+pub(crate) mod vehicle_sim;
 
 use std::collections::BTreeMap;
 use std::path::Path;

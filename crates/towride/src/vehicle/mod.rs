@@ -20,24 +20,24 @@
 //! [`geom`], [`sensors`], [`strut`] (McPherson kinematics), [`modal_body`] (modal bodies
 //! of the hitch and the cross member).
 
-pub mod assembly;
+pub(crate) mod assembly;
 pub mod axle;
-pub mod body;
-pub mod build;
-pub mod design;
-pub mod driveline;
-pub mod geom;
-pub mod hitch;
-pub mod mcpherson;
-pub mod modal_body;
-pub mod props;
-pub mod sensors;
-pub mod strut;
-pub mod swing;
-pub mod trailer;
-pub mod twist_beam;
-pub mod twist_flex;
-pub mod wheel;
+pub(crate) mod body;
+pub(crate) mod build;
+pub(crate) mod design;
+pub(crate) mod driveline;
+pub(crate) mod geom;
+pub(crate) mod hitch;
+pub(crate) mod mcpherson;
+pub(crate) mod modal_body;
+pub(crate) mod props;
+pub(crate) mod sensors;
+pub(crate) mod strut;
+pub(crate) mod swing;
+pub(crate) mod trailer;
+pub(crate) mod twist_beam;
+pub(crate) mod twist_flex;
+pub(crate) mod wheel;
 
 use std::collections::BTreeMap;
 

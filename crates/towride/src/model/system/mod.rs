@@ -35,8 +35,8 @@ use super::math::{cst33, mvc, qdot, quat_from_matrix, rot};
 use towride_solver::problem::{DaeProblem, JacobianSink, VarKind};
 
 mod constraint;
-pub mod ext;
-pub mod flexmarker;
+pub(crate) mod ext;
+pub(crate) mod flexmarker;
 mod forces;
 mod full;
 mod jacobian;
