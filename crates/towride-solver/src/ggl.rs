@@ -46,10 +46,12 @@ pub trait MechanicalDae {
 /// The GGL form of a [`MechanicalDae`] as a [`DaeProblem`]; unknowns are laid out as
 /// (q, v, lambda, mu), 2n + 2m in all.
 pub struct Ggl<M: MechanicalDae> {
+    /// The underlying mechanical system.
     pub sys: M,
 }
 
 impl<M: MechanicalDae> Ggl<M> {
+    /// Wraps `sys` in its GGL form.
     pub fn new(sys: M) -> Self {
         Self { sys }
     }

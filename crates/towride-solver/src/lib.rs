@@ -34,10 +34,15 @@ use std::time::Instant;
 /// The state at the end of a run plus what it cost.
 #[derive(Clone, Debug)]
 pub struct EndState {
+    /// End time reached [s] (the requested `t_end`).
     pub t: f64,
+    /// Unknowns at `t`.
     pub y: Vec<f64>,
+    /// Their time derivatives at `t`.
     pub yp: Vec<f64>,
+    /// Solver counters of the run.
     pub stats: Stats,
+    /// Wall-clock time of the run [s].
     pub wall_s: f64,
 }
 

@@ -16,7 +16,9 @@ use super::SolverError;
 pub struct Singular {
     /// Unknowns (columns) or equations (rows) involved, as indices.
     pub columns: Vec<usize>,
+    /// Equations (rows) involved, as indices.
     pub rows: Vec<usize>,
+    /// What failed, in words, for the error message.
     pub detail: String,
 }
 
@@ -157,6 +159,8 @@ impl NewtonMatrix {
         !self.base.is_empty()
     }
 
+    /// Whether the dF/dy' part of the base matrix is known (needed by
+    /// [`NewtonMatrix::recombine`]).
     pub fn has_yp_part(&self) -> bool {
         self.yp_part.is_some()
     }
@@ -215,10 +219,12 @@ impl NewtonMatrix {
         self.yp_part = Some(yp);
     }
 
+    /// True when the dense (not sparse) storage is in use.
     pub fn is_dense(&self) -> bool {
         matches!(self.storage, Storage::Dense { .. })
     }
 
+    /// Number of structurally non-zero entries.
     pub fn nnz(&self) -> usize {
         self.row_idx.len()
     }
@@ -228,6 +234,8 @@ impl NewtonMatrix {
         &self.row_idx[self.col_ptr[c]..self.col_ptr[c + 1]]
     }
 
+    /// Zeroes the values for a new assembly, keeping the structure (and the recorded
+    /// assembly order while it keeps matching).
     pub fn clear(&mut self) {
         // Re-record when the last assembly followed another order.
         if self.recording {

@@ -46,7 +46,9 @@ pub enum LinearSolver {
     /// Dense below `dense_limit` unknowns or when the problem gives no pattern, else sparse.
     #[default]
     Auto,
+    /// Always dense LU (nalgebra).
     Dense,
+    /// Always sparse LU (AMD order, refactorising).
     Sparse,
 }
 
@@ -81,11 +83,15 @@ pub struct SolverOptions {
     pub h_min: f64,
     /// Step budget for one call.
     pub max_steps: usize,
+    /// How the BDF coefficients follow step-size changes.
     pub method: Method,
+    /// How index-2 and index-3 unknowns enter the error and Newton tests.
     pub algebraic: AlgebraicControl,
+    /// Dense or sparse LU for the Newton iteration matrix.
     pub linear_solver: LinearSolver,
     /// Problems with fewer unknowns use dense LU under `LinearSolver::Auto`.
     pub dense_limit: usize,
+    /// Analytic or finite-difference iteration matrix.
     pub jacobian: JacobianSource,
     /// Newton iterations per step attempt (IDA: 4).
     pub max_newton_iters: usize,
@@ -267,7 +273,9 @@ pub struct Stats {
     pub steps: usize,
     /// Step attempts rejected by the error test or by Newton failure.
     pub rejected_steps: usize,
+    /// Step attempts rejected by the local error test.
     pub error_test_failures: usize,
+    /// Step attempts rejected because Newton did not converge (or the matrix was singular).
     pub convergence_failures: usize,
     /// Residual evaluations, including those spent on finite-difference Jacobians.
     pub residual_evals: usize,
@@ -277,11 +285,15 @@ pub struct Stats {
     /// Iteration matrices rebuilt for a new step size from the kept parts of the last
     /// evaluation (`jacobian_recombine`), without evaluating the problem's Jacobian.
     pub matrix_recombinations: usize,
+    /// LU factorisations of the iteration matrix.
     pub lu_factorizations: usize,
+    /// Newton iterations over all step attempts.
     pub newton_iterations: usize,
+    /// Evaluations of the event (root) functions.
     pub root_evals: usize,
     /// Order and step of the last accepted step.
     pub last_order: usize,
+    /// Step size of the last accepted step [s].
     pub last_step: f64,
     /// Accepted steps per order 1..=5.
     pub order_counts: [usize; 5],

@@ -31,7 +31,12 @@ pub enum Advance {
     /// The solver's internal time has reached or passed `tout`.
     Reached,
     /// An event function changed sign at `t` (before `tout`); `index` is which one.
-    Root { t: f64, index: usize },
+    Root {
+        /// Time of the sign change, located to within the root tolerance [s].
+        t: f64,
+        /// Index of the event function that changed sign.
+        index: usize,
+    },
 }
 
 enum StepFail {
@@ -265,6 +270,7 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
         self.tn
     }
 
+    /// Counters of the integration so far.
     pub fn stats(&self) -> &Stats {
         &self.stats
     }
@@ -293,6 +299,7 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
         }
     }
 
+    /// The settings the integrator runs with.
     pub fn options(&self) -> &SolverOptions {
         &self.opts
     }

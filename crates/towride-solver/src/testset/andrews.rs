@@ -77,47 +77,91 @@ pub const REFERENCE: [f64; 27] = [
 /// The parameters of the mechanism (names as in the Fortran common block `andcom`).
 #[derive(Clone, Debug)]
 pub struct Andrews {
+    /// Mass of body 1, the crank turned by `mom` (angle beta) [kg].
     pub m1: f64,
+    /// Mass of body 2 (angle theta) [kg].
     pub m2: f64,
+    /// Mass of body 3 (angle gamma), which carries the spring [kg].
     pub m3: f64,
+    /// Mass of body 4 (angle phi) [kg].
     pub m4: f64,
+    /// Mass of body 5 (angle delta) [kg].
     pub m5: f64,
+    /// Mass of body 6 (angle omega) [kg].
     pub m6: f64,
+    /// Mass of body 7 (angle epsilon) [kg].
     pub m7: f64,
+    /// x of the fixed pivot A of bodies 5 and 7 [m].
     pub xa: f64,
+    /// y of the fixed pivot A [m].
     pub ya: f64,
+    /// x of the fixed pivot B of body 3 [m].
     pub xb: f64,
+    /// y of the fixed pivot B [m].
     pub yb: f64,
+    /// x of the fixed spring anchor C [m].
     pub xc: f64,
+    /// y of the fixed spring anchor C [m].
     pub yc: f64,
+    /// Spring stiffness [N/m].
     pub c0: f64,
+    /// Moment of inertia of body 1 about its centre of mass [kg m^2].
     pub i1: f64,
+    /// Moment of inertia of body 2 about its centre of mass [kg m^2].
     pub i2: f64,
+    /// Moment of inertia of body 3 about its centre of mass [kg m^2].
     pub i3: f64,
+    /// Moment of inertia of body 4 about its centre of mass [kg m^2].
     pub i4: f64,
+    /// Moment of inertia of body 5 about its centre of mass [kg m^2].
     pub i5: f64,
+    /// Moment of inertia of body 6 about its centre of mass [kg m^2].
     pub i6: f64,
+    /// Moment of inertia of body 7 about its centre of mass [kg m^2].
     pub i7: f64,
+    /// Length of body 2, from its joint with body 1 to the common joint E [m].
     pub d: f64,
+    /// Distance of body 2's centre of mass from its joint with body 1 [m].
     pub da: f64,
+    /// Length of body 4, from E to its joint with body 5 [m].
     pub e: f64,
+    /// Distance of body 4's centre of mass from E (lever e - ea about the joint with body
+    /// 5) [m].
     pub ea: f64,
+    /// Length of the crank (body 1), from its pivot O to the joint with body 2 [m].
     pub rr: f64,
+    /// Distance of body 1's centre of mass from its pivot O [m].
     pub ra: f64,
+    /// Unstretched length of the spring [m].
     pub l0: f64,
+    /// Distance from pivot B to the joint E on body 3 [m].
     pub ss: f64,
+    /// Centre of mass of body 3 relative to B, first body-axis coordinate [m].
     pub sa: f64,
+    /// Centre of mass of body 3 relative to B, second body-axis coordinate [m].
     pub sb: f64,
+    /// Spring attachment D on body 3 relative to B, first body-axis coordinate [m].
     pub sc: f64,
+    /// Spring attachment D on body 3 relative to B, second body-axis coordinate [m].
     pub sd: f64,
+    /// Centre of mass of body 5 relative to A, first body-axis coordinate [m].
     pub ta: f64,
+    /// Centre of mass of body 5 relative to A, second body-axis coordinate [m].
     pub tb: f64,
+    /// Length of body 7, from A to its joint with body 6 [m].
     pub u: f64,
+    /// Centre of mass of body 7 relative to A, first body-axis coordinate [m].
     pub ua: f64,
+    /// Centre of mass of body 7 relative to A, second body-axis coordinate [m].
     pub ub: f64,
+    /// Length of body 6, from E to its joint with body 7 [m].
     pub zf: f64,
+    /// Length of body 5, from A to its joint with body 4 [m].
     pub zt: f64,
+    /// Distance of body 6's centre of mass from E (lever zf - fa about the joint with body
+    /// 7) [m].
     pub fa: f64,
+    /// Constant driving torque on the crank [N m].
     pub mom: f64,
 }
 

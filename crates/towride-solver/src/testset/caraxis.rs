@@ -95,12 +95,19 @@ pub const REFERENCE_CARSOLN: [f64; 10] = [
 /// The car axis DAE with its physical parameters.
 #[derive(Clone, Debug)]
 pub struct CarAxis {
+    /// Scale of the wheel masses, K = M eps^2 / 2 (small: stiff, index 3 in the limit).
     pub eps: f64,
+    /// Mass M (dimensionless in the test set).
     pub m: f64,
+    /// Length L of the axis between the wheels.
     pub l: f64,
+    /// Rest length L0 of the chassis springs.
     pub l0: f64,
+    /// Amplitude r of the road profile yb = r sin(w t).
     pub r: f64,
+    /// Angular frequency w of the road profile.
     pub w: f64,
+    /// Gravity g.
     pub g: f64,
 }
 

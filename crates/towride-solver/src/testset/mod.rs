@@ -91,9 +91,14 @@ pub struct Benchmark {
 /// A benchmark rewritten in GGL form ([`crate::Ggl`]), with the map from its
 /// solution (y, y') back to the test set's components.
 pub struct GglForm {
+    /// The residual of the GGL form.
     pub problem: Box<dyn DaeProblem + Send + Sync>,
+    /// Consistent initial values of the GGL unknowns.
     pub y0: Vec<f64>,
+    /// Consistent initial derivatives of the GGL unknowns.
     pub yp0: Vec<f64>,
+    /// Maps the GGL solution (y, y') to the test set's components, for scoring against
+    /// `reference`.
     pub to_testset: fn(&[f64], &[f64]) -> Vec<f64>,
 }
 

@@ -40,8 +40,11 @@ pub const Y0: [f64; 3] = [1.0, 0.0, 0.0];
 /// The Robertson right-hand side with its rate constants.
 #[derive(Clone, Copy, Debug)]
 pub struct Robertson {
+    /// Rate constant of y1 -> y2.
     pub k1: f64,
+    /// Rate constant of 2 y2 -> y2 + y3.
     pub k2: f64,
+    /// Rate constant of y2 + y3 -> y1 + y3.
     pub k3: f64,
 }
 

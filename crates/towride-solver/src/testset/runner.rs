@@ -21,11 +21,17 @@ pub enum Formulation {
 #[derive(Clone, Debug)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct CaseResult {
+    /// Benchmark name.
     pub problem: String,
+    /// Formulation actually used (`Ggl` falls back to `Index3` without a GGL form).
     pub formulation: Formulation,
+    /// BDF coefficient method.
     pub method: Method,
+    /// Relative tolerance.
     pub rtol: f64,
+    /// Absolute tolerance.
     pub atol: f64,
+    /// End of the interval, where the reference holds.
     pub t_end: f64,
     /// Solution at `t_end`, in the test set's component order (empty if the run failed).
     pub y: Vec<f64>,
@@ -33,22 +39,35 @@ pub struct CaseResult {
     pub scd: Option<f64>,
     /// Mixed-error digits over all components (test set's `mescd`).
     pub mescd: Option<f64>,
+    /// "ok" or "failed".
     pub status: String,
+    /// The solver's error message when the run failed.
     pub error: Option<String>,
+    /// Accepted steps.
     pub steps: usize,
+    /// Rejected step attempts.
     pub rejected_steps: usize,
+    /// Residual evaluations.
     pub residual_evals: usize,
+    /// Iteration-matrix evaluations.
     pub jacobian_evals: usize,
+    /// LU factorisations.
     pub lu_factorizations: usize,
+    /// Newton iterations.
     pub newton_iterations: usize,
+    /// Local error-test failures.
     pub error_test_failures: usize,
+    /// Newton convergence failures.
     pub convergence_failures: usize,
     /// Wall time of one run [s] (the fastest of `repeats` runs).
     pub wall_s: f64,
+    /// How many times the run was repeated for timing.
     pub repeats: usize,
     /// The published step count this problem is compared against, when there is one.
     pub published_code: Option<String>,
+    /// Tolerance of the published run.
     pub published_tol: Option<f64>,
+    /// Step count of the published run.
     pub published_steps: Option<usize>,
 }
 

@@ -39,6 +39,7 @@ pub const Y0: [f64; 2] = [2.0, 0.0];
 /// The scaled van der Pol right-hand side.
 #[derive(Clone, Copy, Debug)]
 pub struct VanDerPol {
+    /// Stiffness parameter eps (1e-6 in the test set).
     pub eps: f64,
 }
 

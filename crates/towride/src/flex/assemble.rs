@@ -20,6 +20,7 @@ pub type Mat6 = SMatrix<f64, 6, 6>;
 /// Assembled model in independent DOFs.
 #[derive(Clone, Debug)]
 pub struct Assembly {
+    /// Number of independent DOFs (six per node that is not a spider slave).
     pub n_dof: usize,
     /// First DOF of each mesh node that keeps its own DOFs (None for spider slaves).
     pub node_dof: Vec<Option<usize>>,
@@ -27,7 +28,9 @@ pub struct Assembly {
     pub tie: Vec<Option<(usize, Vector3<f64>)>>,
     /// Positions of the mesh nodes (copied for rigid-body vectors).
     pub positions: Vec<Vector3<f64>>,
+    /// Global stiffness matrix in the independent DOFs [N/m, N m/rad].
     pub k: Mat<f64>,
+    /// Global consistent mass matrix in the independent DOFs [kg, kg m^2].
     pub m: Mat<f64>,
 }
 
@@ -36,6 +39,8 @@ fn skew(v: &Vector3<f64>) -> Matrix3<f64> {
 }
 
 impl Assembly {
+    /// Assembles the stiffness and mass matrices of `mesh`, with its spider slaves
+    /// eliminated.
     pub fn new(mesh: &Mesh) -> Assembly {
         let n = mesh.nodes.len();
         let mut tie = vec![None; n];

@@ -16,7 +16,9 @@ use nalgebra::{Matrix3, SMatrix, Vector3};
 use super::material::Material;
 use super::section::SectionProperties;
 
+/// 12x12 matrix of one beam element's DOFs (stiffness, mass).
 pub type Mat12 = SMatrix<f64, 12, 12>;
+/// 3x12 map from a beam element's 12 DOFs to a 3-vector (displacement or rotation).
 pub type Mat3x12 = SMatrix<f64, 3, 12>;
 
 /// Why a beam cannot be built.
@@ -35,6 +37,7 @@ pub enum BeamError {
 pub struct MassPoint {
     /// Position of the slice's centroid (or the lumped body's centre of mass) [m].
     pub position: Vector3<f64>,
+    /// Mass of the slice or lumped body [kg].
     pub mass_kg: f64,
     /// D = integral of rho d d^T over the slice [kg m^2]; the inertia tensor about the
     /// centroid is tr(D) I - D.
@@ -57,14 +60,21 @@ impl MassPoint {
 /// A straight beam element between two nodes.
 #[derive(Clone, Debug)]
 pub struct Beam {
+    /// Position of the first node [m].
     pub a: Vector3<f64>,
+    /// Position of the second node [m].
     pub b: Vector3<f64>,
+    /// Length between the nodes [m].
     pub length_m: f64,
     /// Rows: the local x, y, z axes in global components (v_local = axes v_global).
     pub axes: Matrix3<f64>,
+    /// Young's modulus E [Pa].
     pub youngs_modulus_pa: f64,
+    /// Shear modulus G [Pa].
     pub shear_modulus_pa: f64,
+    /// Density [kg/m^3].
     pub density_kg_m3: f64,
+    /// Cross-section properties in the local axes.
     pub section: SectionProperties,
     /// Timoshenko shear flexibility on (where the section has shear areas).
     pub shear: bool,
@@ -150,6 +160,8 @@ pub fn default_local_y(a: &Vector3<f64>, b: &Vector3<f64>) -> Vector3<f64> {
 }
 
 impl Beam {
+    /// A beam from `a` to `b` with local y from `local_y` (see [`local_axes`]); fails on
+    /// coincident nodes or an orientation vector along the axis.
     pub fn new(
         a: Vector3<f64>,
         b: Vector3<f64>,

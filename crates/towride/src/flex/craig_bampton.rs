@@ -25,11 +25,14 @@ use super::modes::{count_rigid, frequency_hz, generalized_eigen, submatrix, symm
 /// Kind of a mode of the orthonormalised basis.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ModeKind {
+    /// A rigid-body mode (zero frequency up to rounding).
     Rigid,
+    /// An elastic (deformation) mode.
     Elastic,
 }
 
 impl ModeKind {
+    /// Lower-case name for reports: "rigid" or "elastic".
     pub fn as_str(self) -> &'static str {
         match self {
             ModeKind::Rigid => "rigid",
@@ -51,7 +54,9 @@ pub struct CraigBampton {
     pub transformation: Mat<f64>,
     /// Y = T N: orthonormalised modes, ascending, rigid-body modes first.
     pub modes: Mat<f64>,
+    /// omega^2 of `modes`, ascending [1/s^2].
     pub omega2: Vec<f64>,
+    /// Rigid or elastic, per column of `modes`.
     pub kinds: Vec<ModeKind>,
 }
 
@@ -60,7 +65,10 @@ pub struct CraigBampton {
 pub struct ModeRow {
     /// 1-based, rigid-body modes included (as modal files number them).
     pub number: usize,
+    /// Natural frequency [Hz], signed like omega^2 (tiny negative values for rigid-body
+    /// modes).
     pub frequency_hz: f64,
+    /// Rigid-body or elastic.
     pub kind: ModeKind,
     /// y^T M y with the full FE mass matrix (1 after orthonormalisation).
     pub generalised_mass: f64,

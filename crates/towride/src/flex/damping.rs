@@ -17,7 +17,9 @@ use crate::path;
 pub struct Damping {
     /// (up_to_hz, ratio), ascending.
     pub bands: Vec<(f64, f64)>,
+    /// Damping ratio above the last band.
     pub above_ratio: f64,
+    /// Damping ratio per mode-table number (1-based); overrides the bands.
     pub per_mode: BTreeMap<usize, f64>,
 }
 

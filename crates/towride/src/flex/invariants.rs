@@ -40,14 +40,21 @@ use super::mesh::Mesh;
 /// The nine invariants for M modes (see the module table).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Invariants {
+    /// I1: mass [kg].
     pub i1: f64,
+    /// I2: first moment of mass about the body origin [kg m].
     pub i2: [f64; 3],
+    /// I3_j per mode: integral of rho phi_j (zero for modes orthogonal to rigid motion).
     pub i3: Vec<[f64; 3]>,
+    /// I4_j per mode: integral of rho s x phi_j (zero for modes orthogonal to rigid motion).
     pub i4: Vec<[f64; 3]>,
     /// i5[j][k]
     pub i5: Vec<Vec<[f64; 3]>>,
+    /// I6[j][k]: generalised mass, the identity for mass-orthonormal modes.
     pub i6: Vec<Vec<f64>>,
+    /// I7: inertia tensor about the body origin [kg m^2].
     pub i7: [[f64; 3]; 3],
+    /// I8_j per mode: integral of rho ~s^T ~phi_j.
     pub i8: Vec<[[f64; 3]; 3]>,
     /// i9[j][k]
     pub i9: Vec<Vec<[[f64; 3]; 3]>>,

@@ -66,21 +66,34 @@ pub struct VariantInfo {
 /// A checked beam model, ready to assemble.
 #[derive(Clone, Debug)]
 pub struct Mesh {
+    /// Body name from the file's `name`.
     pub name: String,
+    /// The file's free-text `description` (empty when absent).
     pub description: String,
+    /// The file the mesh was read from.
     pub path: PathBuf,
+    /// The variant applied, `None` for the base sections.
     pub variant: Option<VariantInfo>,
     /// Variant numbers the file defines.
     pub variants: Vec<u32>,
     /// Sections as used (after the variant's changes), by name.
     pub sections: Vec<(String, Section)>,
+    /// FE nodes: the file's nodes and those generated along members.
     pub nodes: Vec<Node>,
+    /// Beam elements, members split as the file asks.
     pub elements: Vec<Element>,
+    /// Lumped masses at nodes.
     pub point_masses: Vec<PointMass>,
+    /// Interface nodes, where joints, bushings and forces attach.
     pub interfaces: Vec<Interface>,
+    /// Marker nodes, reported only (sensors).
     pub markers: Vec<Marker>,
+    /// Fixed-interface modes of the Craig-Bampton reduction (file's value or
+    /// `DEFAULT_FIXED_INTERFACE_MODES`).
     pub fixed_interface_modes: usize,
+    /// Mode-selection rule from the file's `[selection]` ([`Rule::All`] when absent).
     pub selection: Rule,
+    /// Modal damping from the file's `[damping]` (defaults when absent).
     pub damping: Damping,
 }
 
@@ -94,15 +107,19 @@ impl Mesh {
         Mesh::from_source(&loader.toml(path)?, variant)
     }
 
+    /// Builds the mesh (variant `variant`, None for the base sections) from an already
+    /// loaded TOML source.
     pub fn from_source(src: &Source, variant: Option<u32>) -> Result<Mesh, InputError> {
         let f: FlexFile = src.parse()?;
         build(src, &f, variant)
     }
 
+    /// Index of the node called `name`.
     pub fn node_index(&self, name: &str) -> Option<usize> {
         self.nodes.iter().position(|n| n.name == name)
     }
 
+    /// The interface called `name`.
     pub fn interface(&self, name: &str) -> Option<&Interface> {
         self.interfaces.iter().find(|i| i.name == name)
     }

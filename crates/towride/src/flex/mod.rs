@@ -69,12 +69,17 @@ pub struct Options {
 /// A flexible body: the FE model, its reduction, mode table, selection and modal data.
 #[derive(Clone, Debug)]
 pub struct FlexBody {
+    /// The checked beam mesh.
     pub mesh: Mesh,
+    /// Stiffness and mass matrices in the independent DOFs.
     pub assembly: Assembly,
+    /// The Craig-Bampton reduction.
     pub cb: CraigBampton,
     /// Orthonormalised modes, rigid-body modes included.
     pub table: Vec<ModeRow>,
+    /// The mode-selection rule in force (the options' rule, else the file's).
     pub rule: Rule,
+    /// What `rule` keeps, with the load-path shares when it is that rule.
     pub selection: Selection,
     /// All elastic modes, flagged `selected` by `rule`; `modal.selected()` keeps those.
     pub modal: ModalData,
@@ -92,6 +97,8 @@ impl FlexBody {
         FlexBody::from_mesh(mesh, options)
     }
 
+    /// Reduces an already built mesh: assembly, Craig-Bampton reduction, mode table,
+    /// modal data and selection.
     pub fn from_mesh(mesh: Mesh, options: &Options) -> Result<FlexBody, FlexError> {
         let model_err = |e: FlexError| FlexError::Model {
             file: mesh.path.display().to_string(),

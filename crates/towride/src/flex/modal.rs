@@ -17,6 +17,7 @@ use super::invariants::Invariants;
 use super::mesh::Mesh;
 use super::modes::frequency_hz;
 
+/// Role of a named node of a modal body.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum NodeKind {
@@ -29,7 +30,9 @@ pub enum NodeKind {
 /// A node of the body with its motion in every mode.
 #[derive(Clone, Debug, Serialize)]
 pub struct ModalNode {
+    /// Node name from the flex file.
     pub name: String,
+    /// Interface or marker.
     pub kind: NodeKind,
     /// Undeformed position in the body frame [m].
     pub position_m: [f64; 3],
@@ -43,24 +46,32 @@ pub struct ModalNode {
 pub struct ModalMode {
     /// Number in the mode table (1-based, rigid-body modes 1..6 included).
     pub number: usize,
+    /// Natural frequency [Hz].
     pub frequency_hz: f64,
     /// Modal stiffness omega^2 [1/s^2] (modal mass 1).
     pub stiffness: f64,
     /// Fraction of critical damping.
     pub damping_ratio: f64,
+    /// Kept by the selection rule (only selected modes become modal coordinates).
     pub selected: bool,
 }
 
 /// The data of a modal body (SI units, body frame = the FE file's frame).
 #[derive(Clone, Debug)]
 pub struct ModalData {
+    /// Body name from the flex file.
     pub name: String,
+    /// The variant applied, `None` for the base sections.
     pub variant: Option<u32>,
+    /// Mass [kg].
     pub mass_kg: f64,
+    /// Centre of mass in the body frame [m].
     pub com_m: [f64; 3],
     /// Inertia tensor about the centre of mass [kg m^2].
     pub inertia_com_kg_m2: [[f64; 3]; 3],
+    /// Interface and marker nodes with their mode shapes.
     pub nodes: Vec<ModalNode>,
+    /// All elastic modes, ascending, with their selection flags.
     pub modes: Vec<ModalMode>,
     /// Over `modes`, in the same order.
     pub invariants: Invariants,
@@ -121,6 +132,7 @@ impl ModalData {
         }
     }
 
+    /// The node called `name`.
     pub fn node(&self, name: &str) -> Option<&ModalNode> {
         self.nodes.iter().find(|n| n.name == name)
     }

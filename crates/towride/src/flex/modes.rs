@@ -16,7 +16,9 @@ use faer::{Mat, MatRef, Par, Side};
 /// Eigenpairs: omega^2 ascending, mass-orthonormal vectors as columns.
 #[derive(Clone, Debug)]
 pub struct Eigen {
+    /// omega^2 per mode, ascending [1/s^2].
     pub omega2: Vec<f64>,
+    /// Mass-orthonormal mode shapes as columns, in the order of `omega2`.
     pub vectors: Mat<f64>,
 }
 

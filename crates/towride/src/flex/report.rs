@@ -13,15 +13,22 @@ use super::{FlexBody, FlexError, ModeKind, Rule};
 /// Version of the report's layout.
 pub const SCHEMA_VERSION: u32 = 1;
 
+/// One row of the mode table in the report.
 #[derive(Clone, Debug, Serialize)]
 pub struct ModeRecord {
+    /// Mode-table number (1-based, rigid-body modes included).
     pub index: usize,
+    /// Natural frequency [Hz] (signed; rigid-body modes may be slightly negative).
     pub frequency_hz: f64,
+    /// "rigid" or "elastic".
     pub kind: &'static str,
+    /// y^T M y with the full FE mass matrix (1 after orthonormalisation).
     pub generalised_mass: f64,
     /// x, y, z [kg], rx, ry, rz about the centre of mass [kg m^2].
     pub effective_mass: [f64; 6],
+    /// Kept by the selection rule (never for rigid-body modes).
     pub selected: bool,
+    /// Fraction of critical damping; `None` for rigid-body modes.
     pub damping_ratio: Option<f64>,
     /// Load-path rule: largest weighted strain-energy share over the load cases.
     pub energy_share: Option<f64>,
@@ -33,50 +40,80 @@ pub struct ModeRecord {
 /// interface (rigid-body directions about the centre of mass).
 #[derive(Clone, Debug, Serialize)]
 pub struct FixedModeRecord {
+    /// Natural frequency with the interface held [Hz].
     pub frequency_hz: f64,
+    /// x, y, z [kg], rx, ry, rz about the centre of mass [kg m^2].
     pub effective_mass: [f64; 6],
 }
 
+/// A named node of the body (interface or marker).
 #[derive(Clone, Debug, Serialize)]
 pub struct NodeRecord {
+    /// Node name from the flex file.
     pub name: String,
+    /// "interface" or "marker".
     pub kind: &'static str,
+    /// Undeformed position in the body frame [m].
     pub position_m: [f64; 3],
 }
 
+/// Largest magnitudes of the inertia invariants, as a check on the modal data.
 #[derive(Clone, Debug, Serialize)]
 pub struct InvariantSummary {
     /// max |I3|, max |I4|: first-order coupling, zero for modes orthogonal to rigid motion.
     pub i3_max_abs: f64,
+    /// max |I4| (see `i3_max_abs`).
     pub i4_max_abs: f64,
     /// max |I6 - identity|: modal mass.
     pub i6_identity_error: f64,
+    /// max |I5|: coupling of mode pairs through the angular velocity.
     pub i5_max_abs: f64,
+    /// max |I8|: first-order change of the inertia tensor with the modal coordinates.
     pub i8_max_abs: f64,
+    /// max |I9|: second-order change of the inertia tensor with the modal coordinates.
     pub i9_max_abs: f64,
 }
 
+/// The mode table of a flexible body as `towride modes` reports it.
 #[derive(Clone, Debug, Serialize)]
 pub struct ModesReport {
+    /// Report layout version ([`SCHEMA_VERSION`]).
     pub schema_version: u32,
+    /// The flex file read.
     pub file: String,
+    /// Body name.
     pub name: String,
+    /// The variant applied, `None` for the base sections.
     pub variant: Option<u32>,
+    /// The variant's description.
     pub variant_description: Option<String>,
+    /// FE nodes of the mesh (spider slaves included).
     pub fe_nodes: usize,
+    /// Beam elements.
     pub elements: usize,
+    /// Independent DOFs after eliminating the spider slaves.
     pub dof: usize,
+    /// Fixed-interface modes kept in the reduction.
     pub fixed_interface_modes: usize,
+    /// Their natural frequencies with the interfaces held [Hz].
     pub fixed_interface_frequencies_hz: Vec<f64>,
+    /// Their effective masses.
     pub fixed_interface_table: Vec<FixedModeRecord>,
+    /// Mass [kg].
     pub mass_kg: f64,
+    /// Centre of mass in the body frame [m].
     pub com_m: [f64; 3],
     /// About the centre of mass.
     pub inertia_kg_m2: [[f64; 3]; 3],
+    /// Interface and marker nodes.
     pub nodes: Vec<NodeRecord>,
+    /// The mode table, rigid-body modes included.
     pub modes: Vec<ModeRecord>,
+    /// The selection rule in words.
     pub selection_rule: String,
+    /// Mode-table numbers of the selected modes.
     pub selected_modes: Vec<usize>,
+    /// Summary of the inertia invariants of the elastic modes.
     pub invariants: InvariantSummary,
 }
 

@@ -14,29 +14,45 @@ use std::f64::consts::PI;
 pub enum Section {
     /// Closed rectangular tube of uniform wall, sharp corners; width along y, height along z.
     RectangularHollow {
+        /// Outer width along local y [m].
         width_m: f64,
+        /// Outer height along local z [m].
         height_m: f64,
+        /// Wall thickness [m].
         wall_m: f64,
     },
     /// Solid rectangle (flat bars, bracket plates).
     RectangularSolid {
+        /// Width along local y [m].
         width_m: f64,
+        /// Height along local z [m].
         height_m: f64,
     },
+    /// Solid circular bar.
     RoundSolid {
+        /// Diameter [m].
         diameter_m: f64,
     },
+    /// Circular tube of uniform wall.
     RoundHollow {
+        /// Outer diameter [m].
         outer_diameter_m: f64,
+        /// Wall thickness [m].
         wall_m: f64,
     },
     /// Properties given directly; shear areas optional (absent: shear-rigid).
     General {
+        /// Cross-section area [m^2].
         area_m2: f64,
+        /// Second moment of area Iy = integral of z^2 dA [m^4].
         iy_m4: f64,
+        /// Second moment of area Iz = integral of y^2 dA [m^4].
         iz_m4: f64,
+        /// Saint-Venant torsion constant J [m^4].
         torsion_constant_m4: f64,
+        /// Shear area for shear along local y [m^2]; `None`: shear-rigid in that direction.
         shear_area_y_m2: Option<f64>,
+        /// Shear area for shear along local z [m^2]; `None`: shear-rigid in that direction.
         shear_area_z_m2: Option<f64>,
     },
 }
@@ -44,9 +60,13 @@ pub enum Section {
 /// Section properties used by the beam element.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SectionProperties {
+    /// Cross-section area [m^2].
     pub area_m2: f64,
+    /// Second moment of area Iy = integral of z^2 dA (bending in the x-z plane) [m^4].
     pub iy_m4: f64,
+    /// Second moment of area Iz = integral of y^2 dA (bending in the x-y plane) [m^4].
     pub iz_m4: f64,
+    /// Saint-Venant torsion constant J [m^4].
     pub torsion_constant_m4: f64,
     /// Shear area for shear force along local y (bending in the x-y plane).
     pub shear_area_y_m2: Option<f64>,
@@ -57,7 +77,9 @@ pub struct SectionProperties {
 /// A dimension that makes the section impossible: which field, and why.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SectionError {
+    /// Name of the offending dimension, as in the file.
     pub field: &'static str,
+    /// Why the value is refused.
     pub message: String,
 }
 

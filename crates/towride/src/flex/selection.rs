@@ -34,23 +34,32 @@ use crate::input::{InputError, Seg, Source};
 /// Default strain-energy share for the load-path rule.
 pub const DEFAULT_MIN_ENERGY_SHARE: f64 = 0.01;
 
+/// Which elastic modes of a modal body are kept.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Rule {
+    /// Every elastic mode.
     All,
     /// Elastic modes up to `max_hz`.
     Cutoff {
+        /// Highest kept frequency [Hz].
         max_hz: f64,
     },
     /// Mode numbers of the mode table (1-based, rigid-body modes 1..6 excluded).
     List {
+        /// The mode numbers to keep.
         modes: Vec<usize>,
     },
+    /// The a-priori load-path rule (see the module documentation).
     LoadPath(LoadPath),
 }
 
+/// Settings of the load-path rule.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LoadPath {
+    /// Excitation band [f_lo, f_hi] over which the modal amplification is taken [Hz].
     pub band_hz: [f64; 2],
+    /// Weighted strain-energy share (a fraction, not %) a mode must reach in some load
+    /// case to be kept.
     pub min_energy_share: f64,
     /// Interfaces where loads enter; empty: all.
     pub load_interfaces: Vec<String>,
@@ -141,6 +150,7 @@ impl Rule {
         }
     }
 
+    /// The rule in words, for reports.
     pub fn describe(&self) -> String {
         match self {
             Rule::All => "all elastic modes".into(),
@@ -169,18 +179,22 @@ impl Rule {
 /// One load case of the load-path rule and the weighted energy shares of every mode.
 #[derive(Clone, Debug)]
 pub struct LoadCase {
+    /// Interface node where the unit load is applied.
     pub interface: String,
     /// 0..3 forces along x, y, z; 3..6 moments about x, y, z; 6 the combined `load_n`.
     pub direction: usize,
+    /// Weighted strain-energy share of each elastic mode (they add up to 1).
     pub shares: Vec<f64>,
 }
 
 /// The outcome of a selection.
 #[derive(Clone, Debug)]
 pub struct Selection {
+    /// Per elastic mode (in `ModalData::modes` order): kept or not.
     pub selected: Vec<bool>,
     /// Load-path rule only: per mode the largest share over the load cases.
     pub max_share: Option<Vec<f64>>,
+    /// Load-path rule only: every load case with its shares (empty for other rules).
     pub cases: Vec<LoadCase>,
 }
 

@@ -22,12 +22,15 @@ use toml_edit::{ImDocument, Item};
 /// A bad input file: where, which field, and what is wrong.
 #[derive(Clone, Debug, PartialEq)]
 pub struct InputError {
+    /// The file the error is in.
     pub file: PathBuf,
     /// 1-based line and column, when the position is known.
     pub line: Option<usize>,
+    /// 1-based column, when the position is known.
     pub column: Option<usize>,
     /// Dotted path of the field, e.g. `body[2].mass_kg`; empty for the whole file.
     pub field: String,
+    /// What is wrong, in words.
     pub message: String,
 }
 
@@ -100,7 +103,9 @@ impl std::error::Error for FieldError {}
 /// One step of a field path: a table key or an array index.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Seg {
+    /// A table key.
     Key(String),
+    /// An array index (0-based).
     Index(usize),
 }
 
@@ -148,6 +153,7 @@ pub fn path_string(path: &[Seg]) -> String {
 /// A TOML file kept with its text and spans, so any field can be located later.
 #[derive(Debug)]
 pub struct Source {
+    /// The file's path as given.
     pub path: PathBuf,
     text: String,
     doc: ImDocument<String>,

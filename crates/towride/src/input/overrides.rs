@@ -20,8 +20,12 @@ use super::InputError;
 /// and CSV files).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Override {
+    /// Matched against the end of each file's path, e.g. `front_mcpherson.toml`.
     pub file: String,
+    /// Field inside the file: `table.key` or `array[2].key` (TOML), `SECTION.KEY` (`.tir`),
+    /// `column[row]` (CSV).
     pub path: String,
+    /// New value, as text (TOML syntax, or a number for `.tir` and CSV files).
     pub value: String,
     /// Where the override was written, for errors about it.
     pub origin: Origin,
@@ -65,7 +69,9 @@ pub enum Origin {
     /// In an input file: located errors for its `file` and its `path` fields (their
     /// messages are replaced).
     File {
+        /// Located error template for the override's `file` field.
         file: Box<InputError>,
+        /// Located error template for the override's `path` field.
         path: Box<InputError>,
     },
     /// A command-line argument.

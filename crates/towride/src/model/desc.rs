@@ -13,8 +13,10 @@ use super::function::TimeFunction;
 /// Body index, `None` for ground.
 pub type BodyId = Option<usize>;
 
+/// A rigid or modal body with its initial state.
 #[derive(Clone, Debug)]
 pub struct Body {
+    /// Unique body name (used in messages and output channel names).
     pub name: String,
     /// Mass [kg].
     pub mass: f64,
@@ -53,6 +55,7 @@ pub enum Coupling {
 }
 
 impl Coupling {
+    /// The level called `s` in an input file ("constant", "partial" or "full").
     pub fn parse(s: &str) -> Option<Coupling> {
         Some(match s {
             "constant" => Coupling::Constant,
@@ -71,13 +74,16 @@ impl Coupling {
 pub struct Modal {
     /// Selected modes only (`ModalData::selected`); body frame = FE frame.
     pub data: crate::flex::ModalData,
+    /// How much frame-mode inertia coupling the equations keep.
     pub coupling: Coupling,
 }
 
 /// A frame fixed on a body: origin and axes in body coordinates.
 #[derive(Clone, Debug)]
 pub struct Marker {
+    /// Unique marker name.
     pub name: String,
+    /// The body the marker is fixed on (`None`: ground).
     pub body: BodyId,
     /// Origin in body coordinates relative to the centre of mass [m].
     pub position: [f64; 3],
@@ -89,13 +95,21 @@ pub struct Marker {
     pub node: Option<usize>,
 }
 
+/// Kind of an ideal joint between marker I and marker J.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum JointKind {
+    /// All six relative motions locked.
     Fixed,
+    /// Coincident origins and z axes: only the rotation about z is free.
     Revolute,
+    /// Coincident origins: the three rotations are free.
     Spherical,
+    /// Translation along and rotation about J's z are free.
     Cylindrical,
+    /// Only the translation along J's z is free.
     Translational,
+    /// Coincident origins with z of I kept perpendicular to z of J (a cardan joint: two
+    /// rotations free).
     Universal,
     /// Origin of I on the z axis of J.
     Inline,
@@ -108,6 +122,7 @@ pub enum JointKind {
 }
 
 impl JointKind {
+    /// The kind called `s` in a mechanism file (lower case, e.g. "revolute").
     pub fn parse(s: &str) -> Option<JointKind> {
         Some(match s {
             "fixed" => JointKind::Fixed,
@@ -124,6 +139,7 @@ impl JointKind {
         })
     }
 
+    /// The kind's name as mechanism files write it.
     pub fn name(self) -> &'static str {
         match self {
             JointKind::Fixed => "fixed",
@@ -162,16 +178,22 @@ impl JointKind {
 /// An ideal joint between marker `i` (on the moving body) and marker `j`.
 #[derive(Clone, Debug)]
 pub struct Joint {
+    /// Unique joint name.
     pub name: String,
+    /// Which relative motions the joint removes.
     pub kind: JointKind,
+    /// Marker I, on the moving body (index into `Model::markers`).
     pub i: usize,
+    /// Marker J, on the reference body (index into `Model::markers`).
     pub j: usize,
 }
 
 /// What a motion prescribes: the joint's translation along or rotation about J's z.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum MotionDof {
+    /// Translation along J's z [m].
     Translation,
+    /// Rotation about J's z [rad].
     Rotation,
 }
 
@@ -179,10 +201,16 @@ pub enum MotionDof {
 /// prescribed velocity.
 #[derive(Clone, Debug)]
 pub struct Motion {
+    /// Unique motion name.
     pub name: String,
+    /// The driven joint (index into `Model::joints`).
     pub joint: usize,
+    /// Which of the joint's free coordinates is driven.
     pub dof: MotionDof,
+    /// The prescribed displacement s(t) [m or rad], or velocity when `is_velocity` [m/s or
+    /// rad/s].
     pub function: TimeFunction,
+    /// `function` prescribes the velocity; the displacement is its integral from s0.
     pub is_velocity: bool,
 }
 
@@ -201,19 +229,28 @@ impl Motion {
 /// The axes an output is resolved in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Axes {
+    /// World axes.
     World,
+    /// The axes of a marker (index into `Model::markers`).
     Marker(usize),
 }
 
+/// What a marker output reports (three components, in the output's axes).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum MarkerQuantity {
+    /// Position of the marker origin [m].
     Position,
+    /// Velocity of the marker origin [m/s].
     Velocity,
+    /// Acceleration of the marker origin [m/s^2].
     Acceleration,
+    /// Angular velocity of the marker axes [rad/s].
     AngularVelocity,
+    /// Angular acceleration of the marker axes [rad/s^2].
     AngularAcceleration,
 }
 
+/// What a joint output reports.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum JointQuantity {
     /// Reaction force on the I body at marker I.
@@ -224,10 +261,15 @@ pub enum JointQuantity {
     Displacement,
 }
 
+/// What a force-element output reports: one channel per measured direction of the
+/// element.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ElementQuantity {
+    /// Force or torque along each direction [N or N m].
     Force,
+    /// Deflection along each direction [m or rad].
     Deflection,
+    /// Deflection rate along each direction [m/s or rad/s].
     Velocity,
 }
 
@@ -251,38 +293,64 @@ pub enum ModalQuantity {
     StrainEnergy,
     /// Elastic displacement of modal node `node` relative to the mean of the nodes
     /// `reference` (e.g. the ball relative to the brackets), body axes [m].
-    Deflection { node: usize, reference: Vec<usize> },
+    Deflection {
+        /// Modal node whose displacement is reported (index into the body's modal nodes).
+        node: usize,
+        /// Modal nodes whose mean displacement is subtracted.
+        reference: Vec<usize>,
+    },
 }
 
+/// What an output measures.
 #[derive(Clone, Debug)]
 pub enum Request {
+    /// A tyre's contact quantity.
     Tyre {
+        /// The tyre (index into `Model::tyres`).
         tyre: usize,
+        /// Which quantity.
         quantity: TyreQuantity,
     },
+    /// A modal body's elastic state.
     Modal {
+        /// The modal body (index into `Model::bodies`).
         body: usize,
+        /// Which quantity.
         quantity: ModalQuantity,
     },
+    /// A marker's kinematics.
     Marker {
+        /// The marker (index into `Model::markers`).
         marker: usize,
+        /// Which quantity.
         quantity: MarkerQuantity,
+        /// Axes the vector is resolved in.
         axes: Axes,
     },
+    /// A joint's reaction or free coordinate.
     Joint {
+        /// The joint (index into `Model::joints`).
         joint: usize,
+        /// Which quantity.
         quantity: JointQuantity,
+        /// Axes the vector is resolved in.
         axes: Axes,
     },
+    /// A force element's measures.
     Element {
+        /// The element (index into `Model::forces`).
         element: usize,
+        /// Which quantity.
         quantity: ElementQuantity,
     },
 }
 
+/// A named output request: one or more channels of the output table.
 #[derive(Clone, Debug)]
 pub struct Output {
+    /// Output name; channels are `<name>.x`, `<name>.y`, ... unless `components` names them.
     pub name: String,
+    /// What is measured.
     pub request: Request,
     /// Channel names replacing the default `<name>.x`, `<name>.y`, ... (one per component
     /// the request produces, in order); an empty name drops that component. Fixed
@@ -308,8 +376,11 @@ impl Output {
 /// spin axis (pointing left on a car). The tyre reads the model's road.
 #[derive(Clone, Debug)]
 pub struct TyreElem {
+    /// Unique tyre name.
     pub name: String,
+    /// Wheel-centre marker on the rim body (index into `Model::markers`).
     pub marker: usize,
+    /// The tyre model with its parameters.
     pub tyre: crate::tyre::Tyre,
 }
 
@@ -317,6 +388,7 @@ pub struct TyreElem {
 /// the driven wheels (an open differential), like the thesis's engine.
 #[derive(Clone, Debug)]
 pub struct SpeedControl {
+    /// Unique controller name.
     pub name: String,
     /// Marker whose velocity along its own x axis is held (the car body, x forward).
     pub sensor: usize,
@@ -352,16 +424,25 @@ pub enum Accelerations {
 /// A complete mechanism.
 #[derive(Clone, Debug, Default)]
 pub struct Model {
+    /// Model name (used in reports).
     pub name: String,
     /// Gravity in world axes [m/s^2].
     pub gravity: [f64; 3],
+    /// Rigid and modal bodies.
     pub bodies: Vec<Body>,
+    /// Frames fixed on bodies or ground; joints, elements and outputs refer to them.
     pub markers: Vec<Marker>,
+    /// Ideal joints.
     pub joints: Vec<Joint>,
+    /// Force elements: springs, dampers, bushings, stops and applied loads.
     pub forces: Vec<Force>,
+    /// Prescribed joint motions.
     pub motions: Vec<Motion>,
+    /// Output requests, in channel order.
     pub outputs: Vec<Output>,
+    /// Tyres on wheels.
     pub tyres: Vec<TyreElem>,
+    /// Speed-holding drivelines.
     pub controls: Vec<SpeedControl>,
     /// The road the tyres roll on (required when there are tyres).
     pub road: Option<crate::road::Road>,
@@ -370,6 +451,7 @@ pub struct Model {
 }
 
 impl Model {
+    /// Name of body `b`; "ground" for `None`.
     pub fn body_name(&self, b: BodyId) -> &str {
         match b {
             None => "ground",
@@ -377,6 +459,7 @@ impl Model {
         }
     }
 
+    /// Index of the marker called `name`.
     pub fn marker_index(&self, name: &str) -> Option<usize> {
         self.markers.iter().position(|m| m.name == name)
     }

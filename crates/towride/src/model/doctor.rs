@@ -12,39 +12,61 @@ use super::system::System;
 use towride_solver::problem::JacobianSink;
 use towride_solver::SolverOptions;
 
+/// A constraint row found redundant at assembly.
 #[derive(Clone, Debug, Serialize)]
 pub struct RedundantRow {
+    /// The row, named by its joint or motion and what it locks.
     pub row: String,
+    /// The kept rows it is a combination of.
     pub duplicates: Vec<String>,
+    /// What was done about it.
     pub action: String,
 }
 
+/// The natural frequency of one stiff bushing direction against the bodies it connects.
 #[derive(Clone, Debug, Serialize)]
 pub struct BushingFrequency {
+    /// Bushing name.
     pub bushing: String,
+    /// Direction in the bushing's J axes: "x", "y", "z", "rx", "ry" or "rz".
     pub axis: String,
+    /// Stiffness in that direction [N/m or N m/rad].
     pub stiffness: f64,
+    /// Effective mass or inertia of the two bodies in series [kg or kg m^2] (one body's
+    /// alone when the other is ground).
     pub effective_inertia: f64,
+    /// sqrt(stiffness / effective_inertia) / 2 pi [Hz].
     pub frequency_hz: f64,
 }
 
+/// The doctor's findings on a model, with advice in plain words.
 #[derive(Clone, Debug, Serialize)]
 pub struct Report {
+    /// Model name.
     pub model: String,
+    /// Number of bodies.
     pub bodies: usize,
+    /// Number of unknowns (equations) of the DAE.
     pub equations: usize,
+    /// Number of kept constraint rows.
     pub constraint_rows: usize,
+    /// Rows eliminated as redundant.
     pub redundant: Vec<RedundantRow>,
     /// Step used for the condition estimate [s].
     pub step_s: f64,
     /// 2-norm condition number of the (unscaled) Newton matrix dF/dy + dF/dy' / h.
     pub newton_condition: Option<f64>,
+    /// Largest over smallest body mass.
     pub mass_ratio: f64,
+    /// Largest over smallest principal moment of inertia over all bodies.
     pub inertia_ratio: f64,
+    /// Stiff bushing directions with their frequencies.
     pub bushings: Vec<BushingFrequency>,
     /// Where the linearisation was taken: "equilibrium" or "initial state".
     pub linearised_at: String,
+    /// Eigen-analysis at `linearised_at`, when the linearisation succeeded.
     pub linearisation: Option<Linearisation>,
+    /// What to change, one finding per entry.
     pub advice: Vec<String>,
 }
 

@@ -11,10 +11,12 @@ use serde::Serialize;
 use super::run::Samples;
 use super::system::System;
 
+/// Strain energy of one mode of a modal body over a run.
 #[derive(Clone, Debug, Serialize)]
 pub struct ModeEnergy {
     /// Number in the body's mode table (1-based, rigid modes counted).
     pub number: usize,
+    /// Natural frequency [Hz].
     pub frequency_hz: f64,
     /// Largest strain energy of the mode over the run [J].
     pub peak_j: f64,
@@ -22,14 +24,18 @@ pub struct ModeEnergy {
     pub integral_j_s: f64,
     /// Shares of the body's summed peaks and of its total integral.
     pub share_peak: f64,
+    /// The mode's share of the body's total strain-energy integral.
     pub share_integral: f64,
 }
 
+/// Strain-energy shares of the modes of one modal body.
 #[derive(Clone, Debug, Serialize)]
 pub struct BodyEnergy {
+    /// Body name.
     pub body: String,
     /// Largest total strain energy over the run [J].
     pub peak_total_j: f64,
+    /// Every mode the model keeps for the body, in mode-table order.
     pub modes: Vec<ModeEnergy>,
 }
 

@@ -11,34 +11,53 @@ use serde::Deserialize;
 #[serde(tag = "type", rename_all = "kebab-case", deny_unknown_fields)]
 pub enum TimeFunction {
     /// f(t) = value.
-    Constant { value: f64 },
+    Constant {
+        /// The constant value.
+        value: f64,
+    },
     /// f(t) = offset + slope (t - start_s) for t > start_s, offset before.
     Ramp {
+        /// Value up to `start_s`.
         #[serde(default)]
         offset: f64,
+        /// Slope after `start_s` [unit/s].
         slope_per_s: f64,
+        /// Start of the ramp [s].
         #[serde(default)]
         start_s: f64,
     },
     /// The Adams STEP: a cubic blend from `from` at `t0_s` to `to` at `t1_s`, with zero
     /// slope at both ends.
     Step {
+        /// Start of the blend [s].
         t0_s: f64,
+        /// Value up to `t0_s`.
         from: f64,
+        /// End of the blend [s], later than `t0_s`.
         t1_s: f64,
+        /// Value from `t1_s` on.
         to: f64,
     },
     /// f(t) = offset + amplitude sin(2 pi frequency_hz t + phase_rad).
     Harmonic {
+        /// Amplitude.
         amplitude: f64,
+        /// Frequency [Hz].
         frequency_hz: f64,
+        /// Phase at t = 0 [rad].
         #[serde(default)]
         phase_rad: f64,
+        /// Mean value.
         #[serde(default)]
         offset: f64,
     },
     /// A natural cubic spline through (time_s, value), held constant outside.
-    Table { time_s: Vec<f64>, value: Vec<f64> },
+    Table {
+        /// Sample times, ascending [s].
+        time_s: Vec<f64>,
+        /// Values at `time_s`.
+        value: Vec<f64>,
+    },
 }
 
 impl TimeFunction {

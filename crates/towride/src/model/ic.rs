@@ -10,9 +10,11 @@ use towride_solver::linear::NewtonMatrix;
 /// What the initial-state analysis did.
 #[derive(Clone, Debug, Default, serde::Serialize)]
 pub struct AssemblyReport {
+    /// Newton iterations of the position projection onto the constraints.
     pub iterations: usize,
     /// Largest position-constraint violation before and after [m or rad].
     pub violation_before: f64,
+    /// Largest violation left after the projection [m or rad].
     pub violation_after: f64,
     /// Largest velocity correction applied [m/s or rad/s].
     pub velocity_correction: f64,

@@ -18,21 +18,29 @@ use super::system::System;
 use super::ModelError;
 use towride_solver::problem::JacobianSink;
 
+/// A body's or element's share of a mode's energy.
 #[derive(Clone, Debug, Serialize)]
 pub struct Share {
+    /// Body or force-element name.
     pub name: String,
+    /// Share of the mode's kinetic (bodies) or strain (elements) energy, 0..1.
     pub share: f64,
 }
 
+/// One eigenvalue lambda of the linearised model with its frequencies and energy shares.
 #[derive(Clone, Debug, Serialize)]
 pub struct Mode {
+    /// 1-based number, by ascending undamped frequency.
     pub index: usize,
+    /// Re lambda [1/s].
     pub real: f64,
+    /// Im lambda [rad/s].
     pub imag: f64,
     /// |lambda| / 2 pi [Hz].
     pub undamped_hz: f64,
     /// Im lambda / 2 pi [Hz]; 0 for a real (overdamped or static) root.
     pub damped_hz: f64,
+    /// Damping ratio -Re lambda / |lambda| (1 for a real negative root).
     pub damping_ratio: f64,
     /// Kinetic-energy share per body, largest first (shares > 1 %).
     pub bodies: Vec<Share>,
@@ -40,11 +48,14 @@ pub struct Mode {
     pub elements: Vec<Share>,
 }
 
+/// The eigen-analysis of the model linearised about a state.
 #[derive(Clone, Debug, Serialize)]
 pub struct Linearisation {
+    /// Time of the state linearised about [s].
     pub t: f64,
     /// Degrees of freedom after the constraints.
     pub dof: usize,
+    /// Eigenvalues, by ascending undamped frequency.
     pub modes: Vec<Mode>,
     /// |Re lambda|max / |Re lambda|min over roots with a non-zero real part; `None` when
     /// fewer than two such roots exist (an undamped system).

@@ -9,35 +9,44 @@
 
 use super::dual::Scalar;
 
+/// A 3-vector.
 pub type V3<T> = [T; 3];
+/// A 3x3 matrix, row-major (`m[row][column]`).
 pub type M3<T> = [[T; 3]; 3];
+/// A quaternion (w, x, y, z).
 pub type Q4<T> = [T; 4];
 
+/// `v` as a constant vector of the scalar type `T`.
 #[inline]
 pub fn cst3<T: Scalar>(v: &[f64; 3]) -> V3<T> {
     [T::cst(v[0]), T::cst(v[1]), T::cst(v[2])]
 }
 
+/// a + b.
 #[inline]
 pub fn add<T: Scalar>(a: &V3<T>, b: &V3<T>) -> V3<T> {
     [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
 }
 
+/// a - b.
 #[inline]
 pub fn sub<T: Scalar>(a: &V3<T>, b: &V3<T>) -> V3<T> {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
+/// s a.
 #[inline]
 pub fn scale<T: Scalar>(a: &V3<T>, s: T) -> V3<T> {
     [a[0] * s, a[1] * s, a[2] * s]
 }
 
+/// a . b.
 #[inline]
 pub fn dot<T: Scalar>(a: &V3<T>, b: &V3<T>) -> T {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
+/// a x b.
 #[inline]
 pub fn cross<T: Scalar>(a: &V3<T>, b: &V3<T>) -> V3<T> {
     [

@@ -12,7 +12,9 @@ use super::system::{Owner, System};
 /// One column of the output table.
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct ChannelInfo {
+    /// Channel name, e.g. `hitch_fx` or `body.x`.
     pub name: String,
+    /// Unit, e.g. "m/s^2".
     pub unit: &'static str,
     /// Angles that should be unwrapped over time.
     #[serde(skip)]

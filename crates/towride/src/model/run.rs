@@ -12,12 +12,17 @@ use towride_solver::{Advance, Bdf, SolverOptions, Stats};
 /// and the final state.
 #[derive(Clone, Debug)]
 pub struct Samples {
+    /// The output channels (columns of `rows`).
     pub channels: Vec<ChannelInfo>,
+    /// Sample times [s].
     pub times: Vec<f64>,
     /// rows[k][c]: channel c at times[k].
     pub rows: Vec<Vec<f64>>,
+    /// Solver counters of the run.
     pub stats: Stats,
+    /// Wall-clock time of the run [s].
     pub wall_s: f64,
+    /// What the initial-state analysis did.
     pub assembly: AssemblyReport,
     /// Set when the run stopped early: the message and the time reached.
     pub error: Option<(String, f64)>,

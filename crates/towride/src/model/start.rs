@@ -29,13 +29,18 @@ use towride_solver::{solve_to, SolverOptions};
 /// What the start procedure did.
 #[derive(Clone, Debug, Default, serde::Serialize)]
 pub struct StartReport {
+    /// The static equilibrium found first.
     pub statics: StaticsReport,
+    /// Length of the settling run before t = 0 [s].
     pub settle_s: f64,
+    /// Solver steps of the settling run.
     pub settle_steps: usize,
+    /// Wall-clock time of the settling run [s].
     pub settle_wall_s: f64,
     /// Speed of the controlled marker at the end of the settling run [m/s] (first
     /// controller), and the largest body acceleration left [m/s^2].
     pub settled_speed_m_s: Option<f64>,
+    /// Largest body acceleration left at the end of the settling run [m/s^2].
     pub residual_acceleration_m_s2: f64,
 }
 

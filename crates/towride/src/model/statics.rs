@@ -16,21 +16,28 @@ use towride_solver::linear::NewtonMatrix;
 use towride_solver::problem::{DaeProblem, JacobianSink, VarKind};
 use towride_solver::SolverOptions;
 
+/// How the static equilibrium was found.
 #[derive(Clone, Debug, Default, serde::Serialize)]
 pub struct StaticsReport {
+    /// Newton iterations, over all attempts.
     pub iterations: usize,
     /// Largest force/moment imbalance left [N or N m].
     pub residual_force: f64,
     /// Largest constraint violation left [m or rad].
     pub residual_constraint: f64,
+    /// Newton failed at first and dynamic relaxation was run before trying again.
     pub relaxation_used: bool,
+    /// Wall-clock time [s].
     pub wall_s: f64,
 }
 
 /// The equilibrium as a solver state.
 pub struct Statics {
+    /// Unknowns at equilibrium (velocities zero).
     pub y: Vec<f64>,
+    /// Their time derivatives.
     pub yp: Vec<f64>,
+    /// How the equilibrium was found.
     pub report: StaticsReport,
 }
 

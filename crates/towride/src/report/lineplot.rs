@@ -8,15 +8,21 @@ use super::ReportError;
 
 /// One curve.
 pub struct Line {
+    /// Legend label.
     pub label: String,
+    /// (x, y) points in drawing order.
     pub points: Vec<(f64, f64)>,
 }
 
 /// One panel.
 pub struct LinePanel {
+    /// Panel title.
     pub title: String,
+    /// x-axis label.
     pub x_label: String,
+    /// y-axis label.
     pub y_label: String,
+    /// The curves.
     pub lines: Vec<Line>,
 }
 

@@ -20,15 +20,21 @@ pub fn register_font() {
 
 /// One curve: label and (x, y) points, both positive.
 pub struct Series {
+    /// Legend label.
     pub label: String,
+    /// (x, y) points, both positive (log axes).
     pub points: Vec<(f64, f64)>,
 }
 
 /// One panel of a figure.
 pub struct Panel {
+    /// Panel title.
     pub title: String,
+    /// x-axis label.
     pub x_label: String,
+    /// y-axis label.
     pub y_label: String,
+    /// The curves.
     pub series: Vec<Series>,
 }
 

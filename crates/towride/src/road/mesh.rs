@@ -21,6 +21,7 @@ use super::{push_x_crossing, push_y_crossing};
 /// A triangulated height field.
 #[derive(Clone)]
 pub struct HeightField {
+    /// The file the height field was read from.
     pub file: PathBuf,
     xs: Vec<f64>,
     ys: Vec<f64>,
@@ -209,10 +210,12 @@ impl HeightField {
             + u * v * z(1, 1)
     }
 
+    /// Road height z [m] at (x, y), bilinear in each cell.
     pub fn height(&self, x: f64, y: f64) -> f64 {
         self.cast(x, y).0
     }
 
+    /// Surface gradient (dz/dx, dz/dy) at (x, y); zero outside the grid.
     pub fn slope(&self, x: f64, y: f64) -> (f64, f64) {
         let inside = x > self.xs[0]
             && x < self.xs[self.xs.len() - 1]
@@ -226,6 +229,7 @@ impl HeightField {
         (-n.x / n.z, -n.y / n.z)
     }
 
+    /// `Some(z)` when every cell touching [x0, x1] x [y0, y1] is flat at height z.
     pub fn flat_height(&self, x0: f64, x1: f64, y0: f64, y1: f64) -> Option<f64> {
         let (i0, j0) = self.cell(x0, y0);
         let (i1, j1) = self.cell(x1, y1);
@@ -244,6 +248,8 @@ impl HeightField {
         z
     }
 
+    /// Appends to `out` the parameters s in [s0, s1] where the line p + s d crosses a grid
+    /// line or a cell diagonal (the kinks of the triangulated surface).
     pub fn kinks_along(&self, p: [f64; 2], d: [f64; 2], s0: f64, s1: f64, out: &mut Vec<f64>) {
         let from = out.len();
         for &x in &self.xs {
@@ -286,6 +292,7 @@ impl HeightField {
         }
     }
 
+    /// A short description for logs and reports.
     pub fn describe(&self) -> String {
         format!(
             "height field {} ({} x {} nodes, x {:.2}..{:.2} m, y {:.2}..{:.2} m)",

@@ -33,10 +33,13 @@ pub enum LengthAt {
 /// One obstacle, heights absolute (base road height included).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Obstacle {
+    /// The longitudinal shape.
     pub shape: Shape,
     /// Height of the road around the obstacle [m].
     pub base: f64,
+    /// Lateral start of the obstacle [m] (-infinity: across the whole road).
     pub y_min: f64,
+    /// Lateral end of the obstacle [m] (+infinity: across the whole road).
     pub y_max: f64,
 }
 
@@ -254,6 +257,7 @@ impl Obstacle {
         }
     }
 
+    /// A short description for logs and reports.
     pub fn describe(&self) -> String {
         match self.shape {
             Shape::Ramp { x, h } => format!(

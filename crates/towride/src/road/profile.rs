@@ -16,6 +16,7 @@ use super::{push_x_crossing, push_y_crossing};
 /// Two measured tracks.
 #[derive(Clone, Debug)]
 pub struct TrackProfile {
+    /// The file the profile was read from.
     pub file: PathBuf,
     x: Vec<f64>,
     left: Vec<f64>,
@@ -120,6 +121,7 @@ impl TrackProfile {
         }
     }
 
+    /// Road height z [m] at (x, y), interpolated between the two tracks.
     pub fn height(&self, x: f64, y: f64) -> f64 {
         let (t, _) = self.weight(y);
         let (zl, _) = self.track(&self.left, x);
@@ -127,6 +129,7 @@ impl TrackProfile {
         t * zl + (1.0 - t) * zr
     }
 
+    /// Surface gradient (dz/dx, dz/dy) at (x, y).
     pub fn slope(&self, x: f64, y: f64) -> (f64, f64) {
         let (t, dt) = self.weight(y);
         let (zl, sl) = self.track(&self.left, x);
@@ -134,6 +137,7 @@ impl TrackProfile {
         (t * sl + (1.0 - t) * sr, dt * (zl - zr))
     }
 
+    /// `Some(z)` when both tracks in use are flat at height z over [x0, x1] x [y0, y1].
     pub fn flat_height(&self, x0: f64, x1: f64, y0: f64, y1: f64) -> Option<f64> {
         let (t0, _) = self.weight(y0);
         let (t1, _) = self.weight(y1);
@@ -169,6 +173,8 @@ impl TrackProfile {
         Some(z0)
     }
 
+    /// Appends to `out` the parameters s in [s0, s1] where the line p + s d crosses a
+    /// profile node or a track line.
     pub fn kinks_along(&self, p: [f64; 2], d: [f64; 2], s0: f64, s1: f64, out: &mut Vec<f64>) {
         // Only the nodes inside the line's x-range matter.
         let xa = p[0] + s0 * d[0];
@@ -183,6 +189,7 @@ impl TrackProfile {
         push_y_crossing(p, d, -self.half_track, s0, s1, out);
     }
 
+    /// A short description for logs and reports.
     pub fn describe(&self) -> String {
         format!(
             "two-track profile {} ({} points, x {:.2}..{:.2} m, track {:.3} m)",

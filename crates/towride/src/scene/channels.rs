@@ -26,7 +26,9 @@ use crate::vehicle::{Link, Vehicle};
 /// One channel: its fixed name and unit.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Channel {
+    /// Channel name, e.g. `hitch_fx` (the CSV column header).
     pub name: String,
+    /// Unit, e.g. "m/s^2".
     pub unit: String,
 }
 

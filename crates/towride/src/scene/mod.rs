@@ -178,7 +178,9 @@ pub enum Start {
 /// A scene ready to run.
 #[derive(Clone, Debug)]
 pub struct Scene {
+    /// Scene name (the file's, or the plan case's).
     pub name: String,
+    /// The scene file.
     pub file: PathBuf,
     /// The vehicle, its model carrying the road and the outputs.
     pub vehicle: Vehicle,
@@ -186,20 +188,25 @@ pub struct Scene {
     pub speed: f64,
     /// Run length [s] and output sample rate [Hz].
     pub duration: f64,
+    /// Output sample rate [Hz].
     pub sample_rate: f64,
+    /// How the state at t = 0 is found.
     pub start: Start,
     /// Settling time on flat road before t = 0 [s] (equilibrium_at_speed).
     pub settle: f64,
+    /// Solver settings from the file's `[solver]` (see [`Scene::solver_for`]).
     pub solver: SolverOptions,
     /// Scale of the model's per-unknown absolute tolerances; `None` when the scene's
     /// `[solver]` gives `atol` itself.
     pub atol_scale: Option<f64>,
     /// The output channels, in CSV order.
     pub channels: Vec<Channel>,
+    /// The road file in use.
     pub road_file: PathBuf,
 }
 
 impl Scene {
+    /// The vehicle's model.
     pub fn model(&self) -> &Model {
         &self.vehicle.model
     }
@@ -218,11 +225,17 @@ impl Scene {
 /// Changes to a scene file's settings (a plan's cases, a validation run).
 #[derive(Clone, Debug, Default)]
 pub struct Changes {
+    /// Replaces the scene's name.
     pub name: Option<String>,
+    /// Replaces the road file.
     pub road: Option<PathBuf>,
+    /// Replaces the set speed [km/h].
     pub speed_km_h: Option<f64>,
+    /// Replaces the run length [s].
     pub duration_s: Option<f64>,
+    /// Replaces the trailer load case.
     pub load_case: Option<String>,
+    /// Replaces the hitch variant.
     pub hitch_variant: Option<u32>,
     /// Distance from the front tyres' contact to the road's first obstacle edge [m].
     pub obstacle_ahead_m: Option<f64>,

@@ -85,6 +85,7 @@ impl Plan {
         load_with(&case.scene, &case.changes, loader)
     }
 
+    /// The case called `name`.
     pub fn case(&self, name: &str) -> Option<&Case> {
         self.cases.iter().find(|c| c.name == name)
     }

@@ -72,20 +72,27 @@ pub struct Parameter {
 /// A validated sweep.
 #[derive(Clone, Debug)]
 pub struct Sweep {
+    /// Sweep name (from `[sweep]`).
     pub name: String,
+    /// The base scene file, resolved next to the sweep file.
     pub scene: PathBuf,
+    /// The swept parameters; the cases are their full product.
     pub parameters: Vec<Parameter>,
 }
 
 /// One case: its index and the values it sets.
 #[derive(Clone, Debug)]
 pub struct Case {
+    /// Position in the product (0-based).
     pub index: usize,
+    /// The parameter values of this case, as TOML text, in parameter order.
     pub values: Vec<String>,
+    /// The overrides that set them.
     pub overrides: Vec<Override>,
 }
 
 impl Sweep {
+    /// Reads and checks a sweep file.
     pub fn load(path: &Path) -> Result<Sweep, InputError> {
         let src = Source::read(path)?;
         let f: SweepFile = src.parse()?;
@@ -128,6 +135,7 @@ impl Sweep {
         self.parameters.iter().map(|p| p.values.len()).product()
     }
 
+    /// True when the product has no case.
     pub fn is_empty(&self) -> bool {
         self.len() == 0
     }

@@ -34,6 +34,7 @@ pub struct EffectiveRoad {
     pub tan_slope: f64,
     /// dw/ds and d tan(beta)/ds along the heading [1], [1/m].
     pub dheight_ds: f64,
+    /// d tan(beta)/ds along the heading [1/m].
     pub dtan_ds: f64,
     /// Effective curvature [1/m].
     pub curvature: f64,
@@ -44,9 +45,13 @@ pub struct EffectiveRoad {
 /// The cam geometry of one tyre.
 #[derive(Clone, Debug)]
 pub struct TandemCams {
+    /// Cam semi-axis a_e along the heading [m].
     pub a: f64,
+    /// Cam semi-axis b_e, vertical [m].
     pub b: f64,
+    /// Cam contour exponent c_e (>= 1).
     pub c: f64,
+    /// Tandem base l_s: distance between the front and rear cam [m].
     pub l_s: f64,
     /// Half length of the searched part of the cam [m].
     pub xi_max: f64,
@@ -80,6 +85,7 @@ const XI_TOL: f64 = 1e-10;
 const LINEAR_TOL: f64 = 1e-12;
 
 impl TandemCams {
+    /// The cam geometry of a tyre with parameters `p`.
     pub fn new(p: &TyreParams) -> TandemCams {
         let (a, b, c) = (p.d.a_e, p.d.b_e, p.d.c_e);
         let step = p.ellips_max_step.min(b);

@@ -118,7 +118,9 @@ impl WheelKinematics {
 /// The load a tyre puts on its rim, at the wheel centre, world axes.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct HubLoad {
+    /// Force on the rim, world axes [N].
     pub force: Vector3<f64>,
+    /// Torque on the rim about the wheel centre, world axes [N m].
     pub torque: Vector3<f64>,
 }
 
@@ -127,9 +129,11 @@ pub struct HubLoad {
 pub struct ContactOutputs {
     /// Normal and longitudinal contact force (the states) [N].
     pub normal_force: f64,
+    /// Longitudinal contact force [N].
     pub longitudinal_force: f64,
     /// Road force on the tyre, world [N], and where it acts [m].
     pub contact_force: Vector3<f64>,
+    /// Point of application of `contact_force`, world [m].
     pub contact_point: Vector3<f64>,
     /// The effective road plane (for the point follower: the road itself under the centre).
     pub effective: EffectiveRoad,
@@ -137,11 +141,13 @@ pub struct ContactOutputs {
     pub slip: f64,
     /// Effective rolling radius and loaded radius (ring or wheel centre to road) [m].
     pub rolling_radius: f64,
+    /// Loaded radius: ring or wheel centre to the road [m].
     pub loaded_radius: f64,
     /// Total tyre deflection [m].
     pub deflection: f64,
     /// Slip velocity and rolling speed at the contact [m/s].
     pub slip_velocity: f64,
+    /// Rolling speed at the contact [m/s].
     pub rolling_speed: f64,
 }
 
@@ -159,7 +165,9 @@ pub enum TyreKind {
 /// A tyre of either kind, behind one interface.
 #[derive(Clone, Debug)]
 pub enum Tyre {
+    /// Rigid ring with tandem-cam enveloping.
     RigidRing(RigidRing),
+    /// Single contact point, no ring.
     PointFollower(PointFollower),
 }
 
@@ -173,6 +181,7 @@ impl Tyre {
         Ok(Tyre::new(TyreParams::from_file(path, loader)?, kind))
     }
 
+    /// The tyre of kind `kind` with parameters `p`.
     pub fn new(p: TyreParams, kind: TyreKind) -> Tyre {
         match kind {
             TyreKind::RigidRing => Tyre::RigidRing(RigidRing::new(p)),
@@ -180,6 +189,7 @@ impl Tyre {
         }
     }
 
+    /// The checked `.tir` data.
     pub fn params(&self) -> &TyreParams {
         match self {
             Tyre::RigidRing(r) => &r.p,
@@ -187,6 +197,7 @@ impl Tyre {
         }
     }
 
+    /// Which model this is.
     pub fn kind(&self) -> TyreKind {
         match self {
             Tyre::RigidRing(_) => TyreKind::RigidRing,
@@ -201,6 +212,7 @@ impl Tyre {
         }
     }
 
+    /// Number of the tyre's own states.
     pub fn n_states(&self) -> usize {
         match self {
             Tyre::RigidRing(r) => r.n_states(),
@@ -208,6 +220,7 @@ impl Tyre {
         }
     }
 
+    /// Names of the tyre's states (for messages and outputs).
     pub fn state_names(&self) -> Vec<String> {
         match self {
             Tyre::RigidRing(r) => r.state_names(),
@@ -215,6 +228,7 @@ impl Tyre {
         }
     }
 
+    /// Differential or algebraic, per state.
     pub fn var_kinds(&self) -> Vec<VarKind> {
         match self {
             Tyre::RigidRing(r) => r.var_kinds(),
@@ -230,6 +244,7 @@ impl Tyre {
         }
     }
 
+    /// Steady state for a wheel moving steadily with `kin` on `road`.
     pub fn initial_state(&self, kin: &WheelKinematics, road: &Road) -> Vec<f64> {
         match self {
             Tyre::RigidRing(r) => r.initial_state(kin, road),
@@ -237,6 +252,7 @@ impl Tyre {
         }
     }
 
+    /// The DAE residual of the tyre's states (into `res`) and the load on the rim.
     pub fn residual(
         &self,
         t: f64,
@@ -252,6 +268,7 @@ impl Tyre {
         }
     }
 
+    /// The load on the rim at a state.
     pub fn hub_load(&self, kin: &WheelKinematics, road: &Road, x: &[f64]) -> HubLoad {
         match self {
             Tyre::RigidRing(r) => r.hub_load(kin, road, x),
@@ -259,6 +276,7 @@ impl Tyre {
         }
     }
 
+    /// Forces, slip and effective road at a state (for output and tests).
     pub fn outputs(&self, kin: &WheelKinematics, road: &Road, x: &[f64]) -> ContactOutputs {
         match self {
             Tyre::RigidRing(r) => r.outputs(kin, road, x),

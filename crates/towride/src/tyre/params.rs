@@ -17,6 +17,7 @@ use super::tir::TirFile;
 /// Checked tyre data (SI units).
 #[derive(Clone, Debug)]
 pub struct TyreParams {
+    /// The `.tir` file read.
     pub file: PathBuf,
     // [MODEL]
     /// Reference speed LONGVL [m/s] (speed term of the free rolling radius).
@@ -31,41 +32,64 @@ pub struct TyreParams {
     // [INERTIA]
     /// Whole tyre mass and spin inertia (tyre without rim) [kg], [kg m^2].
     pub mass: f64,
+    /// Spin inertia of the whole tyre IYY [kg m^2].
     pub iyy: f64,
     /// Belt (ring) mass and spin inertia [kg], [kg m^2].
     pub belt_mass: f64,
+    /// Spin inertia of the belt BELT_IYY [kg m^2].
     pub belt_iyy: f64,
     /// Gravity along world z [m/s^2] (negative: MF convention GRAVITY = -9.81).
     pub gravity: f64,
     // [VERTICAL]
+    /// Nominal wheel load FNOMIN [N].
     pub fnomin: f64,
     /// Overall vertical stiffness C_z [N/m] and damping [N s/m] (point follower).
     pub cz: f64,
+    /// Vertical damping of the point follower VERTICAL_DAMPING [N s/m].
     pub vertical_damping: f64,
+    /// BREFF: B of the effective-rolling-radius law (steepness of its atan term) [-].
     pub breff: f64,
+    /// DREFF: D of the effective-rolling-radius law (height of its atan term) [-].
     pub dreff: f64,
+    /// FREFF: F of the effective-rolling-radius law (its linear term) [-].
     pub freff: f64,
+    /// Q_RE0: ratio of free to unloaded radius at zero speed [-].
     pub q_re0: f64,
+    /// Q_V1: growth of the free radius with (r0 Omega / LONGVL)^2 [-].
     pub q_v1: f64,
     // [STRUCTURAL]
     /// Overall longitudinal stiffness of the standing tyre [N/m].
     pub cx: f64,
+    /// FREQ_LONG: natural frequency of the belt on its sidewall springs, in-plane
+    /// translation (longitudinal and vertical), rim fixed [Hz].
     pub freq_long: f64,
+    /// FREQ_WINDUP: natural frequency of the belt's rotation (wind-up), rim fixed [Hz].
     pub freq_windup: f64,
+    /// DAMP_LONG: damping ratio of the in-plane translation mode [-].
     pub damp_long: f64,
+    /// DAMP_WINDUP: damping ratio of the wind-up mode [-].
     pub damp_windup: f64,
     /// Residual damping time constant DAMP_RESIDUAL [s] (damping = value x stiffness).
     pub damp_residual: f64,
     // [CONTACT_PATCH]
+    /// Q_RA1: square-root term of the contact-length law [-].
     pub q_ra1: f64,
+    /// Q_RA2: linear term of the contact-length law [-].
     pub q_ra2: f64,
+    /// ELLIPS_SHIFT: tandem base as a multiple of the nominal contact length [-].
     pub ellips_shift: f64,
+    /// ELLIPS_LENGTH: cam semi-axis a_e as a multiple of the unloaded radius [-].
     pub ellips_length: f64,
+    /// ELLIPS_HEIGHT: cam semi-axis b_e as a multiple of the unloaded radius [-].
     pub ellips_height: f64,
+    /// ELLIPS_ORDER: cam contour exponent c_e, 1..20 [-].
     pub ellips_order: f64,
+    /// ELLIPS_MAX_STEP: highest obstacle step the cam search covers [m].
     pub ellips_max_step: f64,
+    /// ELLIPS_NWIDTH: number of tandems side by side across the tread.
     pub ellips_nwidth: usize,
     // [LONGITUDINAL_COEFFICIENTS] with [SCALING_COEFFICIENTS]
+    /// Magic Formula longitudinal force coefficients (scaling factors applied).
     pub mf: MfLongitudinal,
     /// Quantities derived from the above.
     pub d: Derived,
@@ -76,14 +100,19 @@ pub struct TyreParams {
 pub struct Derived {
     /// Sidewall translational stiffness (longitudinal = vertical) [N/m] and damping [N s/m].
     pub c_b: f64,
+    /// Sidewall translational damping [N s/m].
     pub k_b: f64,
     /// Sidewall rotational (wind-up) stiffness [N m/rad] and damping [N m s/rad].
     pub c_theta: f64,
+    /// Sidewall rotational damping [N m s/rad].
     pub k_theta: f64,
     /// Residual vertical and longitudinal stiffness [N/m] and damping [N s/m].
     pub c_rz: f64,
+    /// Residual vertical damping [N s/m].
     pub k_rz: f64,
+    /// Residual longitudinal stiffness [N/m].
     pub c_rx: f64,
+    /// Residual longitudinal damping [N s/m].
     pub k_rx: f64,
     /// Half contact length at the nominal load [m] (tread relaxation length).
     pub a0: f64,
@@ -91,12 +120,16 @@ pub struct Derived {
     pub r_loaded0: f64,
     /// Tandem base l_s [m], cam semi-axes a_e, b_e [m], cam exponent.
     pub l_s: f64,
+    /// Cam semi-axis a_e along the heading [m].
     pub a_e: f64,
+    /// Cam semi-axis b_e, vertical [m].
     pub b_e: f64,
+    /// Cam contour exponent c_e [-].
     pub c_e: f64,
     /// Longitudinal slip stiffness at the nominal load [N] and the point follower's
     /// relaxation length sigma = C_Fk / C_x [m].
     pub k_slip0: f64,
+    /// Relaxation length of the point follower sigma = C_Fk / C_x [m].
     pub sigma_point: f64,
 }
 

@@ -23,6 +23,7 @@ pub mod idx {
 /// The point-follower tyre.
 #[derive(Clone, Debug)]
 pub struct PointFollower {
+    /// The checked `.tir` data.
     pub p: TyreParams,
 }
 
@@ -34,22 +35,27 @@ struct Eval {
 }
 
 impl PointFollower {
+    /// The point follower with parameters `p`.
     pub fn new(p: TyreParams) -> PointFollower {
         PointFollower { p }
     }
 
+    /// Number of states (one: the tread deflection).
     pub fn n_states(&self) -> usize {
         idx::N
     }
 
+    /// Names of the states.
     pub fn state_names(&self) -> Vec<String> {
         vec!["tread_u_m".to_string()]
     }
 
+    /// Differential or algebraic, per state.
     pub fn var_kinds(&self) -> Vec<VarKind> {
         vec![VarKind::Differential]
     }
 
+    /// Absolute tolerance of the tread deflection (1 um), times `scale`.
     pub fn atol(&self, scale: f64) -> Vec<f64> {
         vec![1e-6 * scale]
     }
@@ -112,6 +118,7 @@ impl PointFollower {
         }
     }
 
+    /// The DAE residual of the tread state (into `res`) and the load on the rim.
     pub fn residual(
         &self,
         _t: f64,
@@ -126,10 +133,12 @@ impl PointFollower {
         e.hub
     }
 
+    /// Forces, slip and road at a state (for output and tests).
     pub fn outputs(&self, kin: &WheelKinematics, road: &Road, x: &[f64]) -> ContactOutputs {
         self.eval(kin, road, x).out
     }
 
+    /// The load on the rim at a state.
     pub fn hub_load(&self, kin: &WheelKinematics, road: &Road, x: &[f64]) -> HubLoad {
         self.eval(kin, road, x).hub
     }

@@ -39,11 +39,17 @@ pub enum Spin {
 
 /// Wheel centre at constant speed and height; rim free or driven.
 pub struct CleatRig {
+    /// The tyre under test.
     pub tyre: Tyre,
+    /// The road it rolls on.
     pub road: Road,
+    /// Forward speed of the wheel centre [m/s].
     pub speed: f64,
+    /// Wheel-centre x at t = 0 [m].
     pub x0: f64,
+    /// Wheel-centre height [m], set so that the tyre carries the rig's load at `x0`.
     pub z_axle: f64,
+    /// Free or driven rim.
     pub spin: Spin,
     /// Spin inertia of everything that turns with the rim [kg m^2].
     pub rim_iyy: f64,
@@ -140,12 +146,17 @@ impl DaeProblem for CleatRig {
 
 /// Wheel with a vertical degree of freedom, constant forward speed, free spin.
 pub struct QuarterRig {
+    /// The tyre under test.
     pub tyre: Tyre,
+    /// The road it rolls on.
     pub road: Road,
+    /// Forward speed of the wheel centre [m/s].
     pub speed: f64,
+    /// Wheel-centre x at t = 0 [m].
     pub x0: f64,
     /// Mass on the wheel centre (rim and load; the rigid ring's belt is in the tyre) [kg].
     pub mass: f64,
+    /// Spin inertia of everything that turns with the rim [kg m^2].
     pub rim_iyy: f64,
     /// Guide damper to ground [N s/m] (a drop-test carriage's friction; 0 for none).
     pub damper: f64,
@@ -155,6 +166,7 @@ pub struct QuarterRig {
 }
 
 impl QuarterRig {
+    /// A quarter rig; gravity comes from the tyre file's GRAVITY.
     pub fn new(
         tyre: Tyre,
         road: Road,
@@ -313,30 +325,44 @@ pub fn height_for_load(tyre: &Tyre, road: &Road, x0: f64, speed: f64, load: f64)
 /// One output sample of a rig run.
 #[derive(Clone, Debug, Serialize)]
 pub struct RigSample {
+    /// Time [s].
     pub t_s: f64,
     /// Wheel centre x and z [m], rim spin [rad/s].
     pub x_m: f64,
+    /// Wheel-centre height [m].
     pub z_m: f64,
+    /// Rim spin rate [rad/s].
     pub omega_rad_s: f64,
     /// Load on the rim (world x, z) [N] and spin torque [N m].
     pub hub_fx_n: f64,
+    /// Vertical load on the rim [N].
     pub hub_fz_n: f64,
+    /// Spin torque on the rim [N m].
     pub hub_my_n_m: f64,
     /// Contact forces [N], slip, radii [m], effective road [m, -].
     pub normal_force_n: f64,
+    /// Longitudinal contact force [N].
     pub long_force_n: f64,
+    /// Transient longitudinal slip [-].
     pub slip: f64,
+    /// Effective rolling radius [m].
     pub rolling_radius_m: f64,
+    /// Total tyre deflection [m].
     pub deflection_m: f64,
+    /// Effective road height [m].
     pub effective_height_m: f64,
+    /// Effective forward slope tan(beta) [-].
     pub effective_slope: f64,
 }
 
 /// A finished rig run.
 #[derive(Clone, Debug, Serialize)]
 pub struct RigRun {
+    /// The output samples, every `dt` from t = 0.
     pub samples: Vec<RigSample>,
+    /// Solver counters.
     pub stats: Stats,
+    /// Wall-clock time of the integration [s].
     pub wall_s: f64,
 }
 
@@ -521,26 +547,38 @@ struct OutputSection {
 
 /// A rig read from a file, ready to run.
 pub enum RigSetup {
+    /// A cleat rig run for `duration` seconds.
     Cleat {
+        /// The rig.
         rig: CleatRig,
+        /// Run length [s].
         duration: f64,
     },
+    /// A quarter rig run for `duration` seconds, dropped or from rest.
     Quarter {
+        /// The rig.
         rig: QuarterRig,
+        /// Run length [s].
         duration: f64,
+        /// Drop height above first contact [m]; `None` starts at rest in equilibrium.
         drop: Option<f64>,
     },
 }
 
 /// A rig file read and checked.
 pub struct RigCase {
+    /// The rig file.
     pub file: PathBuf,
+    /// The rig with its run settings.
     pub setup: RigSetup,
+    /// Relative tolerance of the run (file's `[solver] rtol`).
     pub rtol: f64,
+    /// Output sample interval [s] (file's `[output] dt_s`).
     pub dt: f64,
 }
 
 impl RigCase {
+    /// Reads and checks a rig file; the tyre and road paths are relative to it.
     pub fn from_file(path: &Path, loader: &crate::input::Loader) -> Result<RigCase, InputError> {
         let src = loader.toml(path)?;
         let f: RigFile = src.parse()?;

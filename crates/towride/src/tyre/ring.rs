@@ -50,7 +50,9 @@ const NAMES: [&str; idx::N] = [
 /// The rigid-ring tyre.
 #[derive(Clone, Debug)]
 pub struct RigidRing {
+    /// The checked `.tir` data.
     pub p: TyreParams,
+    /// The enveloping model's cam geometry.
     pub cams: TandemCams,
     /// Gravity vector [m/s^2] (from the file's GRAVITY along z unless overridden).
     pub gravity: Vector3<f64>,
@@ -69,20 +71,24 @@ struct Eval {
 }
 
 impl RigidRing {
+    /// The rigid ring with parameters `p`; gravity from the file's GRAVITY along z.
     pub fn new(p: TyreParams) -> RigidRing {
         let cams = TandemCams::new(&p);
         let gravity = Vector3::new(0.0, 0.0, p.gravity);
         RigidRing { p, cams, gravity }
     }
 
+    /// Number of states (ring motion, residual spring and tread).
     pub fn n_states(&self) -> usize {
         idx::N
     }
 
+    /// Names of the states.
     pub fn state_names(&self) -> Vec<String> {
         NAMES.iter().map(|s| s.to_string()).collect()
     }
 
+    /// Differential or algebraic, per state.
     pub fn var_kinds(&self) -> Vec<VarKind> {
         vec![VarKind::Differential; idx::N]
     }

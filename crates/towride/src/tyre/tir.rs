@@ -23,7 +23,9 @@ use crate::input::InputError;
 pub struct Entry {
     /// The value text, quotes removed for strings.
     pub value: String,
+    /// 1-based line of the entry.
     pub line: usize,
+    /// 1-based column of the value.
     pub column: usize,
 }
 
@@ -36,6 +38,7 @@ struct Section {
 /// A parsed `.tir` file.
 #[derive(Clone, Debug)]
 pub struct TirFile {
+    /// The file read.
     pub path: PathBuf,
     sections: HashMap<String, Section>,
 }

@@ -19,13 +19,19 @@ pub const MAX_GAP_SAMPLES: usize = 20;
 /// The requested columns of a CSV file, time in seconds, values as recorded.
 #[derive(Clone, Debug)]
 pub struct Table {
+    /// The CSV file read.
     pub file: PathBuf,
+    /// Sample times [s], ascending, gaps filled.
     pub time_s: Vec<f64>,
+    /// Values of the requested columns, as recorded, in the order asked for.
     pub columns: Vec<Vec<f64>>,
     /// Unit of each requested column from the header or units row, if given.
     pub units: Vec<Option<String>>,
+    /// Column separator found in the header: `;`, tab or `,`.
     pub separator: char,
+    /// Numbers are written with a decimal comma.
     pub decimal_comma: bool,
+    /// 1-based line of the header.
     pub header_line: usize,
     /// One line per repair.
     pub notes: Vec<String>,
@@ -34,10 +40,15 @@ pub struct Table {
 /// A recorded run in SI units, keyed by simulated channel name.
 #[derive(Clone, Debug)]
 pub struct Measurement {
+    /// The CSV file read.
     pub file: PathBuf,
+    /// Sample times on the recording's clock [s].
     pub time_s: Vec<f64>,
+    /// Channels in SI units (gain, sign and unit applied), by simulated channel name.
     pub channels: BTreeMap<String, Vec<f64>>,
+    /// Sample rate [Hz].
     pub rate_hz: f64,
+    /// One line per repair made while reading.
     pub notes: Vec<String>,
 }
 

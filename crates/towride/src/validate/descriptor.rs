@@ -15,7 +15,9 @@ use super::G_MPS2;
 /// Physical unit of a recorded channel.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Unit {
+    /// Metres per second squared.
     Mps2,
+    /// Multiples of standard gravity.
     G,
 }
 
@@ -37,6 +39,7 @@ impl Unit {
         }
     }
 
+    /// The unit as written in reports: "m/s^2" or "g".
     pub fn label(self) -> &'static str {
         match self {
             Unit::Mps2 => "m/s^2",
@@ -68,7 +71,9 @@ pub struct ChannelSpec {
 /// The acquisition low-pass (Butterworth, see [`super::filter`]).
 #[derive(Clone, Copy, Debug)]
 pub struct AcqFilter {
+    /// Filter order.
     pub order: usize,
+    /// -3 dB cut-off frequency [Hz].
     pub cutoff_hz: f64,
 }
 
@@ -88,30 +93,50 @@ pub struct Trigger {
 #[derive(Clone, Debug, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct Injected {
+    /// Name of the simulator that made the run.
     pub simulator: String,
+    /// Trigger delay put in [s].
     pub trigger_delay_s: f64,
+    /// Speedometer error put in [%].
     pub speed_error_pct: f64,
+    /// Channel gain error put in [%].
     pub gain_error_pct: f64,
+    /// RMS of the white noise added [m/s^2].
     pub noise_rms_mps2: f64,
+    /// RMS jitter of the foil pulses [s].
     pub foil_jitter_s: f64,
+    /// Sample rate of the synthetic recording [Hz].
     pub sample_rate_hz: f64,
+    /// Seed of the noise generator.
     pub seed: u64,
 }
 
 /// A checked descriptor with paths resolved against its directory.
 #[derive(Clone, Debug)]
 pub struct Descriptor {
+    /// The descriptor file.
     pub path: PathBuf,
+    /// Labelled synthetic (made by `validate synth`, not measured).
     pub synthetic: bool,
+    /// The scene the run is simulated with.
     pub scene: PathBuf,
+    /// Name of the obstacle driven over (as in the measurement plan).
     pub obstacle: String,
+    /// Nominal (speedometer) speed [m/s].
     pub nominal_speed_mps: f64,
+    /// Trailer load case.
     pub load_case: String,
+    /// The CSV file with the recording.
     pub data: PathBuf,
+    /// Name of the time column in the CSV header.
     pub time_column: String,
+    /// The acquisition low-pass.
     pub filter: AcqFilter,
+    /// Photocell and foil pulses.
     pub trigger: Trigger,
+    /// The recorded channels and their simulated counterparts.
     pub channels: Vec<ChannelSpec>,
+    /// What a synthetic run was made with; `None` for measurements.
     pub injected: Option<Injected>,
 }
 

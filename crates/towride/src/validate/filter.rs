@@ -18,14 +18,18 @@ use super::SimChannels;
 /// y[n] = b0 x[n] + b1 x[n-1] + b2 x[n-2] - a1 y[n-1] - a2 y[n-2].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Biquad {
+    /// Numerator coefficients b0, b1, b2.
     pub b: [f64; 3],
+    /// Denominator coefficients a1, a2 (a0 = 1).
     pub a: [f64; 2],
 }
 
 /// A cascade of biquads.
 #[derive(Clone, Debug)]
 pub struct Butterworth {
+    /// Second-order sections, applied in turn.
     pub sections: Vec<Biquad>,
+    /// Sample rate the coefficients are designed for [Hz].
     pub rate_hz: f64,
 }
 
@@ -120,8 +124,11 @@ pub fn interp(t: &[f64], y: &[f64], tq: f64) -> f64 {
 /// A simulation after the acquisition filter, on a uniform grid.
 #[derive(Clone, Debug)]
 pub struct Acquired {
+    /// Time of the first sample, on the simulation's clock [s].
     pub t0_s: f64,
+    /// Sample interval [s].
     pub dt_s: f64,
+    /// Filtered channels, by simulated channel name [SI units].
     pub channels: BTreeMap<String, Vec<f64>>,
     /// When the front wheels reach the obstacle, on the simulation's clock [s].
     pub obstacle_time_s: f64,

@@ -12,9 +12,11 @@ use super::Simulator;
 /// The outcome of a batch.
 #[derive(Debug, Default)]
 pub struct FolderResult {
+    /// The runs validated, in descriptor order.
     pub runs: Vec<RunValidation>,
     /// (descriptor, error) of each run that could not be validated.
     pub failures: Vec<(PathBuf, String)>,
+    /// Wall-clock time of the batch [s].
     pub wall_s: f64,
     /// The simulator's name (so a stand-in is never mistaken for the vehicle model).
     pub simulator: String,

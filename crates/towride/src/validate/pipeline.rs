@@ -29,6 +29,7 @@ pub struct Options {
     /// A channel is rated where either curve exceeds this share of its largest
     /// magnitude, padded by `active_pad_s` (the long quiet parts would inflate every score).
     pub active_threshold: f64,
+    /// Padding around the active part [s].
     pub active_pad_s: f64,
 }
 
@@ -47,15 +48,23 @@ impl Default for Options {
 /// Figures of one channel in one comparison (SI units).
 #[derive(Clone, Debug, Serialize)]
 pub struct ChannelFigures {
+    /// Simulated channel name.
     pub channel: String,
+    /// Measured value of largest magnitude [m/s^2].
     pub peak_measured_mps2: f64,
+    /// When it occurs (recording's clock) [s].
     pub t_peak_measured_s: f64,
+    /// Simulated value of largest magnitude [m/s^2].
     pub peak_simulated_mps2: f64,
+    /// When it occurs (recording's clock) [s].
     pub t_peak_simulated_s: f64,
+    /// RMS of measured minus simulated [m/s^2].
     pub rms_diff_mps2: f64,
+    /// Pearson correlation of the two curves [-].
     pub correlation: f64,
     /// Least-squares amplitude ratio measured / simulated (a gain-error estimate).
     pub gain_ratio: f64,
+    /// ISO/TS 18571-style rating of the simulated curve against the measured one.
     pub rating: Rating,
     /// Interval the channel was rated on (recording's clock) [s].
     pub interval_s: [f64; 2],
@@ -64,22 +73,28 @@ pub struct ChannelFigures {
 /// One comparison of a run (corrected or uncorrected).
 #[derive(Clone, Debug, Serialize)]
 pub struct Comparison {
+    /// "corrected" or "uncorrected".
     pub label: &'static str,
     /// Speed simulated [m/s].
     pub speed_mps: f64,
     /// Time shift found by the cross-correlation [s] (0 when uncorrected): the events are
     /// stamped this much later than the data show them (a trigger delay).
     pub shift_s: f64,
+    /// The shift is at the search bound (the true shift may be larger).
     pub shift_at_bound: bool,
     /// When the front wheels reach the obstacle, on the recording's clock [s].
     pub obstacle_time_s: f64,
+    /// Mean overall rating over the channels.
     pub mean_rating: f64,
+    /// Figures per channel.
     pub channels: Vec<ChannelFigures>,
     /// The compared curves on the evaluation window (for plots).
     #[serde(skip)]
     pub time_s: Vec<f64>,
+    /// Measured curves by channel name [m/s^2].
     #[serde(skip)]
     pub measured: BTreeMap<String, Vec<f64>>,
+    /// Simulated curves on the same samples [m/s^2].
     #[serde(skip)]
     pub simulated: BTreeMap<String, Vec<f64>>,
 }
@@ -87,19 +102,29 @@ pub struct Comparison {
 /// A validated run.
 #[derive(Clone, Debug, Serialize)]
 pub struct RunValidation {
+    /// Run name (the descriptor's file stem).
     pub name: String,
+    /// The descriptor file.
     pub descriptor: String,
+    /// Labelled synthetic (not a measurement).
     pub synthetic: bool,
+    /// Name of the obstacle driven over.
     pub obstacle: String,
+    /// Trailer load case.
     pub load_case: String,
+    /// Nominal (speedometer) speed [m/s].
     pub nominal_speed_mps: f64,
     /// Speed from the foils and the fit residual.
     pub foil_speed: FoilSpeed,
+    /// Sample rate of the recording [Hz].
     pub sample_rate_hz: f64,
     /// Repairs made while reading the CSV.
     pub notes: Vec<String>,
+    /// Comparison with speed and time shift corrected; `None` with `--no-correct`.
     pub corrected: Option<Comparison>,
+    /// Comparison at the nominal speed with event timing only.
     pub uncorrected: Comparison,
+    /// Wall-clock time of the run's validation [s].
     pub wall_s: f64,
 }
 

@@ -12,6 +12,7 @@ use super::metrics::pearson;
 pub struct RatingParams {
     /// Inner and outer corridor half-widths relative to max |reference|.
     pub a0: f64,
+    /// Outer corridor half-width relative to max |reference|.
     pub b0: f64,
     /// Corridor progression exponent.
     pub kz: f64,
@@ -19,6 +20,7 @@ pub struct RatingParams {
     pub eps_p: f64,
     /// Largest magnitude and slope errors (relative L2 norms).
     pub eps_m: f64,
+    /// Largest slope error (relative L2 norm).
     pub eps_s: f64,
     /// Sakoe-Chiba band of the dynamic time warping, as a fraction of the length.
     pub dtw_band: f64,
@@ -41,10 +43,15 @@ impl Default for RatingParams {
 /// The rating and its four sub-scores.
 #[derive(Clone, Copy, Debug, Serialize, PartialEq)]
 pub struct Rating {
+    /// Combined rating R = 0.4 Z + 0.2 E_P + 0.2 E_M + 0.2 E_S, in [0, 1] (1: identical).
     pub overall: f64,
+    /// Corridor score Z.
     pub corridor: f64,
+    /// Phase score E_P.
     pub phase: f64,
+    /// Magnitude score E_M.
     pub magnitude: f64,
+    /// Slope score E_S.
     pub slope: f64,
 }
 
@@ -54,6 +61,7 @@ pub fn iso_rating(reference: &[f64], compared: &[f64], dt: f64) -> Rating {
     iso_rating_with(reference, compared, dt, &RatingParams::default())
 }
 
+/// [`iso_rating`] with explicit parameters.
 pub fn iso_rating_with(reference: &[f64], compared: &[f64], dt: f64, p: &RatingParams) -> Rating {
     let n = reference.len().min(compared.len());
     let (t, c) = (&reference[..n], &compared[..n]);

@@ -23,18 +23,25 @@ use super::Simulator;
 /// trigger delay, speedometer +3 %, gain +5 %, 0.05 m/s^2 noise).
 #[derive(Clone, Debug)]
 pub struct SensorModel {
+    /// RMS of the white noise added to every sample [m/s^2].
     pub noise_rms_mps2: f64,
+    /// The acquisition low-pass.
     pub filter: AcqFilter,
+    /// Delay of the photocell pulse after the car passes the photocell [s].
     pub trigger_delay_s: f64,
     /// The nominal (speedometer) speed reads this much above the true speed [%].
     pub speed_error_pct: f64,
     /// Every channel reads this much high [%] unless listed in `channel_gain_error_pct`.
     pub gain_error_pct: f64,
+    /// Per-channel gain errors [%], overriding `gain_error_pct` for the channels listed.
     pub channel_gain_error_pct: Vec<(String, f64)>,
+    /// Sample rate of the recording [Hz].
     pub sample_rate_hz: f64,
+    /// RMS jitter of the foil pulses [s].
     pub foil_jitter_s: f64,
     /// Unit written to the CSV.
     pub unit: Unit,
+    /// Seed of the noise generator.
     pub seed: u64,
 }
 
@@ -62,7 +69,9 @@ impl Default for SensorModel {
 /// contact point when each pulse fires).
 #[derive(Clone, Debug)]
 pub struct TriggerLayout {
+    /// Photocell position [m].
     pub photocell_m: f64,
+    /// Foil positions [m].
     pub foils_m: Vec<f64>,
 }
 
@@ -79,10 +88,15 @@ impl Default for TriggerLayout {
 /// One run to synthesise.
 #[derive(Clone, Debug)]
 pub struct SynthRun {
+    /// Run name (file stem of the CSV and descriptor written).
     pub name: String,
+    /// The scene simulated.
     pub scene: PathBuf,
+    /// Name of the obstacle driven over.
     pub obstacle: String,
+    /// Nominal (speedometer) speed [km/h].
     pub nominal_speed_kmh: f64,
+    /// Trailer load case.
     pub load_case: String,
 }
 
@@ -91,6 +105,7 @@ pub struct SynthRun {
 pub struct Noise(u64);
 
 impl Noise {
+    /// A generator seeded with `seed`.
     pub fn new(seed: u64) -> Noise {
         Noise(seed)
     }

@@ -128,6 +128,7 @@ pub fn lever(w: f64, x_cm: f64, x_a: f64, x_b: f64) -> (f64, f64) {
 /// What the design statics found for one corner, for reports and checks.
 #[derive(Clone, Debug, Serialize)]
 pub struct CornerDesign {
+    /// Name of the wheel body at the corner.
     pub wheel: String,
     /// Static road load at the design position [N].
     pub load_n: f64,

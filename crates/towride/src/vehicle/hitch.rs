@@ -62,13 +62,16 @@ struct BallCoupling {
 /// How the drawbar is coupled to the ball.
 #[derive(Clone, Debug)]
 pub enum BallKind {
+    /// An ideal spherical joint.
     Spherical,
+    /// A bushing with these properties (translations only).
     Bushing(JointBushing),
 }
 
 /// What the rest of the vehicle needs of the hitch.
 #[derive(Clone, Debug)]
 pub struct HitchHandle {
+    /// The crossbeam's modal body.
     pub body: BodyHandle,
     /// Ball centre, vehicle coordinates [m].
     pub ball: V,
@@ -78,9 +81,11 @@ pub struct HitchHandle {
     pub sensor_node: usize,
     /// Sensor node position, vehicle coordinates [m].
     pub sensor: V,
+    /// How the drawbar is coupled to the ball.
     pub ball_kind: BallKind,
     /// FE origin in vehicle coordinates (checked against the rear axle).
     pub fe_origin: V,
+    /// Crossbeam variant in use (1..10).
     pub variant: u32,
     /// Number of selected modes.
     pub modes: usize,

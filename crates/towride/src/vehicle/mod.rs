@@ -84,8 +84,11 @@ pub struct Options {
 /// A vehicle ready for a scene.
 #[derive(Clone, Debug)]
 pub struct Vehicle {
+    /// The multibody model: bodies, joints, elements and tyres.
     pub model: Model,
+    /// Named parts a scene needs.
     pub handles: Handles,
+    /// What the design statics found.
     pub design: Design,
 }
 
@@ -99,19 +102,24 @@ pub struct Handles {
     pub car_ref: MarkerHandle,
     /// Wheels fl, fr, rl, rr, then the trailer's tl, tr.
     pub wheels: Vec<WheelHandle>,
+    /// The towbar crossbeam, when the car has one.
     pub hitch: Option<HitchHandle>,
     /// The ball coupling (joint or bushing) and what it became.
     pub ball: Option<(Link, BallKind)>,
+    /// The trailer box, when there is a trailer.
     pub trailer_body: Option<BodyHandle>,
     /// Marker at the trailer box's centre of mass with its axes.
     pub trailer_ref: Option<MarkerHandle>,
     /// Markers on the car body above each car wheel (top mounts, upper spring seats),
     /// by wheel name: ride heights are measured between them and the wheel centres.
     pub ride: Vec<(String, MarkerHandle)>,
+    /// Acceleration sensors, the vehicle's and the scene's (channels `acc_<name>_<axis>`).
     pub sensors: Vec<Sensor>,
     /// Every body by name.
     pub bodies: BTreeMap<String, BodyHandle>,
+    /// Placement of the car's coordinates in the world.
     pub car_place: Placement,
+    /// Placement of the trailer's coordinates in the world, when there is a trailer.
     pub trailer_place: Option<Placement>,
     /// The placement of each body's subsystem (indexed like `Model::bodies`): sensor
     /// positions are given in these coordinates.
@@ -124,22 +132,28 @@ pub struct Design {
     /// Car with driver, hitch and the tyres' belts [kg], centre of mass in vehicle
     /// coordinates [m].
     pub car_mass_kg: f64,
+    /// Centre of mass of the car, vehicle coordinates [m].
     pub car_cm_m: [f64; 3],
     /// Car corners fl, fr, rl, rr at the design position.
     pub car_corners: Vec<CornerDesign>,
+    /// The trailer's design statics, when there is a trailer.
     pub trailer: Option<TrailerDesign>,
     /// Everything, belts included [kg].
     pub total_mass_kg: f64,
 }
 
+/// What the design statics found for the trailer.
 #[derive(Clone, Debug, Serialize)]
 pub struct TrailerDesign {
+    /// The trailer load case.
     pub load_case: String,
     /// With the payload [kg]; centre of mass in trailer coordinates [m].
     pub mass_kg: f64,
+    /// Centre of mass with the payload, trailer coordinates [m].
     pub cm_m: [f64; 3],
     /// Empty trailer: ball load [N] and corners (the rubber's preload).
     pub empty_ball_load_n: f64,
+    /// Trailer corners tl, tr of the empty trailer (the rubber's preload).
     pub corners: Vec<CornerDesign>,
     /// Pitch of the trailer placed on the ball [rad] (positive: nose down).
     pub pitch_rad: f64,

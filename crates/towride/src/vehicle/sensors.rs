@@ -29,7 +29,9 @@ pub struct SensorSpec {
 /// A sensor in the model.
 #[derive(Clone, Debug)]
 pub struct Sensor {
+    /// Sensor name; its channels are `acc_<name>_<axis>`.
     pub name: String,
+    /// Marker at the sensor, with the measuring axes.
     pub marker: MarkerHandle,
     /// Which of x, y, z it measures.
     pub axes: [bool; 3],

@@ -26,10 +26,12 @@ type G2 = Dual<G1, 1>;
 /// Constraint rows of one element with their first derivatives.
 #[derive(Default)]
 pub struct ConEval {
+    /// Constraint values g, one per row [m or rad].
     pub g: Vec<f64>,
     /// d g / d(v_a, v_b), row-major: per row the velocity unknowns of side a, then of
     /// side b (see [`ConEval::at`]).
     pub b: Vec<f64>,
+    /// Partial time derivative dg/dt per row (non-zero for prescribed motions).
     pub gt: Vec<f64>,
     /// Number of velocity unknowns of each side (6 + modes; 6 for ground).
     pub w: [usize; 2],
@@ -131,6 +133,7 @@ fn rigid_b<S: Scalar>(a: &M3<S>, rho: &V3<S>, go: &V3<S>, gphi: &V3<S>) -> [S; 6
 
 /// Constraint rows with second derivatives (iteration matrix, accelerations).
 pub struct ConEval2 {
+    /// The rows with their first derivatives.
     pub first: ConEval,
     /// d g / d(q_a, q_b): per row, the position unknowns of side a (7 + modes) then b.
     pub gq: Vec<Vec<f64>>,

@@ -14,6 +14,8 @@ use crate::model::desc::Model;
 use crate::tyre::WheelKinematics;
 use towride_solver::problem::VarKind;
 
+/// What an extension element is: its states follow their own equations beside the
+/// bodies'.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ExtKind {
     /// Index into `Model::tyres`.
@@ -25,8 +27,11 @@ pub enum ExtKind {
 /// An extension element and the place of its states in the extension block.
 #[derive(Clone, Debug)]
 pub struct Ext {
+    /// Tyre or controller, with its index.
     pub kind: ExtKind,
+    /// Offset of its first state in the extension block.
     pub off: usize,
+    /// Number of its states.
     pub n: usize,
 }
 

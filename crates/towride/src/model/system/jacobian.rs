@@ -466,6 +466,7 @@ impl System {
         format!("row {row}")
     }
 
+    /// Name of unknown `i`, with its body and unit, for messages.
     pub fn unknown_name(&self, i: usize) -> String {
         let (_, ov, ol, om) = self.offsets();
         let oe = self.oe();
@@ -510,6 +511,7 @@ impl System {
         }
     }
 
+    /// Name of equation `i`, with its body or element, for messages.
     pub fn equation_name(&self, i: usize) -> String {
         let (_, ov, ol, om) = self.offsets();
         let oe = self.oe();

@@ -50,23 +50,31 @@ pub use forces::{BodyPose, ElementForces};
 /// Who owns a constraint row.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Owner {
+    /// A joint (index into `Model::joints`).
     Joint(usize),
+    /// A prescribed motion (index into `Model::motions`).
     Motion(usize),
 }
 
 /// One constraint row of an element.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ConRow {
+    /// A primitive joint row (what it locks).
     Prim(Row),
+    /// The driving row of a prescribed motion.
     Drive(super::desc::MotionDof),
 }
 
 /// A constraint element: a joint or a motion, its markers and rows.
 #[derive(Clone, Debug)]
 pub struct ConElem {
+    /// The joint or motion.
     pub owner: Owner,
+    /// Marker I (index into `Model::markers`).
     pub mi: usize,
+    /// Marker J (index into `Model::markers`).
     pub mj: usize,
+    /// The element's constraint rows.
     pub rows: Vec<ConRow>,
     /// Global multiplier index of each row, `None` when the row was found redundant.
     pub slot: Vec<Option<usize>>,
@@ -75,7 +83,9 @@ pub struct ConElem {
 /// A dropped row and the kept rows it depends on.
 #[derive(Clone, Debug)]
 pub struct Redundant {
+    /// The constraint element (index into `System::cons`).
     pub elem: usize,
+    /// The dropped row within the element.
     pub row: usize,
     /// (element, row, coefficient) of the kept rows that reproduce it.
     pub depends_on: Vec<(usize, usize, f64)>,
@@ -85,7 +95,12 @@ pub struct Redundant {
 pub enum MassBlock {
     /// m I, the inertia J (body axes) and the unit modal mass: rigid bodies and modal
     /// bodies without deformation-dependent inertia coupling.
-    Diagonal { mass: f64, inertia: [[f64; 3]; 3] },
+    Diagonal {
+        /// Body mass [kg].
+        mass: f64,
+        /// Inertia tensor about the centre of mass, body axes [kg m^2].
+        inertia: [[f64; 3]; 3],
+    },
     /// The whole (6 + modes) block of a `full` modal body.
     Full(DMatrix<f64>),
 }
@@ -99,21 +114,28 @@ pub type ConstraintSet = (Vec<f64>, Vec<f64>, Vec<(usize, usize, f64)>);
 
 /// The assembled mechanism.
 pub struct System {
+    /// The model the system was assembled from.
     pub model: Model,
+    /// Constraint elements (joints and motions) with their rows.
     pub cons: Vec<ConElem>,
+    /// Rows dropped as redundant, with the kept rows they depend on.
     pub redundant: Vec<Redundant>,
     /// Number of kept constraint rows.
     pub m: usize,
     /// Per body: offset of its position unknowns in q, of its velocity unknowns in v, and
     /// its number of modal coordinates.
     pub qo: Vec<usize>,
+    /// Velocity-unknown offset of each body in v.
     pub vo: Vec<usize>,
+    /// Number of modal coordinates of each body.
     pub nm: Vec<usize>,
     /// Sizes of the q and v blocks.
     pub nq: usize,
+    /// Size of the v block.
     pub nv: usize,
     /// Extension elements (tyres, speed controllers) and their total number of states.
     pub ext: Vec<Ext>,
+    /// Total number of extension states.
     pub ne: usize,
     /// Speed controllers act (false during statics: a car at rest is not driven).
     pub controls_active: std::cell::Cell<bool>,
@@ -214,6 +236,7 @@ impl System {
         sys
     }
 
+    /// Number of bodies.
     pub fn nb(&self) -> usize {
         self.model.bodies.len()
     }
