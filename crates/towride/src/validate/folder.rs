@@ -118,6 +118,7 @@ pub fn run_json(r: &RunValidation) -> Value {
         "foil_fit_residual_s": r.foil_speed.residual_rms_s,
         "shift_s": r.corrected.as_ref().map(|c| c.shift_s),
         "shift_at_bound": r.corrected.as_ref().map(|c| c.shift_at_bound),
+        "shift_correlation": r.corrected.as_ref().and_then(|c| c.shift_correlation),
         "mean_rating_corrected": r.corrected.as_ref().map(|c| c.mean_rating),
         "mean_rating_uncorrected": r.uncorrected.mean_rating,
         "sample_rate_hz": r.sample_rate_hz,

@@ -82,6 +82,9 @@ pub struct Comparison {
     pub shift_s: f64,
     /// The shift is at the search bound (the true shift may be larger).
     pub shift_at_bound: bool,
+    /// Mean correlation of the channels at the shift found (`None` when uncorrected):
+    /// how well the shapes agree once aligned.
+    pub shift_correlation: Option<f64>,
     /// When the front wheels reach the obstacle, on the recording's clock [s].
     pub obstacle_time_s: f64,
     /// Mean overall rating over the channels.
@@ -274,13 +277,13 @@ fn compare(
     let offset = t_obs - acq.obstacle_time_s;
     let sim_at = |c: usize, ti: f64, shift: f64| acq.at(&names[c], ti - offset + shift);
     let dt = 1.0 / meas.rate_hz;
-    let (shift, at_bound) = match search {
+    let (shift, at_bound, correlation) = match search {
         Some(bound) => {
             let m: Vec<&[f64]> = names.iter().map(|n| measured[n].as_slice()).collect();
             let a = best_shift(&t, &m, &sim_at, dt, bound);
-            (a.shift_s, a.at_bound)
+            (a.shift_s, a.at_bound, Some(a.correlation))
         }
-        None => (0.0, false),
+        None => (0.0, false, None),
     };
     let simulated: BTreeMap<String, Vec<f64>> = names
         .iter()
@@ -325,6 +328,7 @@ fn compare(
         speed_mps,
         shift_s: shift,
         shift_at_bound: at_bound,
+        shift_correlation: correlation,
         obstacle_time_s: t_obs - shift,
         mean_rating,
         channels,
