@@ -16,6 +16,7 @@ pub mod ic;
 pub mod linear;
 pub mod options;
 pub mod problem;
+mod roots;
 mod sparse_lu;
 pub mod testset;
 

@@ -14,11 +14,11 @@ use super::options::{
     AlgebraicControl, JacobianSource, LinearSolver, Method, SolverOptions, Stats,
 };
 use super::problem::{DaeProblem, VarKind};
+use super::roots::Roots;
 
 mod control;
 mod history;
 mod newton;
-mod roots;
 
 use history::rescale_differences;
 
@@ -107,10 +107,8 @@ pub struct Bdf<'a, P: DaeProblem + ?Sized> {
     /// Whether the problem's frame transport is used.
     transport: bool,
     analytic_ok: bool,
-    // Events.
-    g_lo: Vec<f64>,
-    t_lo: f64,
-    g_hi: Vec<f64>,
+    /// Event location.
+    roots: Roots,
     stats: Stats,
     /// Accepted steps in which each unknown dominated the error estimate.
     limiter_counts: Vec<usize>,
@@ -174,7 +172,6 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
         let mut phi = vec![vec![0.0; n]; MAXORD + 2];
         phi[0].copy_from_slice(y0);
         phi[1].copy_from_slice(yp0); // scaled by h once the first step size is known
-        let n_roots = prob.n_roots();
         let analytic_ok = opts.jacobian == JacobianSource::Auto;
         let mut s = Self {
             prob,
@@ -239,20 +236,13 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
             t_built: t0,
             transport: opts.matrix_transport && prob.has_transport(),
             analytic_ok,
-            g_lo: vec![0.0; n_roots],
-            t_lo: t0,
-            g_hi: vec![0.0; n_roots],
+            roots: Roots::default(),
             stats: Stats::default(),
             limiter_counts: vec![0; n],
             opts,
         };
         s.set_ewt();
-        if n_roots > 0 {
-            let mut g = vec![0.0; n_roots];
-            prob.roots(t0, y0, yp0, &mut g);
-            s.stats.root_evals += 1;
-            s.g_lo = g;
-        }
+        s.roots = Roots::new(prob, t0, y0, yp0, &mut s.stats.root_evals);
         Ok(s)
     }
 
@@ -319,7 +309,7 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
             return Err(SolverError::BadOutputTime { tout, t: self.tn });
         }
         // A root between the last reported root and tn may still be pending.
-        if let Some(r) = self.check_roots()? {
+        if let Some(r) = self.check_roots() {
             return Ok(r);
         }
         let mut steps_here = 0usize;
@@ -338,7 +328,7 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
             }
             self.step()?;
             steps_here += 1;
-            if let Some(r) = self.check_roots()? {
+            if let Some(r) = self.check_roots() {
                 return Ok(r);
             }
         }
@@ -409,14 +399,9 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
         self.phi[1].copy_from_slice(yp);
         self.started = false;
         self.jac_valid = false;
-        self.t_lo = t;
         self.set_ewt();
-        if !self.g_lo.is_empty() {
-            let mut g = vec![0.0; self.g_lo.len()];
-            self.prob.roots(t, y, yp, &mut g);
-            self.stats.root_evals += 1;
-            self.g_lo = g;
-        }
+        self.roots
+            .restart(self.prob, t, y, yp, &mut self.stats.root_evals);
         Ok(())
     }
 
@@ -713,6 +698,25 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
                 yp[i] += d * self.phi[j][i];
             }
         }
+    }
+
+    /// Events over the last step, located on its interpolant.
+    fn check_roots(&mut self) -> Option<Advance> {
+        if self.roots.is_empty() || !self.started {
+            return None;
+        }
+        let mut roots = std::mem::take(&mut self.roots);
+        let mut evals = self.stats.root_evals;
+        let found = roots.check(
+            self.prob,
+            self.tn,
+            self.hh,
+            &|t, y, yp| self.interpolate(t, y, yp),
+            &mut evals,
+        );
+        self.stats.root_evals = evals;
+        self.roots = roots;
+        found
     }
 
     fn worst_components(&self, v: &[f64], w: &[f64]) -> String {
