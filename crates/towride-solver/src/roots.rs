@@ -13,6 +13,9 @@ const TTOL_UROUNDS: f64 = 100.0;
 /// every second iteration).
 const MAX_ITERATIONS: usize = 200;
 
+/// The interpolant of the last step: value and derivative at a time.
+pub(crate) type Interpolant<'a> = &'a dyn Fn(f64, &mut [f64], &mut [f64]);
+
 /// The event functions' values at the last point searched past, and the search.
 #[derive(Default)]
 pub(crate) struct Roots {
@@ -68,7 +71,7 @@ impl Roots {
         prob: &P,
         tn: f64,
         h: f64,
-        interp: &dyn Fn(f64, &mut [f64], &mut [f64]),
+        interp: Interpolant,
         root_evals: &mut usize,
     ) -> Option<Advance> {
         let nr = self.g_lo.len();

@@ -9,6 +9,7 @@
 //! onto the new grid when the step changes (Shampine & Reichelt 1997, ode15s).
 
 use super::error::SolverError;
+use super::jacobian::JacobianEval;
 use super::linear::{NewtonMatrix, Singular};
 use super::options::{
     AlgebraicControl, JacobianSource, LinearSolver, Method, SolverOptions, Stats,
@@ -94,9 +95,8 @@ pub struct Bdf<'a, P: DaeProblem + ?Sized> {
     scratch: Vec<f64>,
     backup_psi: [f64; MAXORD + 2],
     jac: NewtonMatrix,
-    jac_entries: Vec<(usize, usize, f64)>,
-    /// The dF/dy' part of the last evaluation, when the problem reports it.
-    jac_yp_entries: Vec<(usize, usize, f64)>,
+    /// Jacobian evaluation (analytic or finite differences) and its buffers.
+    jeval: JacobianEval,
     jac_valid: bool,
     jac_age: usize,
     /// The state the iteration matrix was evaluated at (for the problem's frame
@@ -106,7 +106,6 @@ pub struct Bdf<'a, P: DaeProblem + ?Sized> {
     t_built: f64,
     /// Whether the problem's frame transport is used.
     transport: bool,
-    analytic_ok: bool,
     /// Event location.
     roots: Roots,
     stats: Stats,
@@ -126,6 +125,14 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
     ) -> Result<Self, SolverError> {
         let n = prob.size();
         opts.validate(n)?;
+        if opts.method == Method::Radau5 {
+            return Err(SolverError::InvalidSettings {
+                field: "method".into(),
+                why: "radau5 is not a BDF variant; integrate through `Integrator`, which \
+                      chooses by the method"
+                    .into(),
+            });
+        }
         if y0.len() != n || yp0.len() != n {
             return Err(SolverError::SizeMismatch {
                 what: format!(
@@ -227,15 +234,13 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
             scratch: vec![0.0; n],
             backup_psi: [0.0; MAXORD + 2],
             jac,
-            jac_entries: Vec::new(),
-            jac_yp_entries: Vec::new(),
+            jeval: JacobianEval::new(analytic_ok),
             jac_valid: false,
             jac_age: 0,
             y_built: vec![0.0; n],
             yp_built: vec![0.0; n],
             t_built: t0,
             transport: opts.matrix_transport && prob.has_transport(),
-            analytic_ok,
             roots: Roots::default(),
             stats: Stats::default(),
             limiter_counts: vec![0; n],
@@ -604,7 +609,8 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
         }
         self.ns = (self.ns + 1).min(self.kused + 2);
         match self.opts.method {
-            Method::Variable => {
+            // (`new` refuses Radau5.)
+            Method::Variable | Method::Radau5 => {
                 if kk + 1 >= self.ns {
                     self.beta[0] = 1.0;
                     self.alpha[0] = 1.0;

@@ -225,37 +225,6 @@ impl NewtonMatrix {
         (!self.base.is_empty()).then_some((self.base.as_slice(), self.base_cj, yp))
     }
 
-    /// out = dF/dy' x with the kept dF/dy' (zero when it is not known).
-    pub fn mul_yp(&self, x: &[f64], out: &mut [f64]) {
-        out.fill(0.0);
-        let Some(yp) = self.yp_part.as_deref() else {
-            return;
-        };
-        let n = self.n;
-        match &self.storage {
-            Storage::Dense { .. } => {
-                for c in 0..n {
-                    let xc = x[c];
-                    if xc != 0.0 {
-                        for (o, a) in out.iter_mut().zip(&yp[c * n..(c + 1) * n]) {
-                            *o += a * xc;
-                        }
-                    }
-                }
-            }
-            Storage::Sparse { .. } => {
-                for c in 0..n {
-                    let xc = x[c];
-                    if xc != 0.0 {
-                        for k in self.col_ptr[c]..self.col_ptr[c + 1] {
-                            out[self.row_idx[k]] += yp[k] * xc;
-                        }
-                    }
-                }
-            }
-        }
-    }
-
     /// Column-major structure (column pointers, row indices).
     pub(crate) fn structure(&self) -> (&[usize], &[usize]) {
         (&self.col_ptr, &self.row_idx)

@@ -284,7 +284,7 @@ impl<O: StiffOde> DaeProblem for OdeAsDae<O> {
             jac.add(r, c, -v);
         }
         for i in 0..self.0.dim() {
-            jac.add(i, i, cj);
+            jac.add_scaled(i, i, cj, 1.0);
         }
         true
     }
