@@ -52,6 +52,7 @@ pub mod andrews;
 pub mod caraxis;
 pub mod ggl_forms;
 pub mod hires;
+pub mod radau5_runs;
 pub mod rober;
 pub mod runner;
 pub mod vdpol;
