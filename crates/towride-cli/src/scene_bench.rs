@@ -1,6 +1,8 @@
 //! `towride bench SCENE`: work-precision study of a scene (a tight-tolerance reference,
-//! then a tolerance range for each BDF variant: wall time, steps, Jacobians and the errors
-//! of the key outputs against the reference), CSV and a log-log plot.
+//! then a tolerance range for each method, the BDF variants and Radau IIA: wall time,
+//! steps, Jacobians and the errors of the key outputs against the reference), CSV and a
+//! log-log plot; the methods' cost at equal hitch-peak error; their step-size and order
+//! histories at the scene's own tolerance.
 
 use std::path::{Path, PathBuf};
 
@@ -9,7 +11,9 @@ use rayon::prelude::*;
 use serde::Serialize;
 use serde_json::json;
 
+use crate::MethodArg;
 use towride::report::plot::{loglog_panels, Panel, Series};
+use towride::report::steps::{step_history_plot, StepHistory};
 use towride::scene::exec::{rel_rms, run, SceneRun};
 use towride::scene::Overrides;
 use towride::validate::filter::Butterworth;
@@ -26,6 +30,13 @@ pub struct BenchSceneArgs {
     /// Relative tolerance of the reference run.
     #[arg(long, default_value_t = 1e-6)]
     pub reference_tol: f64,
+    /// Methods compared.
+    #[arg(long, value_enum, value_delimiter = ',', default_values = ["variable", "fixed", "radau"])]
+    pub methods: Vec<MethodArg>,
+    /// Hitch-peak errors at which the methods' cost is compared (the fastest run of each
+    /// method whose error is at most this).
+    #[arg(long, value_delimiter = ',', default_values_t = vec![1e-2, 2e-3])]
+    pub equal_error: Vec<f64>,
     /// Band of the in-band sensor error [Hz]: the acquisition low-pass of the
     /// measurements (`cutoff_hz` in `measurements/`), a 4th-order Butterworth.
     #[arg(long, default_value_t = 100.0)]
@@ -142,11 +153,16 @@ impl Reference {
     }
 }
 
-fn point(method: Method, rtol: f64, r: &Result<SceneRun, String>, reference: &Reference) -> Point {
-    let name = match method {
+fn method_name(method: Method) -> &'static str {
+    match method {
         Method::Variable => "variable",
         Method::FixedCoefficient => "fixed",
-    };
+        Method::Radau5 => "radau",
+    }
+}
+
+fn point(method: Method, rtol: f64, r: &Result<SceneRun, String>, reference: &Reference) -> Point {
+    let name = method_name(method);
     match r {
         Ok(r) if r.result.error.is_none() => {
             let (peak, pe, he, se) = reference.errors(r);
@@ -210,9 +226,10 @@ pub fn run_bench(a: &BenchSceneArgs) -> Result<i32, String> {
         return Err(format!("reference run failed at t = {t:.4} s: {e}"));
     }
     let refdata = Reference::of(&reference).with_band(a.band_hz, reference.scene.sample_rate)?;
-    let cases: Vec<(Method, f64)> = [Method::Variable, Method::FixedCoefficient]
-        .into_iter()
-        .flat_map(|m| a.tol.iter().map(move |&t| (m, t)))
+    let methods: Vec<Method> = a.methods.iter().map(|&m| m.into()).collect();
+    let cases: Vec<(Method, f64)> = methods
+        .iter()
+        .flat_map(|&m| a.tol.iter().map(move |&t| (m, t)))
         .collect();
     let pb = crate::progress(cases.len() as u64, a.json);
     let pool = rayon::ThreadPoolBuilder::new()
@@ -238,7 +255,9 @@ pub fn run_bench(a: &BenchSceneArgs) -> Result<i32, String> {
     pb.finish_and_clear();
     std::fs::create_dir_all(&a.out).map_err(|e| format!("{}: {e}", a.out.display()))?;
     write_csv(&a.out.join("bench.csv"), &points)?;
-    plot(&a.out.join("bench.png"), &points)?;
+    plot(&a.out.join("bench.png"), &points, &methods)?;
+    let equal = at_equal_error(&points, &methods, &a.equal_error);
+    let histories = step_histories(scene, &methods, &a.out)?;
     let summary = json!({
         "scene": scene.display().to_string(),
         "duration_s": reference.scene.duration,
@@ -251,8 +270,11 @@ pub fn run_bench(a: &BenchSceneArgs) -> Result<i32, String> {
             "hitch_peak_n": reference.peak("hitch_fx"),
         },
         "runs": points,
+        "at_equal_peak_error": equal,
+        "step_histories": histories,
         "csv": a.out.join("bench.csv").display().to_string(),
         "plot": a.out.join("bench.png").display().to_string(),
+        "step_plot": a.out.join("steps.png").display().to_string(),
     });
     let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
     std::fs::write(a.out.join("bench.json"), &text).map_err(|e| e.to_string())?;
@@ -287,8 +309,34 @@ pub fn run_bench(a: &BenchSceneArgs) -> Result<i32, String> {
                 }
             );
         }
+        println!("at equal hitch-peak error (the fastest run of each method within it):");
+        for e in &equal {
+            println!(
+                "  {:<8} peak error <= {:>7.1e}: {}",
+                e.method,
+                e.target,
+                match e.rtol {
+                    Some(rtol) => format!(
+                        "rtol {rtol:.0e}, {:.3} s, {:.1} x real time, {} steps, peak error {:.2e}",
+                        e.wall_s, e.realtime_factor, e.steps, e.peak_error
+                    ),
+                    None => "no run of the study".into(),
+                }
+            );
+        }
+        println!("step histories at the scene's tolerance:");
+        for h in &histories {
+            println!(
+                "  {:<8} {:>6} steps, mean {:.3} ms, {:.3} s wall, step limiters: {}",
+                h.method,
+                h.steps,
+                1e3 * h.mean_step_s,
+                h.wall_s,
+                h.limiters.join(", ")
+            );
+        }
         println!(
-            "wrote {}, bench.csv and bench.png",
+            "wrote {}, bench.csv, bench.png, steps.csv and steps.png",
             a.out.join("bench.json").display()
         );
     }
@@ -338,8 +386,118 @@ fn write_csv(path: &Path, points: &[Point]) -> Result<(), String> {
     w.flush().map_err(|e| e.to_string())
 }
 
+/// A method's cheapest run at or below a hitch-peak error.
+#[derive(Clone, Debug, Serialize)]
+pub struct AtError {
+    pub method: &'static str,
+    pub target: f64,
+    /// The run's rtol (None: no run of the study reached the target).
+    pub rtol: Option<f64>,
+    pub wall_s: f64,
+    pub realtime_factor: f64,
+    pub steps: usize,
+    pub peak_error: f64,
+}
+
+/// For each method and target, the fastest completed run whose hitch-peak error is at
+/// most the target: cost at equal accuracy, without interpolating between tolerances
+/// (the peak error is not monotone in rtol).
+fn at_equal_error(points: &[Point], methods: &[Method], targets: &[f64]) -> Vec<AtError> {
+    let mut out = Vec::new();
+    for &target in targets {
+        for &m in methods {
+            let name = method_name(m);
+            let best = points
+                .iter()
+                .filter(|p| p.method == name && p.status == "completed")
+                .filter(|p| p.hitch_peak_error <= target)
+                .min_by(|a, b| a.wall_s.total_cmp(&b.wall_s));
+            out.push(AtError {
+                method: name,
+                target,
+                rtol: best.map(|p| p.rtol),
+                wall_s: best.map_or(f64::NAN, |p| p.wall_s),
+                realtime_factor: best.map_or(f64::NAN, |p| p.realtime_factor),
+                steps: best.map_or(0, |p| p.steps),
+                peak_error: best.map_or(f64::NAN, |p| p.hitch_peak_error),
+            });
+        }
+    }
+    out
+}
+
+/// One method's run at the scene's tolerance with its steps recorded.
+#[derive(Clone, Debug, Serialize)]
+pub struct HistorySummary {
+    pub method: &'static str,
+    pub steps: usize,
+    pub mean_step_s: f64,
+    pub wall_s: f64,
+    pub limiters: Vec<String>,
+}
+
+/// Runs each method at the scene's own settings with the step history recorded; writes
+/// steps.csv (method, t, h, order) and steps.png (step size and order against time).
+fn step_histories(
+    scene: &Path,
+    methods: &[Method],
+    out: &Path,
+) -> Result<Vec<HistorySummary>, String> {
+    let mut hist = Vec::new();
+    let mut summary = Vec::new();
+    for &m in methods {
+        let r = run(scene, &[], &Overrides::default(), &|o| {
+            o.method = m;
+            o.record_steps = true;
+        })?;
+        if let Some((e, t)) = &r.result.error {
+            return Err(format!(
+                "{} run failed at t = {t:.4} s: {e}",
+                method_name(m)
+            ));
+        }
+        let st = &r.result.stats;
+        summary.push(HistorySummary {
+            method: method_name(m),
+            steps: st.steps,
+            mean_step_s: r.scene.duration / st.steps.max(1) as f64,
+            wall_s: r.wall_s,
+            limiters: st
+                .step_limiters
+                .iter()
+                .map(|(n, k)| format!("{n} ({k})"))
+                .collect(),
+        });
+        hist.push(StepHistory {
+            label: match m {
+                Method::Radau5 => "Radau IIA (order 5)".into(),
+                _ => format!("BDF {}-coefficient", method_name(m)),
+            },
+            steps: st.step_history.clone(),
+        });
+    }
+    let path = out.join("steps.csv");
+    let mut w = csv::Writer::from_path(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+    w.write_record(["method", "t [s]", "h [s]", "order"])
+        .map_err(|e| e.to_string())?;
+    for (s, h) in summary.iter().zip(&hist) {
+        for &(t, dt, k) in &h.steps {
+            w.write_record([
+                s.method.to_string(),
+                format!("{t:.9e}"),
+                format!("{dt:.6e}"),
+                k.to_string(),
+            ])
+            .map_err(|e| e.to_string())?;
+        }
+    }
+    w.flush().map_err(|e| e.to_string())?;
+    step_history_plot(&out.join("steps.png"), &hist)?;
+    Ok(summary)
+}
+
 /// Wall time against each error measure, one curve per method.
-fn plot(path: &Path, points: &[Point]) -> Result<(), String> {
+fn plot(path: &Path, points: &[Point], methods: &[Method]) -> Result<(), String> {
     type Measure = (&'static str, fn(&Point) -> f64);
     let measures: [Measure; 4] = [
         ("hitch-force peak error", |p| p.hitch_peak_error),
@@ -353,13 +511,16 @@ fn plot(path: &Path, points: &[Point]) -> Result<(), String> {
             title: (*title).into(),
             x_label: "relative error".into(),
             y_label: "wall time [s]".into(),
-            series: ["variable", "fixed"]
+            series: methods
                 .iter()
-                .map(|m| Series {
-                    label: format!("BDF {m}-coefficient"),
+                .map(|&m| Series {
+                    label: match m {
+                        Method::Radau5 => "Radau IIA".into(),
+                        _ => format!("BDF {}-coefficient", method_name(m)),
+                    },
                     points: points
                         .iter()
-                        .filter(|p| p.method == *m && p.status == "completed")
+                        .filter(|p| p.method == method_name(m) && p.status == "completed")
                         .map(|p| (f(p).max(1e-12), p.wall_s))
                         .collect(),
                 })

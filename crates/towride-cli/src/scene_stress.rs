@@ -27,6 +27,10 @@ pub struct StressArgs {
     /// Only the cases whose group contains this text.
     #[arg(long)]
     pub only: Option<String>,
+    /// Integration method of the cases (default: the scene's); the reference keeps the
+    /// scene's.
+    #[arg(long, value_enum)]
+    pub method: Option<crate::MethodArg>,
     #[arg(long, default_value = "out/stress")]
     pub out: PathBuf,
     #[arg(long)]
@@ -200,6 +204,9 @@ pub fn run_stress(a: &StressArgs) -> Result<i32, String> {
         all.par_iter()
             .map(|c| {
                 let tune = |o: &mut SolverOptions| {
+                    if let Some(m) = a.method {
+                        o.method = m.into();
+                    }
                     if let Some(r) = c.rtol {
                         o.rtol = r;
                     }

@@ -152,6 +152,11 @@ impl<T: LuScalar> SparseLu<T> {
         self.factored
     }
 
+    /// Non-zeros of L + U (diagonal included) of the kept factorisation.
+    pub fn nnz(&self) -> usize {
+        self.li.len() + self.ui.len() + self.n
+    }
+
     /// Factorises A (CSC: `col_ptr`, `row_idx`, `val`) with threshold partial pivoting,
     /// preferring the diagonal entry of the column (row `q[k]` for pivot column k).
     pub fn factor(

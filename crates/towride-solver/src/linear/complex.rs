@@ -162,6 +162,14 @@ impl ComplexMatrix {
         }
     }
 
+    /// Non-zeros of the sparse LU factors (L + U), once factorised; `None` on the dense path.
+    pub fn lu_nnz(&self) -> Option<usize> {
+        match &self.storage {
+            Storage::Sparse { lu, factored, .. } => factored.then(|| lu.nnz()),
+            Storage::Dense { .. } => None,
+        }
+    }
+
     /// Solves (J_y + shift J_y') (x_re + i x_im) = b_re + i b_im in place.
     pub fn solve(&mut self, re: &mut [f64], im: &mut [f64]) -> Result<(), Singular> {
         let n = self.n;

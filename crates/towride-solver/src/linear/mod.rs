@@ -238,6 +238,14 @@ impl NewtonMatrix {
         self.row_idx.len()
     }
 
+    /// Non-zeros of the sparse LU factors (L + U), once factorised; `None` on the dense path.
+    pub fn lu_nnz(&self) -> Option<usize> {
+        match &self.storage {
+            Storage::Sparse { lu, factored, .. } => factored.then(|| lu.nnz()),
+            Storage::Dense { .. } => None,
+        }
+    }
+
     /// Rows of column `c` in the structure.
     pub fn column_rows(&self, c: usize) -> &[usize] {
         &self.row_idx[self.col_ptr[c]..self.col_ptr[c + 1]]

@@ -33,7 +33,7 @@ use crate::Advance;
 mod control;
 mod dense;
 mod newton;
-pub(crate) mod tableau;
+pub mod tableau;
 
 const UROUND: f64 = f64::EPSILON;
 /// Largest fraction of tstop's magnitude, in rounding units, by which the end of a step

@@ -2,3 +2,4 @@
 
 pub mod lineplot;
 pub mod plot;
+pub mod steps;
