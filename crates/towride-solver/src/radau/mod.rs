@@ -104,6 +104,8 @@ pub struct Radau5<'a, P: DaeProblem + ?Sized> {
     h_factored: f64,
     /// The state the Jacobian was evaluated at (for the frame transport).
     y_built: Vec<f64>,
+    /// The middle stage's state, to which a Newton solve carries the matrix.
+    y_mid: Vec<f64>,
     transport: bool,
     // Step control.
     /// RADAU5's FACCON: theta/(1 - theta) of the last Newton iteration, carried over.
@@ -219,6 +221,7 @@ impl<'a, P: DaeProblem + ?Sized> Radau5<'a, P> {
             jac_fresh: false,
             h_factored: 0.0,
             y_built: zero(),
+            y_mid: zero(),
             transport: opts.matrix_transport && prob.has_transport(),
             faccon: 1.0,
             theta: 0.0,
