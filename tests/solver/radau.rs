@@ -300,6 +300,16 @@ fn statistics_count_both_factorisations_and_the_bdf_refuses_the_method() {
     // Three stage residuals per Newton iteration and one per error estimate.
     assert!(st.residual_evals >= 3 * st.newton_iterations + st.steps);
     assert_eq!(st.order_counts[4], st.steps);
+    // Every factorisation pair has one recorded reason; those on a kept Jacobian are
+    // recombinations.
+    let why = &st.matrix_rebuilds;
+    assert_eq!(
+        why.invalid + why.step_change + why.convergence + why.age,
+        st.lu_factorizations,
+        "{why:?}"
+    );
+    assert_eq!(why.step_change, st.matrix_recombinations);
+    assert!(why.invalid >= 1 && why.step_change > 0, "{why:?}");
     let p = ProtheroRobinson { lambda: -1.0 };
     assert!(matches!(
         Bdf::new(&p, 0.0, &[0.0], &[1.0], radau(1e-6, 1e-6)),

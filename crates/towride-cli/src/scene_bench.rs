@@ -37,6 +37,9 @@ pub struct BenchSceneArgs {
     /// method whose error is at most this).
     #[arg(long, value_delimiter = ',', default_values_t = vec![1e-2, 2e-3])]
     pub equal_error: Vec<f64>,
+    /// The same for the sensors' in-band error.
+    #[arg(long, value_delimiter = ',', default_values_t = vec![2e-2, 1e-2])]
+    pub equal_band_error: Vec<f64>,
     /// Band of the in-band sensor error [Hz]: the acquisition low-pass of the
     /// measurements (`cutoff_hz` in `measurements/`), a 4th-order Butterworth.
     #[arg(long, default_value_t = 100.0)]
@@ -256,7 +259,13 @@ pub fn run_bench(a: &BenchSceneArgs) -> Result<i32, String> {
     std::fs::create_dir_all(&a.out).map_err(|e| format!("{}: {e}", a.out.display()))?;
     write_csv(&a.out.join("bench.csv"), &points)?;
     plot(&a.out.join("bench.png"), &points, &methods)?;
-    let equal = at_equal_error(&points, &methods, &a.equal_error);
+    let mut equal = at_equal_error(&points, &methods, &a.equal_error, Measure::HitchPeak);
+    equal.extend(at_equal_error(
+        &points,
+        &methods,
+        &a.equal_band_error,
+        Measure::SensorBand,
+    ));
     let histories = step_histories(scene, &methods, &a.out)?;
     let summary = json!({
         "scene": scene.display().to_string(),
@@ -270,7 +279,7 @@ pub fn run_bench(a: &BenchSceneArgs) -> Result<i32, String> {
             "hitch_peak_n": reference.peak("hitch_fx"),
         },
         "runs": points,
-        "at_equal_peak_error": equal,
+        "at_equal_error": equal,
         "step_histories": histories,
         "csv": a.out.join("bench.csv").display().to_string(),
         "plot": a.out.join("bench.png").display().to_string(),
@@ -309,16 +318,17 @@ pub fn run_bench(a: &BenchSceneArgs) -> Result<i32, String> {
                 }
             );
         }
-        println!("at equal hitch-peak error (the fastest run of each method within it):");
+        println!("at equal error (the fastest run of each method within it):");
         for e in &equal {
             println!(
-                "  {:<8} peak error <= {:>7.1e}: {}",
+                "  {:<8} {} <= {:>7.1e}: {}",
                 e.method,
+                e.measure,
                 e.target,
                 match e.rtol {
                     Some(rtol) => format!(
-                        "rtol {rtol:.0e}, {:.3} s, {:.1} x real time, {} steps, peak error {:.2e}",
-                        e.wall_s, e.realtime_factor, e.steps, e.peak_error
+                        "rtol {rtol:.0e}, {:.3} s, {:.1} x real time, {} steps, error {:.2e}",
+                        e.wall_s, e.realtime_factor, e.steps, e.error
                     ),
                     None => "no run of the study".into(),
                 }
@@ -386,23 +396,52 @@ fn write_csv(path: &Path, points: &[Point]) -> Result<(), String> {
     w.flush().map_err(|e| e.to_string())
 }
 
-/// A method's cheapest run at or below a hitch-peak error.
+/// The error measure a cost comparison is made at.
+#[derive(Clone, Copy, Debug)]
+enum Measure {
+    HitchPeak,
+    SensorBand,
+}
+
+impl Measure {
+    fn name(self) -> &'static str {
+        match self {
+            Measure::HitchPeak => "hitch-peak error",
+            Measure::SensorBand => "sensor in-band error",
+        }
+    }
+
+    fn of(self, p: &Point) -> f64 {
+        match self {
+            Measure::HitchPeak => p.hitch_peak_error,
+            Measure::SensorBand => p.sensor_band_error,
+        }
+    }
+}
+
+/// A method's cheapest run at or below an error.
 #[derive(Clone, Debug, Serialize)]
 pub struct AtError {
     pub method: &'static str,
+    pub measure: &'static str,
     pub target: f64,
     /// The run's rtol (None: no run of the study reached the target).
     pub rtol: Option<f64>,
     pub wall_s: f64,
     pub realtime_factor: f64,
     pub steps: usize,
-    pub peak_error: f64,
+    pub error: f64,
 }
 
-/// For each method and target, the fastest completed run whose hitch-peak error is at
-/// most the target: cost at equal accuracy, without interpolating between tolerances
-/// (the peak error is not monotone in rtol).
-fn at_equal_error(points: &[Point], methods: &[Method], targets: &[f64]) -> Vec<AtError> {
+/// For each method and target, the fastest completed run whose error is at most the
+/// target: cost at equal accuracy, without interpolating between tolerances (the errors
+/// are not monotone in rtol).
+fn at_equal_error(
+    points: &[Point],
+    methods: &[Method],
+    targets: &[f64],
+    measure: Measure,
+) -> Vec<AtError> {
     let mut out = Vec::new();
     for &target in targets {
         for &m in methods {
@@ -410,16 +449,17 @@ fn at_equal_error(points: &[Point], methods: &[Method], targets: &[f64]) -> Vec<
             let best = points
                 .iter()
                 .filter(|p| p.method == name && p.status == "completed")
-                .filter(|p| p.hitch_peak_error <= target)
+                .filter(|p| measure.of(p) <= target)
                 .min_by(|a, b| a.wall_s.total_cmp(&b.wall_s));
             out.push(AtError {
                 method: name,
+                measure: measure.name(),
                 target,
                 rtol: best.map(|p| p.rtol),
                 wall_s: best.map_or(f64::NAN, |p| p.wall_s),
                 realtime_factor: best.map_or(f64::NAN, |p| p.realtime_factor),
                 steps: best.map_or(0, |p| p.steps),
-                peak_error: best.map_or(f64::NAN, |p| p.hitch_peak_error),
+                error: best.map_or(f64::NAN, |p| measure.of(p)),
             });
         }
     }

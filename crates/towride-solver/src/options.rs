@@ -374,7 +374,11 @@ pub struct Stats {
 }
 
 /// Reasons for rebuilding (and refactorising) the Newton iteration matrix (IDA's rules);
-/// they add up to the LU factorisations.
+/// they add up to the LU factorisations. Radau IIA counts its pairs of factorisations the
+/// same way: `invalid` the first step and evaluations after a failed error test,
+/// `convergence` evaluations after a Newton failure or a contraction above
+/// `RadauOptions::jacobian_theta` on a kept Jacobian, `step_change` a kept Jacobian
+/// refactorised for a new step (also counted in `matrix_recombinations`).
 #[derive(Clone, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct MatrixRebuilds {

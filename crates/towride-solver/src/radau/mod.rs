@@ -100,6 +100,9 @@ pub struct Radau5<'a, P: DaeProblem + ?Sized> {
     jac_valid: bool,
     /// It was evaluated for the step being attempted (RADAU5's CALJAC).
     jac_fresh: bool,
+    /// Why the next evaluation happens (for `Stats::matrix_rebuilds`): the first step or a
+    /// failed error test (`invalid`), else slow or failed Newton (`convergence`).
+    slow_newton: bool,
     /// The step the factorisations were made for (0: none).
     h_factored: f64,
     /// The state the Jacobian was evaluated at (for the frame transport).
@@ -219,6 +222,7 @@ impl<'a, P: DaeProblem + ?Sized> Radau5<'a, P> {
             jeval: JacobianEval::new(opts.jacobian == JacobianSource::Auto),
             jac_valid: false,
             jac_fresh: false,
+            slow_newton: false,
             h_factored: 0.0,
             y_built: zero(),
             y_mid: zero(),
@@ -409,6 +413,7 @@ impl<'a, P: DaeProblem + ?Sized> Radau5<'a, P> {
             };
             if !self.jac_fresh {
                 self.jac_valid = false;
+                self.slow_newton = false;
             }
         }
     }
@@ -461,6 +466,7 @@ impl<'a, P: DaeProblem + ?Sized> Radau5<'a, P> {
         }
         if !keep_jacobian {
             self.jac_valid = false;
+            self.slow_newton = true;
         }
     }
 

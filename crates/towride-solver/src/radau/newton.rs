@@ -39,7 +39,8 @@ impl<P: DaeProblem + ?Sized> Radau5<'_, P> {
     /// Evaluates the Jacobian when none is kept and factorises both iteration matrices
     /// for the current step when they were made for another (RADAU5, labels 10 and 20).
     pub(super) fn prepare_matrices(&mut self) -> Result<(), NewtonFail> {
-        if !self.jac_valid {
+        let evaluated = !self.jac_valid;
+        if evaluated {
             let cj = GAMMA / self.h;
             self.jeval
                 .eval(
@@ -84,6 +85,16 @@ impl<P: DaeProblem + ?Sized> Radau5<'_, P> {
         }
         if self.h_factored != self.h {
             self.h_factored = 0.0;
+            let why = &mut self.stats.matrix_rebuilds;
+            if !evaluated {
+                // A kept Jacobian for a new step: J_y + s J_y' recombined from its parts.
+                why.step_change += 1;
+                self.stats.matrix_recombinations += 1;
+            } else if self.slow_newton {
+                why.convergence += 1;
+            } else {
+                why.invalid += 1;
+            }
             let equilibrate = self.opts.scale_newton_matrix;
             self.jac.recombine(GAMMA / self.h);
             self.stats.lu_factorizations += 1;
@@ -305,6 +316,7 @@ impl<P: DaeProblem + ?Sized> Radau5<'_, P> {
         }
         if !self.jac_fresh {
             self.jac_valid = false;
+            self.slow_newton = true;
         }
         // A singular factorisation leaves no usable factors.
         if let NewtonFail::Singular(_) = fail {

@@ -24,6 +24,16 @@ pub fn step_history_plot(path: &Path, runs: &[StepHistory]) -> Result<(), String
     }
 }
 
+/// Distinct, well-visible colours for the runs (red, green, blue, then plotters' palette).
+fn colour(i: usize) -> RGBAColor {
+    match i {
+        0 => RGBColor(200, 30, 60).to_rgba(),
+        1 => RGBColor(40, 150, 60).to_rgba(),
+        2 => RGBColor(30, 80, 210).to_rgba(),
+        _ => Palette99::pick(i).to_rgba(),
+    }
+}
+
 fn draw<DB: DrawingBackend>(
     root: &DrawingArea<DB, plotters::coord::Shift>,
     runs: &[StepHistory],
@@ -61,7 +71,7 @@ fn draw<DB: DrawingBackend>(
         .draw()
         .map_err(|x| e(&x))?;
     for (i, r) in runs.iter().enumerate() {
-        let colour = Palette99::pick(i).to_rgba();
+        let colour = colour(i);
         chart
             .draw_series(
                 r.steps
@@ -98,7 +108,7 @@ fn draw<DB: DrawingBackend>(
         .draw()
         .map_err(|x| e(&x))?;
     for (i, r) in runs.iter().enumerate() {
-        let colour = Palette99::pick(i).to_rgba();
+        let colour = colour(i);
         // Each run's orders drawn a little apart so that equal orders stay visible.
         let dy = 0.08 * i as f64;
         chart
