@@ -10,7 +10,9 @@ use crate::radau::Radau5;
 
 /// An integrator bound to one problem.
 pub enum Integrator<'a, P: DaeProblem + ?Sized> {
+    /// The BDF (`variable` or `fixed-coefficient`).
     Bdf(Box<Bdf<'a, P>>),
+    /// Radau IIA (`radau5`).
     Radau5(Box<Radau5<'a, P>>),
 }
 
@@ -64,6 +66,7 @@ impl<'a, P: DaeProblem + ?Sized> Integrator<'a, P> {
         }
     }
 
+    /// Counters of the integration so far.
     pub fn stats(&self) -> &Stats {
         match self {
             Integrator::Bdf(b) => b.stats(),

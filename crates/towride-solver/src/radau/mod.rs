@@ -255,10 +255,12 @@ impl<'a, P: DaeProblem + ?Sized> Radau5<'a, P> {
         self.t
     }
 
+    /// Counters of the integration so far.
     pub fn stats(&self) -> &Stats {
         &self.stats
     }
 
+    /// The settings the integrator runs with.
     pub fn options(&self) -> &SolverOptions {
         &self.opts
     }

@@ -7,9 +7,11 @@
 
 const SQ6: f64 = 2.449_489_742_783_178;
 
-/// Collocation nodes c1, c2 (c3 = 1).
+/// The first collocation node, c1 = (4 - sqrt 6)/10.
 pub const C1: f64 = (4.0 - SQ6) / 10.0;
+/// The second collocation node, c2 = (4 + sqrt 6)/10.
 pub const C2: f64 = (4.0 + SQ6) / 10.0;
+/// The collocation nodes (c3 = 1: the method is stiffly accurate).
 pub const C: [f64; 3] = [C1, C2, 1.0];
 
 /// The Runge-Kutta matrix A (Hairer & Wanner II, table IV.5.6).
@@ -30,7 +32,9 @@ pub const A: [[f64; 3]; 3] = [
 /// Eigenvalues of A^-1: gamma (real) and alpha +- i beta (RADAU5's U1 and ALPH, BETA
 /// after their inversion), from the closed forms with 81^(1/3) and 9^(1/3).
 pub const GAMMA: f64 = 3.637_834_252_744_496;
+/// Real part of the complex eigenvalue pair of A^-1.
 pub const ALPHA: f64 = 2.681_082_873_627_752;
+/// Imaginary part of the complex eigenvalue pair of A^-1.
 pub const BETA: f64 = 3.050_430_199_247_411;
 
 /// T with T^-1 A^-1 T = [[gamma, 0, 0], [0, alpha, -beta], [0, beta, alpha]] (RADAU5's

@@ -10,14 +10,21 @@ const DATA: &str = include_str!("../../../../docs/data/radau5_testset.csv");
 /// One RADAU5 run.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Radau5Run {
+    /// The benchmark's name ("caraxis", ...).
     pub problem: String,
+    /// Relative and absolute tolerance of the run (the first step was rtol).
     pub rtol: f64,
+    /// Absolute tolerance of the run.
     pub atol: f64,
-    /// Step attempts (NSTEP), accepted steps (NACCPT), error-test rejections (NREJCT).
+    /// Step attempts (NSTEP).
     pub steps: usize,
+    /// Accepted steps (NACCPT).
     pub accepted: usize,
+    /// Error-test rejections after the first accepted step (NREJCT).
     pub rejected: usize,
+    /// Evaluations of f (NFCN).
     pub f_evals: usize,
+    /// Jacobian evaluations (NJAC).
     pub jac_evals: usize,
     /// LU decompositions, each one real and one complex (NDEC).
     pub lu_decompositions: usize,

@@ -9,7 +9,9 @@ use super::plot::register_font;
 
 /// One integrator's accepted steps: (end time [s], step [s], order).
 pub struct StepHistory {
+    /// The integrator's name in the legend.
     pub label: String,
+    /// (end time [s], step [s], order) of each accepted step.
     pub steps: Vec<(f64, f64, usize)>,
 }
 
