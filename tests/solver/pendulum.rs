@@ -9,11 +9,11 @@ use towride_solver::{
 const G: f64 = 9.81;
 const L: f64 = 1.0;
 /// 4 sqrt(L/g) K(1/sqrt 2) for L = 1 m, g = 9.81 m/s^2 (complete elliptic integral).
-const PERIOD: f64 = 2.3678419475762;
+pub(crate) const PERIOD: f64 = 2.3678419475762;
 
 /// Planar pendulum, unit mass: unknowns x, y, u, v, lambda.
-struct Pendulum {
-    analytic: bool,
+pub(crate) struct Pendulum {
+    pub(crate) analytic: bool,
 }
 
 impl DaeProblem for Pendulum {
@@ -129,7 +129,7 @@ fn ggl_pendulum_is_accurate_at_every_setting() {
     }
 }
 
-fn start() -> (Vec<f64>, Vec<f64>) {
+pub(crate) fn start() -> (Vec<f64>, Vec<f64>) {
     (vec![L, 0.0, 0.0, 0.0, 0.0], vec![0.0, 0.0, 0.0, -G, 0.0])
 }
 

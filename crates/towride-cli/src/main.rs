@@ -74,6 +74,8 @@ enum BenchCommand {
 pub(crate) enum MethodArg {
     Variable,
     Fixed,
+    /// Radau IIA of order 5 (RADAU5).
+    Radau,
 }
 
 impl From<MethodArg> for Method {
@@ -81,6 +83,7 @@ impl From<MethodArg> for Method {
         match m {
             MethodArg::Variable => Method::Variable,
             MethodArg::Fixed => Method::FixedCoefficient,
+            MethodArg::Radau => Method::Radau5,
         }
     }
 }

@@ -20,6 +20,16 @@ pub struct BenchSceneArgs {
     /// Relative tolerance of the reference run.
     #[arg(long, default_value_t = 1e-6)]
     pub reference_tol: f64,
+    /// Methods compared.
+    #[arg(long, value_enum, value_delimiter = ',', default_values = ["variable", "fixed", "radau"])]
+    pub methods: Vec<crate::MethodArg>,
+    /// Hitch-peak errors at which the methods' cost is compared (the fastest run of each
+    /// method whose error is at most this).
+    #[arg(long, value_delimiter = ',', default_values_t = vec![1e-2, 2e-3])]
+    pub equal_error: Vec<f64>,
+    /// The same for the sensors' in-band error.
+    #[arg(long, value_delimiter = ',', default_values_t = vec![2e-2, 1e-2])]
+    pub equal_band_error: Vec<f64>,
     /// Band of the in-band sensor error [Hz]: the acquisition low-pass of the
     /// measurements (`cutoff_hz` in `measurements/`), a 4th-order Butterworth.
     #[arg(long, default_value_t = 100.0)]
@@ -46,7 +56,9 @@ pub fn run_bench(a: &BenchSceneArgs) -> CliResult {
         band_hz: a.band_hz,
         jobs: a.jobs,
         repeat: a.repeat,
-        ..Settings::default()
+        methods: a.methods.iter().map(|&m| m.into()).collect(),
+        equal_error: a.equal_error.clone(),
+        equal_band_error: a.equal_band_error.clone(),
     };
     let pb = crate::progress(0, a.json);
     let mut b = bench::run(scene, &settings, &pb)?;
@@ -82,7 +94,37 @@ pub fn run_bench(a: &BenchSceneArgs) -> CliResult {
                 }
             );
         }
-        println!("wrote {}, bench.csv and bench.png", json.display());
+        println!("at equal error (the fastest run of each method within it):");
+        for e in &b.at_equal_error {
+            println!(
+                "  {:<8} {} <= {:>7.1e}: {}",
+                e.method,
+                e.measure,
+                e.target,
+                match e.rtol {
+                    Some(rtol) => format!(
+                        "rtol {rtol:.0e}, {:.3} s, {:.1} x real time, {} steps, error {:.2e}",
+                        e.wall_s, e.realtime_factor, e.steps, e.error
+                    ),
+                    None => "no run of the study".into(),
+                }
+            );
+        }
+        println!("step histories at the scene's tolerance:");
+        for h in &b.step_histories {
+            println!(
+                "  {:<8} {:>6} steps, mean {:.3} ms, {:.3} s wall, step limiters: {}",
+                h.method,
+                h.steps,
+                1e3 * h.mean_step_s,
+                h.wall_s,
+                h.limiters.join(", ")
+            );
+        }
+        println!(
+            "wrote {}, bench.csv, bench.png, steps.csv and steps.png",
+            json.display()
+        );
     }
     Ok(if b.all_completed() { 0 } else { 1 })
 }

@@ -19,6 +19,10 @@ pub struct StressArgs {
     /// Only the cases whose group contains this text.
     #[arg(long)]
     pub only: Option<String>,
+    /// Integration method of the cases (default: the scene's); the reference keeps the
+    /// scene's.
+    #[arg(long, value_enum)]
+    pub method: Option<crate::MethodArg>,
     #[arg(long, default_value = "out/stress")]
     pub out: PathBuf,
     #[arg(long)]
@@ -30,7 +34,13 @@ pub fn run_stress(a: &StressArgs) -> CliResult {
         .jobs
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
     let pb = crate::progress(0, a.json);
-    let st = stress::run(&a.scene, a.only.as_deref(), jobs, &pb)?;
+    let st = stress::run(
+        &a.scene,
+        a.only.as_deref(),
+        a.method.map(Into::into),
+        jobs,
+        &pb,
+    )?;
     let path = st.write(&a.out)?;
     if a.json {
         println!("{}", serde_json::to_string_pretty(&st)?);

@@ -4,7 +4,7 @@ use crate::CliResult;
 use clap::Args;
 
 use crate::MethodArg;
-use towride_solver::testset::{self, runner};
+use towride_solver::testset::{self, radau5_runs, runner};
 
 /// `--formulation` values on the command line.
 #[derive(clap::ValueEnum, Clone, Copy, Debug)]
@@ -33,7 +33,9 @@ pub struct VerifyArgs {
     /// Tolerances (rtol = atol) to run.
     #[arg(long, value_delimiter = ',', default_values_t = [1e-6, 1e-8, 1e-9, 1e-10])]
     tol: Vec<f64>,
-    /// BDF variant.
+    /// Integration method: a BDF variant or Radau IIA (`radau`: the first step is then
+    /// the tolerance, as in the test set's RADAU5 runs, and the Fortran RADAU5's own
+    /// figures at the same tolerance are printed beside ours).
     #[arg(long, value_enum, default_value = "variable")]
     method: MethodArg,
     /// How index-3 problems are integrated: ggl (stabilised index 2) or index3.
@@ -52,9 +54,12 @@ pub fn run(a: &VerifyArgs) -> CliResult {
     for b in &benches {
         for &tol in &a.tol {
             pb.set_message(format!("{} {tol:e}", b.name));
+            let radau = matches!(a.method, MethodArg::Radau);
             let opts = towride_solver::SolverOptions {
                 method: a.method.into(),
                 newton_tol_growth_cap: a.newton_tol_cap,
+                // rtol = atol = h0 for RADAU5 in the test set (`docs/data/radau5_testset.csv`).
+                h_init: radau.then_some(tol),
                 ..towride_solver::SolverOptions::with_tol(tol, tol * b.atol_scale)
             };
             records.push(runner::run_with(b, &opts, a.formulation.into(), 0.0));
@@ -63,10 +68,41 @@ pub fn run(a: &VerifyArgs) -> CliResult {
     }
     pb.finish_and_clear();
     let failed = records.iter().filter(|r| r.status != "ok").count();
+    // The Fortran RADAU5's run of the same problem at the same tolerance (Radau only),
+    // with its scd on the same components as ours.
+    let fortran = |r: &runner::CaseResult| {
+        let f = radau5_runs::find(&r.problem, r.rtol)
+            .filter(|_| matches!(a.method, MethodArg::Radau))?;
+        let b = testset::by_name(&r.problem)?;
+        // The mechanisms are run by RADAU5 as published (index 3).
+        let form = if b.ggl.is_some() {
+            " (index-3 form)"
+        } else {
+            ""
+        };
+        let scd = f.scd(&b);
+        Some((f, scd, form))
+    };
     if a.json {
+        let mut out = Vec::new();
+        for r in &records {
+            let mut v = serde_json::to_value(r).map_err(|e| e.to_string())?;
+            if let (Some((f, scd, _)), Some(obj)) = (fortran(r), v.as_object_mut()) {
+                obj.insert(
+                    "radau5_fortran".into(),
+                    serde_json::json!({
+                        "steps": f.steps, "accepted": f.accepted, "rejected": f.rejected,
+                        "f_evals": f.f_evals, "jac_evals": f.jac_evals,
+                        "lu_decompositions": f.lu_decompositions, "cpu_s": f.cpu_s,
+                        "scd": scd,
+                    }),
+                );
+            }
+            out.push(v);
+        }
         println!(
             "{}",
-            serde_json::to_string_pretty(&records).map_err(|e| e.to_string())?
+            serde_json::to_string_pretty(&out).map_err(|e| e.to_string())?
         );
     } else {
         println!(
@@ -87,6 +123,21 @@ pub fn run(a: &VerifyArgs) -> CliResult {
             let publ = match (&r.published_code, r.published_tol, r.published_steps) {
                 (Some(c), Some(t), Some(s)) if t == r.rtol => format!("{c}: {s} steps"),
                 _ => String::new(),
+            };
+            // RADAU5: accepted steps, rejected attempts, f and Jacobian evaluations, LU
+            // pairs, scd and CPU time of one run, beside ours.
+            let publ = match fortran(r) {
+                Some((f, scd, form)) => format!(
+                    "RADAU5{form}: {} steps, {} rej, {} F, {} J, {} LU, scd {:.2}, {:.4} s",
+                    f.accepted,
+                    f.steps - f.accepted,
+                    f.f_evals,
+                    f.jac_evals,
+                    f.lu_decompositions,
+                    scd,
+                    f.cpu_s
+                ),
+                None => publ,
             };
             match r.scd {
                 Some(scd) => println!(

@@ -1,9 +1,11 @@
-//! Implicit BDF solver for differential-algebraic equations F(t, y, y') = 0, and the
-//! published IVP test-set problems it is verified on ([`testset`]).
+//! Implicit integrators for differential-algebraic equations F(t, y, y') = 0 (a
+//! variable-order BDF and the 3-stage Radau IIA method), and the published IVP test-set
+//! problems they are verified on ([`testset`]).
 //!
 //! The solver knows nothing about vehicles: a problem implements [`DaeProblem`]
 //! (residual, optional sparsity pattern and analytic iteration matrix, the index of each
-//! unknown, event functions) and [`Bdf`] integrates it. See `docs/solver.md` for the
+//! unknown, event functions) and [`Bdf`] or [`Radau5`] integrates it, chosen by
+//! [`SolverOptions::method`] through [`Integrator`]. See `docs/solver.md` for the
 //! algorithms, the index-3 treatment and the settings.
 
 // Numerical kernels index several arrays in step; iterator chains would obscure them.
@@ -14,9 +16,13 @@ mod bdf;
 mod error;
 mod ggl;
 mod ic;
+mod integrator;
+mod jacobian;
 pub mod linear;
 mod options;
 pub mod problem;
+pub mod radau;
+mod roots;
 mod sparse_lu;
 pub mod testset;
 
@@ -24,10 +30,13 @@ pub use bdf::{Advance, Bdf};
 pub use error::SolverError;
 pub use ggl::{Ggl, MechanicalDae};
 pub use ic::consistent_index1;
+pub use integrator::Integrator;
 pub use options::{
-    AlgebraicControl, JacobianSource, LinearSolver, MatrixRebuilds, Method, SolverOptions, Stats,
+    AlgebraicControl, JacobianSource, LinearSolver, MatrixRebuilds, Method, RadauOptions,
+    SolverOptions, Stats,
 };
 pub use problem::{DaeProblem, JacobianSink, VarKind};
+pub use radau::Radau5;
 
 use std::time::Instant;
 
@@ -46,7 +55,7 @@ pub struct EndState {
     pub wall_s: f64,
 }
 
-/// Integrates from `t0` to `t_end` and returns the state at `t_end` (never stepping past
+/// Integrates from `t0` to `t_end` with the method of `opts` and returns the state at `t_end` (never stepping past
 /// it). Events, if the problem has any, are located and passed over.
 pub fn solve_to<P: DaeProblem + ?Sized>(
     prob: &P,
@@ -57,20 +66,20 @@ pub fn solve_to<P: DaeProblem + ?Sized>(
     opts: &SolverOptions,
 ) -> Result<EndState, SolverError> {
     let start = Instant::now();
-    let mut bdf = Bdf::new(prob, t0, y0, yp0, opts.clone())?;
+    let mut integ = Integrator::new(prob, t0, y0, yp0, opts.clone())?;
     if t_end <= t0 {
         return Err(SolverError::BadOutputTime { tout: t_end, t: t0 });
     }
-    bdf.set_stop_time(t_end);
-    while let Advance::Root { .. } = bdf.advance(t_end)? {}
+    integ.set_stop_time(t_end);
+    while let Advance::Root { .. } = integ.advance(t_end)? {}
     let mut y = vec![0.0; y0.len()];
     let mut yp = vec![0.0; y0.len()];
-    bdf.interpolate(t_end, &mut y, &mut yp);
+    integ.interpolate(t_end, &mut y, &mut yp);
     Ok(EndState {
         t: t_end,
         y,
         yp,
-        stats: bdf.stats().clone(),
+        stats: integ.stats().clone(),
         wall_s: start.elapsed().as_secs_f64(),
     })
 }

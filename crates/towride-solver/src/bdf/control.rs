@@ -49,6 +49,11 @@ impl<P: DaeProblem + ?Sized> Bdf<'_, P> {
         self.stats.last_order = self.kk;
         self.stats.last_step = self.hh;
         self.stats.order_counts[self.kk - 1] += 1;
+        if self.opts.record_steps {
+            self.stats
+                .step_history
+                .push((self.tn, self.hused, self.kused));
+        }
         let maxord = self.opts.max_order;
         if self.knew + 1 == self.kk || self.kk == maxord {
             self.phase = 1;

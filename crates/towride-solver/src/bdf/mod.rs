@@ -9,16 +9,17 @@
 //! onto the new grid when the step changes (Shampine & Reichelt 1997, ode15s).
 
 use super::error::SolverError;
+use super::jacobian::JacobianEval;
 use super::linear::{NewtonMatrix, Singular};
 use super::options::{
     AlgebraicControl, JacobianSource, LinearSolver, Method, SolverOptions, Stats,
 };
 use super::problem::{DaeProblem, VarKind};
+use super::roots::Roots;
 
 mod control;
 mod history;
 mod newton;
-mod roots;
 
 use history::rescale_differences;
 
@@ -99,9 +100,8 @@ pub struct Bdf<'a, P: DaeProblem + ?Sized> {
     scratch: Vec<f64>,
     backup_psi: [f64; MAXORD + 2],
     jac: NewtonMatrix,
-    jac_entries: Vec<(usize, usize, f64)>,
-    /// The dF/dy' part of the last evaluation, when the problem reports it.
-    jac_yp_entries: Vec<(usize, usize, f64)>,
+    /// Jacobian evaluation (analytic or finite differences) and its buffers.
+    jeval: JacobianEval,
     jac_valid: bool,
     jac_age: usize,
     /// The state the iteration matrix was evaluated at (for the problem's frame
@@ -111,11 +111,8 @@ pub struct Bdf<'a, P: DaeProblem + ?Sized> {
     t_built: f64,
     /// Whether the problem's frame transport is used.
     transport: bool,
-    analytic_ok: bool,
-    // Events.
-    g_lo: Vec<f64>,
-    t_lo: f64,
-    g_hi: Vec<f64>,
+    /// Event location.
+    roots: Roots,
     stats: Stats,
     /// Accepted steps in which each unknown dominated the error estimate.
     limiter_counts: Vec<usize>,
@@ -133,6 +130,14 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
     ) -> Result<Self, SolverError> {
         let n = prob.size();
         opts.validate(n)?;
+        if opts.method == Method::Radau5 {
+            return Err(SolverError::InvalidSettings {
+                field: "method".into(),
+                why: "radau5 is not a BDF variant; integrate through `Integrator`, which \
+                      chooses by the method"
+                    .into(),
+            });
+        }
         if y0.len() != n || yp0.len() != n {
             return Err(SolverError::SizeMismatch {
                 what: format!(
@@ -178,7 +183,6 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
         let mut phi = vec![vec![0.0; n]; MAXORD + 2];
         phi[0].copy_from_slice(y0);
         phi[1].copy_from_slice(yp0); // scaled by h once the first step size is known
-        let n_roots = prob.n_roots();
         let analytic_ok = opts.jacobian == JacobianSource::Auto;
         let mut s = Self {
             prob,
@@ -234,29 +238,20 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
             scratch: vec![0.0; n],
             backup_psi: [0.0; MAXORD + 2],
             jac,
-            jac_entries: Vec::new(),
-            jac_yp_entries: Vec::new(),
+            jeval: JacobianEval::new(analytic_ok),
             jac_valid: false,
             jac_age: 0,
             y_built: vec![0.0; n],
             yp_built: vec![0.0; n],
             t_built: t0,
             transport: opts.matrix_transport && prob.has_transport(),
-            analytic_ok,
-            g_lo: vec![0.0; n_roots],
-            t_lo: t0,
-            g_hi: vec![0.0; n_roots],
+            roots: Roots::default(),
             stats: Stats::default(),
             limiter_counts: vec![0; n],
             opts,
         };
         s.set_ewt();
-        if n_roots > 0 {
-            let mut g = vec![0.0; n_roots];
-            prob.roots(t0, y0, yp0, &mut g);
-            s.stats.root_evals += 1;
-            s.g_lo = g;
-        }
+        s.roots = Roots::new(prob, t0, y0, yp0, &mut s.stats.root_evals);
         Ok(s)
     }
 
@@ -325,7 +320,7 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
             return Err(SolverError::BadOutputTime { tout, t: self.tn });
         }
         // A root between the last reported root and tn may still be pending.
-        if let Some(r) = self.check_roots()? {
+        if let Some(r) = self.check_roots() {
             return Ok(r);
         }
         let mut steps_here = 0usize;
@@ -344,7 +339,7 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
             }
             self.step()?;
             steps_here += 1;
-            if let Some(r) = self.check_roots()? {
+            if let Some(r) = self.check_roots() {
                 return Ok(r);
             }
         }
@@ -415,14 +410,9 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
         self.phi[1].copy_from_slice(yp);
         self.started = false;
         self.jac_valid = false;
-        self.t_lo = t;
         self.set_ewt();
-        if !self.g_lo.is_empty() {
-            let mut g = vec![0.0; self.g_lo.len()];
-            self.prob.roots(t, y, yp, &mut g);
-            self.stats.root_evals += 1;
-            self.g_lo = g;
-        }
+        self.roots
+            .restart(self.prob, t, y, yp, &mut self.stats.root_evals);
         Ok(())
     }
 
@@ -625,7 +615,8 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
         }
         self.ns = (self.ns + 1).min(self.kused + 2);
         match self.opts.method {
-            Method::Variable => {
+            // (`new` refuses Radau5.)
+            Method::Variable | Method::Radau5 => {
                 if kk + 1 >= self.ns {
                     self.beta[0] = 1.0;
                     self.alpha[0] = 1.0;
@@ -719,6 +710,25 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
                 yp[i] += d * self.phi[j][i];
             }
         }
+    }
+
+    /// Events over the last step, located on its interpolant.
+    fn check_roots(&mut self) -> Option<Advance> {
+        if self.roots.is_empty() || !self.started {
+            return None;
+        }
+        let mut roots = std::mem::take(&mut self.roots);
+        let mut evals = self.stats.root_evals;
+        let found = roots.check(
+            self.prob,
+            self.tn,
+            self.hh,
+            &|t, y, yp| self.interpolate(t, y, yp),
+            &mut evals,
+        );
+        self.stats.root_evals = evals;
+        self.roots = roots;
+        found
     }
 
     fn worst_components(&self, v: &[f64], w: &[f64]) -> String {

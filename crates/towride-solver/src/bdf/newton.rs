@@ -1,8 +1,8 @@
 //! The corrector: modified Newton with iteration-matrix re-use, IDA's convergence-rate
 //! test, and the matrix built analytically or by coloured finite differences.
 
-use super::{Bdf, StepFail, UROUND};
-use crate::problem::{DaeProblem, JacobianSink, Transport};
+use super::{Bdf, StepFail};
+use crate::problem::{DaeProblem, Transport};
 
 impl<P: DaeProblem + ?Sized> Bdf<'_, P> {
     /// Modified Newton on the corrector (IDANls with IDA's convergence test).
@@ -64,8 +64,8 @@ impl<P: DaeProblem + ?Sized> Bdf<'_, P> {
         if self.opts.jacobian_recombine {
             self.jac.keep_as_base(self.cj);
             // A problem that reported its dF/dy' part needs no second evaluation.
-            if self.analytic_ok && !self.jac_yp_entries.is_empty() {
-                self.jac.set_yp_part(&self.jac_yp_entries);
+            if self.jeval.analytic && !self.jeval.yp_entries.is_empty() {
+                self.jac.set_yp_part(&self.jeval.yp_entries);
             }
             self.t_built = self.tn;
             self.yp_built.copy_from_slice(&self.yppred);
@@ -109,74 +109,22 @@ impl<P: DaeProblem + ?Sized> Bdf<'_, P> {
         Ok(())
     }
 
-    /// Evaluates the iteration matrix at (t, y, y'), analytically or by coloured
-    /// finite differences (IDA's difference-quotient increments).
+    /// Evaluates the iteration matrix at (t, y, y') (`crate::jacobian`).
     fn eval_jacobian(&mut self, t: f64, y: &[f64], yp: &[f64], cj: f64) -> Result<(), StepFail> {
-        self.stats.jacobian_evals += 1;
-        self.jac.clear();
-        if self.analytic_ok {
-            self.jac_entries.clear();
-            self.jac_yp_entries.clear();
-            let provided = {
-                let mut sink = if self.opts.jacobian_recombine {
-                    JacobianSink::with_yp(&mut self.jac_entries, &mut self.jac_yp_entries)
-                } else {
-                    JacobianSink::new(&mut self.jac_entries)
-                };
-                self.prob.jacobian(t, y, yp, cj, &mut sink)
-            };
-            if provided {
-                for &(r, c, v) in &self.jac_entries {
-                    if self.jac.add(r, c, v).is_err() {
-                        return Err(StepFail::NonFinite(format!(
-                            "Jacobian entry ({}, {}) = d {} / d {} lies outside the declared pattern",
-                            r,
-                            c,
-                            self.prob.eq_name(r),
-                            self.prob.var_name(c)
-                        )));
-                    }
-                }
-                return Ok(());
-            }
-            self.analytic_ok = false;
-        }
-        let n = self.n;
-        let mut f0 = vec![0.0; n];
-        self.prob.residual(t, y, yp, &mut f0);
-        self.stats.residual_evals += 1;
-        let mut yw = y.to_vec();
-        let mut ypw = yp.to_vec();
-        let mut f1 = vec![0.0; n];
-        let mut col = vec![0.0; n];
-        let srur = UROUND.sqrt();
-        let colours = std::mem::take(&mut self.jac.colours);
-        let mut incs = vec![0.0; n];
-        for group in &colours {
-            for &j in group {
-                let mut inc =
-                    (srur * y[j].abs().max((self.hh * yp[j]).abs())).max(1.0 / self.ewt[j]);
-                if self.hh * yp[j] < 0.0 {
-                    inc = -inc;
-                }
-                inc = (y[j] + inc) - y[j];
-                incs[j] = inc;
-                yw[j] += inc;
-                ypw[j] += cj * inc;
-            }
-            self.prob.residual(t, &yw, &ypw, &mut f1);
-            self.stats.residual_evals += 1;
-            for &j in group {
-                for &r in self.jac.column_rows(j) {
-                    col[r] = (f1[r] - f0[r]) / incs[j];
-                }
-                self.jac.set_column_from(j, &col);
-                yw[j] = y[j];
-                ypw[j] = yp[j];
-            }
-        }
-        self.jac.colours = colours;
-        Ok(())
+        self.jeval
+            .eval(
+                self.prob,
+                &mut self.jac,
+                t,
+                y,
+                yp,
+                cj,
+                self.hh,
+                &self.ewt,
+                self.opts.jacobian_recombine,
+                &mut self.stats,
+            )
+            .map_err(StepFail::NonFinite)
     }
 
     /// Bound on the estimated iteration error (weighted norm) at which the corrector is

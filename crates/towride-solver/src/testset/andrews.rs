@@ -604,14 +604,13 @@ impl DaeProblem for Andrews {
         let dmw = self.dmass_w(&tr, w);
         let hl = self.dgp_lam(&tr, lam);
         for (row, col) in Self::pattern() {
+            if row <= 13 && col == row {
+                // dF/dy' of the kinematic rows, reported apart (JacobianSink::add_scaled).
+                jac.add_scaled(row, col, cj, 1.0);
+                continue;
+            }
             let value = match row {
-                0..=13 => {
-                    if col == row {
-                        cj
-                    } else {
-                        -1.0 // col == row + 7
-                    }
-                }
+                0..=13 => -1.0, // col == row + 7
                 14..=20 => {
                     let r = row - 14;
                     match col {

@@ -223,7 +223,7 @@ impl DaeProblem for CarAxis {
 
         // Rows 1..4: y'_i - y_{i+4}.
         for i in 0..4 {
-            jac.add(i, i, cj);
+            jac.add_scaled(i, i, cj, 1.0);
             jac.add(i, i + 4, -1.0);
         }
 
@@ -235,14 +235,14 @@ impl DaeProblem for CarAxis {
         let df5_dyl = -l0 * xl * yl / ll3;
         let df6_dyl = a - l0 * yl * yl / ll3 + 2.0 * lam2;
         // Row 5: K y'5 - f5.
-        jac.add(4, 4, cj * k);
+        jac.add_scaled(4, 4, cj, k);
         jac.add(4, 0, -df5_dxl);
         jac.add(4, 1, -df5_dyl);
         jac.add(4, 2, 2.0 * lam2);
         jac.add(4, 8, -xb);
         jac.add(4, 9, -2.0 * (xl - xr));
         // Row 6: K y'6 - f6.
-        jac.add(5, 5, cj * k);
+        jac.add_scaled(5, 5, cj, k);
         jac.add(5, 0, -df5_dyl);
         jac.add(5, 1, -df6_dyl);
         jac.add(5, 3, 2.0 * lam2);
@@ -258,13 +258,13 @@ impl DaeProblem for CarAxis {
         let df7_dyr = -l0 * dx * dy / lr3;
         let df8_dyr = b - l0 * dy * dy / lr3 + 2.0 * lam2;
         // Row 7: K y'7 - f7.
-        jac.add(6, 6, cj * k);
+        jac.add_scaled(6, 6, cj, k);
         jac.add(6, 0, 2.0 * lam2);
         jac.add(6, 2, -df7_dxr);
         jac.add(6, 3, -df7_dyr);
         jac.add(6, 9, 2.0 * (xl - xr));
         // Row 8: K y'8 - f8.
-        jac.add(7, 7, cj * k);
+        jac.add_scaled(7, 7, cj, k);
         jac.add(7, 1, 2.0 * lam2);
         jac.add(7, 2, -df7_dyr);
         jac.add(7, 3, -df8_dyr);

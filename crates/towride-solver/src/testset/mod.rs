@@ -52,6 +52,7 @@ pub mod andrews;
 pub mod caraxis;
 pub mod ggl_forms;
 pub mod hires;
+pub mod radau5_runs;
 pub mod rober;
 pub mod runner;
 pub mod vdpol;
@@ -289,7 +290,7 @@ impl<O: StiffOde> DaeProblem for OdeAsDae<O> {
             jac.add(r, c, -v);
         }
         for i in 0..self.0.dim() {
-            jac.add(i, i, cj);
+            jac.add_scaled(i, i, cj, 1.0);
         }
         true
     }

@@ -6,7 +6,7 @@ use std::time::Instant;
 use super::ic::{initial_state, AssemblyReport};
 use super::output::{channels, evaluate, ChannelInfo};
 use super::system::System;
-use towride_solver::{Advance, Bdf, SolverOptions, Stats};
+use towride_solver::{Advance, Integrator, SolverOptions, Stats};
 
 /// The sampled result of a simulation: channels on the sample grid, solver statistics,
 /// and the final state.
@@ -79,7 +79,8 @@ pub fn simulate(
     res.times.push(t0);
     res.rows.push(evaluate(sys, t0, &y0, &yp0));
     record_modal(sys, &mut res, &y0);
-    let mut bdf = match Bdf::new(sys, t0, &y0, &yp0, opts.clone()) {
+    // BDF or Radau IIA, as `opts.method` says.
+    let mut bdf = match Integrator::new(sys, t0, &y0, &yp0, opts.clone()) {
         Ok(b) => b,
         Err(e) => {
             res.error = Some((e.to_string(), t0));

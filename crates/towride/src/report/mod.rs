@@ -4,6 +4,7 @@
 pub mod lineplot;
 pub mod plot;
 mod run;
+pub mod steps;
 
 pub use run::run_page;
 

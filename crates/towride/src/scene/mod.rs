@@ -317,6 +317,10 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
     if !solver_sets("jacobian_recombine") {
         solver.jacobian_recombine = true;
     }
+    // For Radau IIA the same cost ratio: keep Jacobians and factorisations longer.
+    if !solver_sets("radau") {
+        solver.radau = towride_solver::RadauOptions::costly_jacobian();
+    }
     let atol_scale = if atol_given {
         None
     } else {

@@ -1,6 +1,8 @@
-//! The work-precision study of a scene: a tight reference run, then each BDF variant over
-//! a tolerance range, with wall time, steps, Jacobians and the errors of the key outputs
-//! against the reference; written as `bench.csv`, `bench.json` and a log-log `bench.png`.
+//! The work-precision study of a scene: a tight reference run, then each method (the BDF
+//! variants and Radau IIA) over a tolerance range, with wall time, steps, Jacobians and
+//! the errors of the key outputs against the reference; the methods' cost at equal
+//! accuracy; their step-size and order histories at the scene's own tolerance. Written as
+//! `bench.csv`, `bench.json`, a log-log `bench.png`, `steps.csv` and `steps.png`.
 
 use std::path::{Path, PathBuf};
 
@@ -13,6 +15,7 @@ use crate::input::Loader;
 use crate::job::{Job, RunResult};
 use crate::progress::{Progress, Silent};
 use crate::report::plot::{loglog_panels, Panel, Series};
+use crate::report::steps::{step_history_plot, StepHistory};
 use crate::scene::Changes;
 use towride_solver::{Method, SolverOptions};
 
@@ -34,6 +37,11 @@ pub struct Settings {
     pub repeat: usize,
     /// The integrator variants compared.
     pub methods: Vec<Method>,
+    /// Hitch-peak errors at which the methods' cost is compared (the fastest run of
+    /// each method whose error is at most this).
+    pub equal_error: Vec<f64>,
+    /// The same for the sensors' in-band error.
+    pub equal_band_error: Vec<f64>,
 }
 
 impl Default for Settings {
@@ -44,7 +52,9 @@ impl Default for Settings {
             band_hz: 100.0,
             jobs: 1,
             repeat: 3,
-            methods: vec![Method::Variable, Method::FixedCoefficient],
+            methods: vec![Method::Variable, Method::FixedCoefficient, Method::Radau5],
+            equal_error: vec![1e-2, 2e-3],
+            equal_band_error: vec![2e-2, 1e-2],
         }
     }
 }
@@ -111,10 +121,55 @@ pub struct Bench {
     pub reference: ReferenceRun,
     /// Every run of the study.
     pub runs: Vec<Point>,
+    /// Each method's cheapest run at or below each error target.
+    pub at_equal_error: Vec<AtError>,
+    /// Each method's run at the scene's own settings, its steps recorded.
+    pub step_histories: Vec<HistorySummary>,
     /// Files written, once written.
     pub csv: Option<String>,
     /// The plot, once written.
     pub plot: Option<String>,
+    /// The step-history plot, once written.
+    pub step_plot: Option<String>,
+    /// The recorded steps: (method, [(end time [s], step [s], order)]).
+    #[serde(skip)]
+    pub histories: Histories,
+}
+
+/// A method's cheapest run at or below an error.
+#[derive(Clone, Debug, Serialize)]
+pub struct AtError {
+    /// The method.
+    pub method: &'static str,
+    /// The error measure.
+    pub measure: &'static str,
+    /// The error target.
+    pub target: f64,
+    /// The run's rtol (`None`: no run of the study reached the target).
+    pub rtol: Option<f64>,
+    /// Its wall time [s].
+    pub wall_s: f64,
+    /// Simulated over wall time.
+    pub realtime_factor: f64,
+    /// Accepted steps.
+    pub steps: usize,
+    /// Its error.
+    pub error: f64,
+}
+
+/// One method's run at the scene's tolerance with its steps recorded.
+#[derive(Clone, Debug, Serialize)]
+pub struct HistorySummary {
+    /// The method.
+    pub method: &'static str,
+    /// Accepted steps.
+    pub steps: usize,
+    /// Mean step [s].
+    pub mean_step_s: f64,
+    /// Wall time, start included [s].
+    pub wall_s: f64,
+    /// The unknowns that limited the most steps.
+    pub limiters: Vec<String>,
 }
 
 /// A name for a method, as `bench.csv` writes it.
@@ -122,6 +177,15 @@ pub fn method_name(m: Method) -> &'static str {
     match m {
         Method::Variable => "variable",
         Method::FixedCoefficient => "fixed",
+        Method::Radau5 => "radau",
+    }
+}
+
+/// A method's name in legends.
+fn method_label(m: Method) -> String {
+    match m {
+        Method::Radau5 => "Radau IIA (order 5)".into(),
+        _ => format!("BDF {}-coefficient", method_name(m)),
     }
 }
 
@@ -217,6 +281,14 @@ pub fn run(scene: &Path, s: &Settings, progress: &dyn Progress) -> Result<Bench>
             .collect()
     });
     progress.finish();
+    let mut at_equal_error = at_equal(&points, &s.methods, &s.equal_error, ErrorMeasure::HitchPeak);
+    at_equal_error.extend(at_equal(
+        &points,
+        &s.methods,
+        &s.equal_band_error,
+        ErrorMeasure::SensorBand,
+    ));
+    let (step_histories, histories) = step_histories(scene, &s.methods)?;
     let job = &reference.summary;
     Ok(Bench {
         schema_version: SCHEMA_VERSION,
@@ -231,9 +303,99 @@ pub fn run(scene: &Path, s: &Settings, progress: &dyn Progress) -> Result<Bench>
             hitch_peak_n: refdata.peak,
         },
         runs: points,
+        at_equal_error,
+        step_histories,
         csv: None,
         plot: None,
+        step_plot: None,
+        histories,
     })
+}
+
+/// The error measure a cost comparison is made at.
+#[derive(Clone, Copy, Debug)]
+enum ErrorMeasure {
+    HitchPeak,
+    SensorBand,
+}
+
+impl ErrorMeasure {
+    fn name(self) -> &'static str {
+        match self {
+            ErrorMeasure::HitchPeak => "hitch-peak error",
+            ErrorMeasure::SensorBand => "sensor in-band error",
+        }
+    }
+
+    fn of(self, p: &Point) -> f64 {
+        match self {
+            ErrorMeasure::HitchPeak => p.hitch_peak_error,
+            ErrorMeasure::SensorBand => p.sensor_band_error,
+        }
+    }
+}
+
+/// For each method and target, the fastest completed run whose error is at most the
+/// target: cost at equal accuracy, without interpolating between tolerances (the errors
+/// are not monotone in rtol).
+fn at_equal(
+    points: &[Point],
+    methods: &[Method],
+    targets: &[f64],
+    measure: ErrorMeasure,
+) -> Vec<AtError> {
+    let mut out = Vec::new();
+    for &target in targets {
+        for &m in methods {
+            let name = method_name(m);
+            let best = points
+                .iter()
+                .filter(|p| p.method == name && p.status == "completed")
+                .filter(|p| measure.of(p) <= target)
+                .min_by(|a, b| a.wall_s.total_cmp(&b.wall_s));
+            out.push(AtError {
+                method: name,
+                measure: measure.name(),
+                target,
+                rtol: best.map(|p| p.rtol),
+                wall_s: best.map_or(f64::NAN, |p| p.wall_s),
+                realtime_factor: best.map_or(f64::NAN, |p| p.realtime_factor),
+                steps: best.map_or(0, |p| p.steps),
+                error: best.map_or(f64::NAN, |p| measure.of(p)),
+            });
+        }
+    }
+    out
+}
+
+/// Per method, its accepted steps: (end time [s], step [s], order).
+pub type Histories = Vec<(Method, Vec<(f64, f64, usize)>)>;
+
+/// Runs each method at the scene's own settings with the step history recorded.
+fn step_histories(scene: &Path, methods: &[Method]) -> Result<(Vec<HistorySummary>, Histories)> {
+    let mut hist = Vec::new();
+    let mut summary = Vec::new();
+    for &m in methods {
+        let r = run_at(scene, |o| {
+            o.method = m;
+            o.record_steps = true;
+        })?;
+        r.require_completed()?;
+        let st = &r.samples.stats;
+        summary.push(HistorySummary {
+            method: method_name(m),
+            steps: st.steps,
+            mean_step_s: r.summary.t_end_s / st.steps.max(1) as f64,
+            wall_s: total_wall(&r),
+            limiters: st
+                .step_limiters
+                .iter()
+                .map(|(n, k)| format!("{n} ({k})"))
+                .collect(),
+        });
+        hist.push((m, st.step_history.clone()));
+    }
+    Ok((summary, hist))
 }
 
 impl Bench {
@@ -251,6 +413,36 @@ impl Bench {
         plot(&png, &self.runs)?;
         self.csv = Some(csv.display().to_string());
         self.plot = Some(png.display().to_string());
+        if !self.histories.is_empty() {
+            let steps_csv = dir.join("steps.csv");
+            let io = |e: csv::Error| Error::io(&steps_csv, e.into());
+            let mut w = csv::Writer::from_path(&steps_csv).map_err(io)?;
+            w.write_record(["method", "t [s]", "h [s]", "order"])
+                .map_err(io)?;
+            for (m, steps) in &self.histories {
+                for &(t, dt, k) in steps {
+                    w.write_record([
+                        method_name(*m).to_string(),
+                        format!("{t:.9e}"),
+                        format!("{dt:.6e}"),
+                        k.to_string(),
+                    ])
+                    .map_err(io)?;
+                }
+            }
+            w.flush().map_err(|e| Error::io(&steps_csv, e))?;
+            let steps_png = dir.join("steps.png");
+            let hist: Vec<StepHistory> = self
+                .histories
+                .iter()
+                .map(|(m, steps)| StepHistory {
+                    label: method_label(*m),
+                    steps: steps.clone(),
+                })
+                .collect();
+            step_history_plot(&steps_png, &hist)?;
+            self.step_plot = Some(steps_png.display().to_string());
+        }
         let json = dir.join("bench.json");
         let text = serde_json::to_string_pretty(self).unwrap_or_default();
         std::fs::write(&json, text).map_err(|e| Error::io(&json, e))?;
@@ -309,6 +501,10 @@ fn plot(path: &Path, points: &[Point]) -> Result<()> {
     ];
     let mut methods: Vec<&str> = points.iter().map(|p| p.method).collect();
     methods.dedup();
+    let label = |m: &str| match m {
+        "radau" => "Radau IIA".to_string(),
+        _ => format!("BDF {m}-coefficient"),
+    };
     let panels: Vec<Panel> = measures
         .iter()
         .map(|(title, f)| Panel {
@@ -318,7 +514,7 @@ fn plot(path: &Path, points: &[Point]) -> Result<()> {
             series: methods
                 .iter()
                 .map(|m| Series {
-                    label: format!("BDF {m}-coefficient"),
+                    label: label(m),
                     points: points
                         .iter()
                         .filter(|p| p.method == *m && p.status == "completed")

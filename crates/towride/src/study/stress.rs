@@ -15,7 +15,7 @@ use crate::input::{Loader, Override};
 use crate::job::{Job, RunResult};
 use crate::progress::{Progress, Silent};
 use crate::scene::Changes;
-use towride_solver::SolverOptions;
+use towride_solver::{Method, SolverOptions};
 
 /// Version of `stress.json`'s layout.
 pub const SCHEMA_VERSION: u32 = 1;
@@ -208,10 +208,13 @@ pub fn cases() -> Vec<Case> {
     out
 }
 
-/// Runs the cases whose group contains `only` (all when `None`) on `jobs` threads.
+/// Runs the cases whose group contains `only` (all when `None`) on `jobs` threads, each
+/// with the integration method `method` (the scene's when `None`; the reference keeps
+/// the scene's).
 pub fn run(
     scene: &Path,
     only: Option<&str>,
+    method: Option<Method>,
     jobs: usize,
     progress: &dyn Progress,
 ) -> Result<Stress> {
@@ -238,7 +241,7 @@ pub fn run(
     let outcomes: Vec<Outcome> = pool(jobs)?.install(|| {
         all.par_iter()
             .map(|c| {
-                let r = run_case(scene, c);
+                let r = run_case(scene, c, method);
                 progress.inc(1);
                 outcome(c, r, &refdata)
             })
@@ -262,10 +265,13 @@ pub fn run(
     })
 }
 
-fn run_case(scene: &Path, c: &Case) -> Result<RunResult> {
+fn run_case(scene: &Path, c: &Case, method: Option<Method>) -> Result<RunResult> {
     let loader = Loader::with_overrides(c.props.clone());
     Job::from_scene_file(scene, &c.scene, &loader)?
         .tune(|o: &mut SolverOptions| {
+            if let Some(m) = method {
+                o.method = m;
+            }
             if let Some(r) = c.rtol {
                 o.rtol = r;
             }
