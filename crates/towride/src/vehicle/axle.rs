@@ -1,7 +1,8 @@
 //! What a vehicle needs from any axle (suspension) template, and the registry of axle
 //! templates. The assembly file names a template per axle slot
 //! (`front = { template = "mcpherson", ... }`); any registered axle template fits any
-//! axle slot. Adding a template is its own file plus one line in [`TEMPLATES`].
+//! axle slot. Adding a template is its own file plus one line in the `axle_templates!`
+//! list of `vehicle/mod.rs`.
 
 use std::path::Path;
 
@@ -47,9 +48,8 @@ pub trait AxleTemplate: Sync {
     fn build(&self, b: &mut Builder, file: &Path, slot: &AxleSlot) -> Result<Axle, InputError>;
 }
 
-/// The registered axle templates.
-pub static TEMPLATES: &[&dyn AxleTemplate] =
-    &[&super::mcpherson::McPherson, &super::twist_beam::TwistBeam];
+/// The registered axle templates (listed in `vehicle/mod.rs`).
+pub static TEMPLATES: &[&dyn AxleTemplate] = super::AXLE_TEMPLATES;
 
 /// The template named `name`.
 pub fn template(name: &str) -> Option<&'static dyn AxleTemplate> {

@@ -28,20 +28,35 @@ pub(crate) mod design;
 pub(crate) mod driveline;
 pub(crate) mod geom;
 pub(crate) mod hitch;
-pub(crate) mod mcpherson;
 pub(crate) mod modal_body;
 pub(crate) mod props;
 pub(crate) mod sensors;
 pub(crate) mod strut;
 pub(crate) mod swing;
 pub(crate) mod trailer;
-pub(crate) mod twist_beam;
 pub(crate) mod twist_flex;
 pub(crate) mod wheel;
 
 use std::collections::BTreeMap;
 
 use serde::Serialize;
+
+/// Declares the axle templates' modules and lists them in [`axle::TEMPLATES`]:
+/// `file::Type`, one line per template.
+macro_rules! axle_templates {
+    ($($module:ident::$ty:ident),* $(,)?) => {
+        $(pub(crate) mod $module;)*
+
+        /// The registered axle templates.
+        pub(crate) static AXLE_TEMPLATES: &[&dyn axle::AxleTemplate] = &[$(&$module::$ty),*];
+    };
+}
+
+// The registered axle templates. A new one is its file in this folder and one line here.
+axle_templates! {
+    mcpherson::McPherson,
+    twist_beam::TwistBeam,
+}
 
 pub use assembly::load;
 pub use build::Link;

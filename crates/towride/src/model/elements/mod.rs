@@ -1,8 +1,8 @@
 //! Force elements: each file holds one element's data, its checks, its load evaluation
 //! (generic over the scalar, so dual numbers give the iteration matrix), the channels it
 //! reports and its table in a mechanism file. The list at the bottom of this file,
-//! [`force_elements!`], registers them: adding an element is its own file plus one line
-//! there (see `docs/architecture.md`).
+//! `force_elements!`, declares and registers them: adding an element is its own file
+//! plus one line there (see `docs/architecture.md`).
 //!
 //! An element sees its marker frames as [`Dual`]s with one direction, the time
 //! derivative along the motion, so a deflection and its rate come from one expression
@@ -10,17 +10,9 @@
 //! relative angular velocity). It returns the force on marker I's body applied at I's
 //! origin plus a torque, world axes; the J body gets the opposite.
 
-pub mod applied;
-pub mod bushing;
 pub mod law;
-pub mod rot_spring;
-pub mod spring;
 
-pub use applied::Applied;
-pub use bushing::Bushing;
 pub use law::{JointBushing, Law, LawSpec, Stop, StopSpec};
-pub use rot_spring::RotSpring;
-pub use spring::SpringDamper;
 
 use serde::de::DeserializeOwned;
 
@@ -131,7 +123,12 @@ pub fn generalised<S: Scalar>(
 /// Generates [`Force`], the closed set of element kinds, and its dispatch; one line per
 /// element: `Variant(type)`.
 macro_rules! force_elements {
-    ($($variant:ident($ty:ty)),* $(,)?) => {
+    ($($module:ident::$ty:ident as $variant:ident),* $(,)?) => {
+        $(
+            pub mod $module;
+            pub use $module::$ty;
+        )*
+
         /// A force element of any registered kind.
         // A model holds a handful of elements; boxing the large bushing would buy nothing.
         #[allow(clippy::large_enum_variant)]
@@ -207,10 +204,11 @@ macro_rules! force_elements {
     };
 }
 
-// The registered force elements. A new element: its file above, and one line here.
+// The registered force elements: `file::Type as Variant`. A new element is its file in
+// this folder and one line here (the line declares the module and registers the type).
 force_elements! {
-    Spring(SpringDamper),
-    Bushing(Bushing),
-    Rot(RotSpring),
-    Applied(Applied),
+    spring::SpringDamper as Spring,
+    bushing::Bushing as Bushing,
+    rot_spring::RotSpring as Rot,
+    applied::Applied as Applied,
 }
