@@ -82,3 +82,48 @@ impl<'a, P: DaeProblem + ?Sized> Integrator<'a, P> {
         }
     }
 }
+
+/// What the shared driver needs of a one-step method (diffsol's pattern: the loop to an
+/// output time is written once, on `step`).
+pub(crate) trait Stepping {
+    /// The time reached.
+    fn now(&self) -> f64;
+    /// Lands exactly on the stop time once within round-off of it.
+    fn finish_at(&mut self, t: f64);
+    /// The time not to step past.
+    fn stop_time(&self) -> Option<f64>;
+    /// Step budget of one call.
+    fn max_steps(&self) -> usize;
+    /// One accepted step (with its own retries).
+    fn step(&mut self) -> Result<(), SolverError>;
+    /// An event in the last step, if any.
+    fn check_roots(&mut self) -> Option<Advance>;
+}
+
+/// Round-off units within which the stop time counts as reached.
+const TSTOP_UROUNDS: f64 = 4.0;
+
+/// Steps `s` until `tout` (or its stop time, or an event) is reached.
+pub(crate) fn drive<S: Stepping>(s: &mut S, tout: f64) -> Result<Advance, SolverError> {
+    let mut steps_here = 0usize;
+    while s.now() < tout {
+        if let Some(ts) = s.stop_time() {
+            if s.now() >= ts - TSTOP_UROUNDS * f64::EPSILON * ts.abs().max(1.0) {
+                s.finish_at(ts);
+                return Ok(Advance::Reached);
+            }
+        }
+        if steps_here >= s.max_steps() {
+            return Err(SolverError::TooManySteps {
+                t: s.now(),
+                max_steps: s.max_steps(),
+            });
+        }
+        s.step()?;
+        steps_here += 1;
+        if let Some(r) = s.check_roots() {
+            return Ok(r);
+        }
+    }
+    Ok(Advance::Reached)
+}

@@ -163,3 +163,47 @@ pub trait DaeProblem {
         format!("F[{i}]")
     }
 }
+
+/// Checks an integrator's start (t0, y0, y'0) against the problem: sizes, finite values,
+/// one kind per unknown; returns the kinds.
+pub(crate) fn check_start<P: DaeProblem + ?Sized>(
+    prob: &P,
+    t0: f64,
+    y0: &[f64],
+    yp0: &[f64],
+) -> Result<Vec<VarKind>, crate::SolverError> {
+    use crate::SolverError;
+    let n = prob.size();
+    if y0.len() != n || yp0.len() != n {
+        return Err(SolverError::SizeMismatch {
+            what: format!(
+                "problem has {n} unknowns, y0 {} and yp0 {}",
+                y0.len(),
+                yp0.len()
+            ),
+        });
+    }
+    if !t0.is_finite() {
+        return Err(SolverError::NonFiniteInitial {
+            name: "t0".into(),
+            value: t0,
+        });
+    }
+    for (i, v) in y0.iter().chain(yp0.iter()).enumerate() {
+        if !v.is_finite() {
+            let name = if i < n {
+                prob.var_name(i)
+            } else {
+                format!("d/dt {}", prob.var_name(i - n))
+            };
+            return Err(SolverError::NonFiniteInitial { name, value: *v });
+        }
+    }
+    let kinds = prob.var_kinds();
+    if kinds.len() != n {
+        return Err(SolverError::SizeMismatch {
+            what: format!("var_kinds has {} entries for {n} unknowns", kinds.len()),
+        });
+    }
+    Ok(kinds)
+}

@@ -138,37 +138,7 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
                     .into(),
             });
         }
-        if y0.len() != n || yp0.len() != n {
-            return Err(SolverError::SizeMismatch {
-                what: format!(
-                    "problem has {n} unknowns, y0 {} and yp0 {}",
-                    y0.len(),
-                    yp0.len()
-                ),
-            });
-        }
-        if !t0.is_finite() {
-            return Err(SolverError::NonFiniteInitial {
-                name: "t0".into(),
-                value: t0,
-            });
-        }
-        for (i, v) in y0.iter().chain(yp0.iter()).enumerate() {
-            if !v.is_finite() {
-                let name = if i < n {
-                    prob.var_name(i)
-                } else {
-                    format!("d/dt {}", prob.var_name(i - n))
-                };
-                return Err(SolverError::NonFiniteInitial { name, value: *v });
-            }
-        }
-        let kinds = prob.var_kinds();
-        if kinds.len() != n {
-            return Err(SolverError::SizeMismatch {
-                what: format!("var_kinds has {} entries for {n} unknowns", kinds.len()),
-            });
-        }
+        let kinds = crate::problem::check_start(prob, t0, y0, yp0)?;
         let algebraic = match opts.algebraic {
             AlgebraicControl::Auto if kinds.contains(&VarKind::Index3) => AlgebraicControl::Scaled,
             a => a,
@@ -323,27 +293,7 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
         if let Some(r) = self.check_roots() {
             return Ok(r);
         }
-        let mut steps_here = 0usize;
-        while self.tn < tout {
-            if let Some(ts) = self.tstop {
-                if self.tn >= ts - 4.0 * UROUND * ts.abs().max(1.0) {
-                    self.tn = ts;
-                    return Ok(Advance::Reached);
-                }
-            }
-            if steps_here >= self.opts.max_steps {
-                return Err(SolverError::TooManySteps {
-                    t: self.tn,
-                    max_steps: self.opts.max_steps,
-                });
-            }
-            self.step()?;
-            steps_here += 1;
-            if let Some(r) = self.check_roots() {
-                return Ok(r);
-            }
-        }
-        Ok(Advance::Reached)
+        crate::integrator::drive(self, tout)
     }
 
     /// First step size and history (IDA's IDAInitialSetup and the start of IDASolve).
@@ -769,5 +719,26 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
             ));
         }
         parts.join("; ")
+    }
+}
+
+impl<P: DaeProblem + ?Sized> crate::integrator::Stepping for Bdf<'_, P> {
+    fn now(&self) -> f64 {
+        self.tn
+    }
+    fn finish_at(&mut self, t: f64) {
+        self.tn = t;
+    }
+    fn stop_time(&self) -> Option<f64> {
+        self.tstop
+    }
+    fn max_steps(&self) -> usize {
+        self.opts.max_steps
+    }
+    fn step(&mut self) -> Result<(), SolverError> {
+        Bdf::step(self)
+    }
+    fn check_roots(&mut self) -> Option<Advance> {
+        Bdf::check_roots(self)
     }
 }

@@ -140,37 +140,7 @@ impl<'a, P: DaeProblem + ?Sized> Radau5<'a, P> {
     ) -> Result<Self, SolverError> {
         let n = prob.size();
         opts.validate(n)?;
-        if y0.len() != n || yp0.len() != n {
-            return Err(SolverError::SizeMismatch {
-                what: format!(
-                    "problem has {n} unknowns, y0 {} and yp0 {}",
-                    y0.len(),
-                    yp0.len()
-                ),
-            });
-        }
-        if !t0.is_finite() {
-            return Err(SolverError::NonFiniteInitial {
-                name: "t0".into(),
-                value: t0,
-            });
-        }
-        for (i, v) in y0.iter().chain(yp0.iter()).enumerate() {
-            if !v.is_finite() {
-                let name = if i < n {
-                    prob.var_name(i)
-                } else {
-                    format!("d/dt {}", prob.var_name(i - n))
-                };
-                return Err(SolverError::NonFiniteInitial { name, value: *v });
-            }
-        }
-        let kinds = prob.var_kinds();
-        if kinds.len() != n {
-            return Err(SolverError::SizeMismatch {
-                what: format!("var_kinds has {} entries for {n} unknowns", kinds.len()),
-            });
-        }
+        let kinds = crate::problem::check_start(prob, t0, y0, yp0)?;
         let algebraic = control::resolve_algebraic(opts.algebraic, &kinds);
         let pattern = prob.jacobian_pattern();
         let dense = match opts.linear_solver {
@@ -289,27 +259,7 @@ impl<'a, P: DaeProblem + ?Sized> Radau5<'a, P> {
         if let Some(r) = self.check_roots() {
             return Ok(r);
         }
-        let mut steps_here = 0usize;
-        while self.t < tout {
-            if let Some(ts) = self.tstop {
-                if self.t >= ts - TSTOP_UROUNDS * UROUND * ts.abs().max(1.0) {
-                    self.t = ts;
-                    return Ok(Advance::Reached);
-                }
-            }
-            if steps_here >= self.opts.max_steps {
-                return Err(SolverError::TooManySteps {
-                    t: self.t,
-                    max_steps: self.opts.max_steps,
-                });
-            }
-            self.step()?;
-            steps_here += 1;
-            if let Some(r) = self.check_roots() {
-                return Ok(r);
-            }
-        }
-        Ok(Advance::Reached)
+        crate::integrator::drive(self, tout)
     }
 
     /// The first step: the options' `h_init`, or IDA's rule as the BDF uses it.
@@ -531,3 +481,24 @@ impl<'a, P: DaeProblem + ?Sized> Radau5<'a, P> {
 
 /// After a rejected first step the step is cut tenfold (RADAU5: H = H*0.1 when FIRST).
 const FIRST_STEP_CUT: f64 = 0.1;
+
+impl<P: DaeProblem + ?Sized> crate::integrator::Stepping for Radau5<'_, P> {
+    fn now(&self) -> f64 {
+        self.t
+    }
+    fn finish_at(&mut self, t: f64) {
+        self.t = t;
+    }
+    fn stop_time(&self) -> Option<f64> {
+        self.tstop
+    }
+    fn max_steps(&self) -> usize {
+        self.opts.max_steps
+    }
+    fn step(&mut self) -> Result<(), SolverError> {
+        Radau5::step(self)
+    }
+    fn check_roots(&mut self) -> Option<Advance> {
+        Radau5::check_roots(self)
+    }
+}

@@ -656,18 +656,32 @@ impl ModelBuilder {
         vec3(p).map_err(|e| build(item, e.under("position_m")))
     }
 
+    /// The markers `<name>.i` and `<name>.j` of an element acting at one point between
+    /// two different bodies.
+    fn pair(
+        &mut self,
+        item: &str,
+        name: &str,
+        bodies: [Option<BodyHandle>; 2],
+        p: V,
+        axes: &Axes,
+    ) -> Result<(MarkerHandle, MarkerHandle), ModelError> {
+        if bodies[0] == bodies[1] {
+            return Err(build(
+                item,
+                FieldError::at("body_j", format!("{item} needs two different bodies")),
+            ));
+        }
+        vec3(&p).map_err(|e| build(item, e.under("position_m")))?;
+        let mi = self.marker(&format!("{name}.i"), bodies[0], p, axes)?;
+        let mj = self.marker(&format!("{name}.j"), bodies[1], p, axes)?;
+        Ok((mi, mj))
+    }
+
     /// A rubber bushing.
     pub fn bushing(&mut self, l: BushingLine) -> Result<ElementHandle, ModelError> {
         let item = format!("bushing '{}'", l.name);
-        if l.body_i == l.body_j {
-            return Err(build(
-                &item,
-                FieldError::at("body_j", "a bushing needs two different bodies"),
-            ));
-        }
-        vec3(&l.point).map_err(|e| build(&item, e.under("position_m")))?;
-        let mi = self.marker(&format!("{}.i", l.name), l.body_i, l.point, &l.axes)?;
-        let mj = self.marker(&format!("{}.j", l.name), l.body_j, l.point, &l.axes)?;
+        let (mi, mj) = self.pair(&item, &l.name, [l.body_i, l.body_j], l.point, &l.axes)?;
         self.add_force(
             &item,
             Force::Bushing(Bushing {
@@ -719,15 +733,7 @@ impl ModelBuilder {
     /// A rotational spring-damper about the z axis of `l.axes`.
     pub fn rot_spring(&mut self, l: RotLine) -> Result<ElementHandle, ModelError> {
         let item = format!("rotational spring '{}'", l.name);
-        if l.body_i == l.body_j {
-            return Err(build(
-                &item,
-                FieldError::at("body_j", "a rotational spring needs two different bodies"),
-            ));
-        }
-        vec3(&l.point).map_err(|e| build(&item, e.under("position_m")))?;
-        let mi = self.marker(&format!("{}.i", l.name), l.body_i, l.point, &l.axes)?;
-        let mj = self.marker(&format!("{}.j", l.name), l.body_j, l.point, &l.axes)?;
+        let (mi, mj) = self.pair(&item, &l.name, [l.body_i, l.body_j], l.point, &l.axes)?;
         self.add_force(
             &item,
             Force::Rot(RotSpring {

@@ -264,7 +264,7 @@ pub fn load(path: &Path, opts: &Options, loader: &Loader) -> Result<Vehicle, Inp
     let ride = ride
         .into_iter()
         .map(|(w, p)| {
-            let m = b.marker(&format!("ride_{w}"), Some(car_body), p, &IDENTITY)?;
+            let m = b.add(|m| m.marker(&format!("ride_{w}"), Some(car_body), p, &IDENTITY))?;
             Ok((w, m))
         })
         .collect::<Result<Vec<_>, InputError>>()?;

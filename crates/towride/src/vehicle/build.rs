@@ -9,11 +9,9 @@ use super::props::{BushingLaws, Mass};
 use crate::input::{InputError, Loader, Source};
 pub use crate::model::builder::Link;
 use crate::model::builder::{
-    Axes, BodyDesc, BodyHandle, BushingLine, ElementHandle, MarkerHandle, ModelBuilder, Placement,
-    RotLine, SpringLine, V,
+    Axes, BodyDesc, BodyHandle, BushingLine, ElementHandle, ModelBuilder, Placement, RotLine, V,
 };
-use crate::model::desc::{JointKind, Law, Model};
-use crate::model::elements::JointBushing;
+use crate::model::desc::{Law, Model};
 use crate::model::ModelError;
 
 /// A model builder with the loader of the property files and the file being read.
@@ -96,62 +94,13 @@ impl Builder {
         self.mb.body(d).map_err(|e| self.refused(e))
     }
 
-    /// A marker at `p` with `axes` (subsystem coordinates) on `body`.
-    pub fn marker(
+    /// One model-builder call, its refusal reported against the property file being
+    /// translated: `b.add(|m| m.joint(...))?`.
+    pub fn add<T>(
         &mut self,
-        name: &str,
-        body: Option<BodyHandle>,
-        p: V,
-        axes: &Axes,
-    ) -> Result<MarkerHandle, InputError> {
-        self.mb
-            .marker(name, body, p, axes)
-            .map_err(|e| self.refused(e))
-    }
-
-    /// A marker on a modal body attached to node `node` (undeformed position `p`).
-    pub fn node_marker(
-        &mut self,
-        name: &str,
-        body: BodyHandle,
-        node: usize,
-        p: V,
-    ) -> Result<MarkerHandle, InputError> {
-        self.mb
-            .node_marker(name, body, node, p)
-            .map_err(|e| self.refused(e))
-    }
-
-    /// An ideal joint, or the bushing replacing it (`replace` or the model-wide setting).
-    #[allow(clippy::too_many_arguments)]
-    pub fn joint(
-        &mut self,
-        name: &str,
-        kind: JointKind,
-        bi: Option<BodyHandle>,
-        bj: Option<BodyHandle>,
-        p: V,
-        axes: &Axes,
-        replace: Option<&JointBushing>,
-    ) -> Result<Link, InputError> {
-        self.mb
-            .joint(name, kind, bi, bj, p, axes, replace)
-            .map_err(|e| self.refused(e))
-    }
-
-    /// An ideal joint that is never replaced (a wheel bearing).
-    pub fn ideal_joint(
-        &mut self,
-        name: &str,
-        kind: JointKind,
-        bi: Option<BodyHandle>,
-        bj: Option<BodyHandle>,
-        p: V,
-        axes: &Axes,
-    ) -> Result<Link, InputError> {
-        self.mb
-            .ideal_joint(name, kind, bi, bj, p, axes)
-            .map_err(|e| self.refused(e))
+        f: impl FnOnce(&mut ModelBuilder) -> Result<T, ModelError>,
+    ) -> Result<T, InputError> {
+        f(&mut self.mb).map_err(|e| self.refused(e))
     }
 
     /// A rubber bushing at `p`; `axes` are the bushing's (subsystem coordinates).
@@ -178,11 +127,6 @@ impl Builder {
                 preload,
             })
             .map_err(|e| self.refused(e))
-    }
-
-    /// A spring-damper along the line between two points.
-    pub fn line(&mut self, l: SpringLine) -> Result<ElementHandle, InputError> {
-        self.mb.spring(l).map_err(|e| self.refused(e))
     }
 
     /// A torsion spring-damper about the z axis of `axes` at `p`.

@@ -62,7 +62,7 @@ pub fn finish(b: &mut Builder, c: Corner, load: f64) -> Result<CornerDesign, Inp
             line.preload = 0.0;
             line.spring = Law::Linear(rate);
             let free = line.free_length;
-            b.line(*line)?;
+            b.add(|m| m.spring(*line))?;
             (rate, Some(free))
         }
         Preloaded::Torsion { force, rate } => {

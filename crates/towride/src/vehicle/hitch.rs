@@ -181,14 +181,16 @@ pub fn build(
         let p = modal_body::node_position(b, hb, origin, n);
         let name = format!("hitch_bracket_{}", ["left", "right"][k]);
         let link = if fixed {
-            b.ideal_joint(
-                &name,
-                JointKind::Fixed,
-                Some(hb),
-                Some(body),
-                p,
-                &bushing.axes,
-            )?
+            b.add(|m| {
+                m.ideal_joint(
+                    &name,
+                    JointKind::Fixed,
+                    Some(hb),
+                    Some(body),
+                    p,
+                    &bushing.axes,
+                )
+            })?
         } else {
             Link::Bushing(b.bushing(
                 &name,
@@ -234,28 +236,32 @@ pub fn couple(
     };
     let link = match &kind {
         BallKind::Spherical => {
-            let link = b.joint(
-                name,
-                JointKind::Spherical,
-                Some(h.body),
-                Some(drawbar),
-                h.ball,
-                &IDENTITY,
-                None,
-            )?;
+            let link = b.add(|m| {
+                m.joint(
+                    name,
+                    JointKind::Spherical,
+                    Some(h.body),
+                    Some(drawbar),
+                    h.ball,
+                    &IDENTITY,
+                    None,
+                )
+            })?;
             modal_body::pin(b, link, true, h.ball_node);
             link
         }
         BallKind::Bushing(jb) => {
-            let link = b.joint(
-                name,
-                JointKind::Spherical,
-                Some(drawbar),
-                Some(h.body),
-                h.ball,
-                &IDENTITY,
-                Some(jb),
-            )?;
+            let link = b.add(|m| {
+                m.joint(
+                    name,
+                    JointKind::Spherical,
+                    Some(drawbar),
+                    Some(h.body),
+                    h.ball,
+                    &IDENTITY,
+                    Some(jb),
+                )
+            })?;
             modal_body::pin(b, link, false, h.ball_node);
             link
         }

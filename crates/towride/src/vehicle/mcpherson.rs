@@ -242,7 +242,7 @@ fn side(
             &ball_axes,
         ),
     ] {
-        b.joint(
+        b.add(|m| m.joint(
             &format!("{what}_{name}"),
             kind,
             Some(bi),
@@ -250,13 +250,13 @@ fn side(
             at,
             axes,
             jb,
-        )?;
+        ))?;
     }
     let mut damper = SpringLine::new(&format!("damper_{name}"), Some(kn), p.l, Some(rod), p.t);
     damper.damper = c.damper.clone();
     damper.bump_stop = c.bump.clone();
     damper.rebound_stop = c.rebound.clone();
-    b.line(damper)?;
+    b.add(|m| m.spring(damper))?;
     let rim = c.rim.side(right);
     let wheel = wheel::add(b, name, kn, &rim, tyre)?;
     let v = rates(&p, src, &[kn_m.cm, lca_m.cm, rod_m.cm, tie_m.cm])?;

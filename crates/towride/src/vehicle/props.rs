@@ -125,19 +125,17 @@ impl BushingProps {
                 "axes must be non-zero and x_axis not parallel to z_axis",
             )
         })?;
-        let laws = |key: &str, list: &[LawSpec; 3]| -> Result<Vec<Law>, InputError> {
-            (0..3)
-                .map(|a| law(src, &at(&at(p, key), a), &list[a]))
-                .collect()
-        };
-        let mut stiffness = laws("stiffness_n_m", &self.stiffness_n_m)?;
-        stiffness.extend(laws("stiffness_n_m_rad", &self.stiffness_n_m_rad)?);
-        let mut damping = laws("damping_n_s_m", &self.damping_n_s_m)?;
-        damping.extend(laws("damping_n_m_s_rad", &self.damping_n_m_s_rad)?);
+        let (stiffness, damping) = crate::model::elements::bushing::six_laws(
+            &self.stiffness_n_m,
+            &self.damping_n_s_m,
+            &self.stiffness_n_m_rad,
+            &self.damping_n_m_s_rad,
+        )
+        .map_err(|e| src.locate(p, e))?;
         Ok(BushingLaws {
             axes,
-            stiffness: stiffness.try_into().expect("six laws"),
-            damping: damping.try_into().expect("six laws"),
+            stiffness,
+            damping,
         })
     }
 }

@@ -120,7 +120,7 @@ pub fn add(
                 let pos = point(src, &at("position_m"), pos)?;
                 let saved = b.mb.place();
                 b.set_place(place);
-                let k = b.marker(&name, Some(body), pos, &IDENTITY);
+                let k = b.add(|m| m.marker(&name, Some(body), pos, &IDENTITY));
                 b.set_place(saved);
                 k?
             }

@@ -105,15 +105,17 @@ pub fn build(b: &mut Builder, s: &Spec, tyre: &Tyre) -> Result<Built, InputError
 pub fn join(b: &mut Builder, s: &Spec, halves: [BodyHandle; 2]) -> Result<(), InputError> {
     let axes = Z_ALONG_Y;
     let centre = [s.pivot[0], 0.0, s.pivot[2]];
-    b.joint(
-        s.centre,
-        JointKind::Revolute,
-        Some(halves[0]),
-        Some(halves[1]),
-        centre,
-        &axes,
-        s.joints_as_bushings.as_ref(),
-    )?;
+    b.add(|m| {
+        m.joint(
+            s.centre,
+            JointKind::Revolute,
+            Some(halves[0]),
+            Some(halves[1]),
+            centre,
+            &axes,
+            s.joints_as_bushings.as_ref(),
+        )
+    })?;
     b.torsion(
         &format!("{}_torsion", s.centre),
         Some(halves[0]),

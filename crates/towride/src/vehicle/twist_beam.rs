@@ -171,7 +171,7 @@ fn build(b: &mut Builder, file: &std::path::Path, slot: &AxleSlot) -> Result<Axl
         damper.damper = damper_law.clone();
         damper.bump_stop = bump.clone();
         damper.rebound_stop = rebound.clone();
-        b.line(damper)?;
+        b.add(|m| m.spring(damper))?;
         let mut rates = built.rates[k].clone();
         rates.element_rate = length_rate(&m(sl), &turning(&piv, &y, &m(sl)), &m(su));
         corners.push(Corner {

@@ -164,15 +164,17 @@ pub fn join(
                 } else {
                     super::geom::mirror_axes(&Z_ALONG_Y)
                 };
-                b.joint(
-                    &name,
-                    JointKind::Fixed,
-                    Some(body),
-                    Some(arms[k]),
-                    p,
-                    &axes,
-                    jb,
-                )?
+                b.add(|m| {
+                    m.joint(
+                        &name,
+                        JointKind::Fixed,
+                        Some(body),
+                        Some(arms[k]),
+                        p,
+                        &axes,
+                        jb,
+                    )
+                })?
             }
             Mount::Bushing(laws) => {
                 let laws = laws.side(k == 1);

@@ -95,21 +95,26 @@ pub fn add(
     let body = b.body(&format!("wheel_{name}"), rim)?;
     // The bearing stays an ideal revolute joint even when the other joints become
     // bushings: a bushing's rotation-vector deflection cannot follow the wheel's spin.
-    let link = b.ideal_joint(
-        &format!("bearing_{name}"),
-        JointKind::Revolute,
-        Some(body),
-        Some(carrier),
-        centre,
-        &Z_ALONG_Y,
-    )?;
-    let centre_marker = b.marker(
-        &format!("wheel_{name}.centre"),
-        Some(body),
-        centre,
-        &IDENTITY,
-    )?;
-    let carrier_centre = b.marker(&format!("hub_{name}"), Some(carrier), centre, &IDENTITY)?;
+    let link = b.add(|m| {
+        m.ideal_joint(
+            &format!("bearing_{name}"),
+            JointKind::Revolute,
+            Some(body),
+            Some(carrier),
+            centre,
+            &Z_ALONG_Y,
+        )
+    })?;
+    let centre_marker = b.add(|m| {
+        m.marker(
+            &format!("wheel_{name}.centre"),
+            Some(body),
+            centre,
+            &IDENTITY,
+        )
+    })?;
+    let carrier_centre =
+        b.add(|m| m.marker(&format!("hub_{name}"), Some(carrier), centre, &IDENTITY))?;
     let mut tyre = tyre.clone();
     let g = b.model().gravity;
     tyre.set_gravity(Vector3::new(g[0], g[1], g[2]));

@@ -87,29 +87,12 @@ impl ForceElement for Bushing {
         let body_i = b.body_by_name(&s.body_i).map_err(|e| e.under("body_i"))?;
         let body_j = b.body_by_name(&s.body_j).map_err(|e| e.under("body_j"))?;
         let axes = b.axes_from(s.z_axis, s.x_axis)?;
-        let laws = |key: &str, t: &[LawSpec; 3], r: &[LawSpec; 3]| {
-            let rot = format!("{key}_rad");
-            let mut out = Vec::with_capacity(6);
-            for (k, l) in t.iter().enumerate() {
-                out.push(l.check().map_err(|e| e.under(k).under(key))?);
-            }
-            for (k, l) in r.iter().enumerate() {
-                out.push(l.check().map_err(|e| e.under(k).under(rot.as_str()))?);
-            }
-            Ok::<_, FieldError>(out)
-        };
-        let stiffness = laws("stiffness_n_m", &s.stiffness_n_m, &s.stiffness_n_m_rad)?;
-        // The damping keys are named per unit: N s/m and N m s/rad.
-        let mut damping = Vec::with_capacity(6);
-        for (k, l) in s.damping_n_s_m.iter().enumerate() {
-            damping.push(l.check().map_err(|e| e.under(k).under("damping_n_s_m"))?);
-        }
-        for (k, l) in s.damping_n_m_s_rad.iter().enumerate() {
-            damping.push(
-                l.check()
-                    .map_err(|e| e.under(k).under("damping_n_m_s_rad"))?,
-            );
-        }
+        let (stiffness, damping) = six_laws(
+            &s.stiffness_n_m,
+            &s.damping_n_s_m,
+            &s.stiffness_n_m_rad,
+            &s.damping_n_m_s_rad,
+        )?;
         let mut preload = [0.0; 6];
         preload[..3].copy_from_slice(&s.preload_n);
         preload[3..].copy_from_slice(&s.preload_n_m);
@@ -119,13 +102,35 @@ impl ForceElement for Bushing {
             body_j,
             point: s.position_m,
             axes,
-            stiffness: stiffness.try_into().expect("six laws"),
-            damping: damping.try_into().expect("six laws"),
+            stiffness,
+            damping,
             preload,
         })
         .map_err(|e| e.into_field())?;
         Ok(())
     }
+}
+
+/// The six stiffness and six damping laws of a bushing as files write them (per axis x,
+/// y, z: translations, then rotations), checked; errors name `stiffness_n_m[k]` etc. The
+/// one reader of bushing laws, for mechanism files and vehicle property files alike.
+pub fn six_laws(
+    stiffness_n_m: &[LawSpec; 3],
+    damping_n_s_m: &[LawSpec; 3],
+    stiffness_n_m_rad: &[LawSpec; 3],
+    damping_n_m_s_rad: &[LawSpec; 3],
+) -> Result<([Law; 6], [Law; 6]), FieldError> {
+    let three = |key: &str, list: &[LawSpec; 3]| -> Result<Vec<Law>, FieldError> {
+        (0..3)
+            .map(|k| list[k].check().map_err(|e| e.under(k).under(key)))
+            .collect()
+    };
+    let mut stiffness = three("stiffness_n_m", stiffness_n_m)?;
+    stiffness.extend(three("stiffness_n_m_rad", stiffness_n_m_rad)?);
+    let mut damping = three("damping_n_s_m", damping_n_s_m)?;
+    damping.extend(three("damping_n_m_s_rad", damping_n_m_s_rad)?);
+    let six = |v: Vec<Law>| -> [Law; 6] { v.try_into().expect("six laws") };
+    Ok((six(stiffness), six(damping)))
 }
 
 /// A `[[bushing]]` of a mechanism file.
