@@ -11,7 +11,11 @@ use nalgebra::{DMatrix, DVectorViewMut, Dyn, LU};
 use super::sparse_lu::{Refactor, SparseLu};
 use super::SolverError;
 
+pub mod basis;
+mod cholesky;
 mod complex;
+pub use basis::{ColumnBasis, Offer};
+pub use cholesky::SparseCholesky;
 pub use complex::ComplexMatrix;
 
 /// Why a factorisation or solve failed; the solver turns this into a step cut or an error.
