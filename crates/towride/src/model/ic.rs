@@ -3,6 +3,7 @@
 
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 
+use super::normal::{self, add_body, dot, Blocks, Rows};
 use super::system::{MassBlock, System};
 use super::ModelError;
 use towride_solver::linear::NewtonMatrix;
@@ -43,6 +44,18 @@ pub fn assemble(
     q: &mut [f64],
     v: &mut [f64],
 ) -> Result<AssemblyReport, ModelError> {
+    assemble_with(sys, t, q, v, normal::dense(sys.m))
+}
+
+/// [`assemble`] on the dense (`dense`) or the sparse path; [`assemble`] chooses by
+/// [`normal::DENSE_ROWS`].
+pub fn assemble_with(
+    sys: &System,
+    t: f64,
+    q: &mut [f64],
+    v: &mut [f64],
+    dense: bool,
+) -> Result<AssemblyReport, ModelError> {
     let mut rep = AssemblyReport::default();
     if sys.m == 0 {
         return Ok(rep);
@@ -72,36 +85,58 @@ pub fn assemble(
                 sys.equation_name(sys.offsets().2 + worst.0)
             )));
         }
-        let bm = dense_b(sys, &b);
-        let dx =
-            min_norm(&bm, &DVector::from_vec(g.iter().map(|x| -x).collect())).ok_or_else(|| {
-                ModelError::Assembly("constraint Jacobian is rank-deficient during assembly".into())
-            })?;
-        sys.apply_increment(q, dx.as_slice());
+        let neg_g: Vec<f64> = g.iter().map(|x| -x).collect();
+        let dx = correction(sys, &b, neg_g, dense)?.ok_or_else(|| {
+            ModelError::Assembly("constraint Jacobian is rank-deficient during assembly".into())
+        })?;
+        sys.apply_increment(q, &dx);
         rep.iterations = it + 1;
     }
     let (_, gt, b) = sys.constraints(t, q);
-    let bm = dense_b(sys, &b);
-    let vv = DVector::from_column_slice(v);
-    let r = &bm * &vv + DVector::from_vec(gt);
-    let dv = min_norm(&bm, &(-r))
+    // -(B v + g_t)
+    let r: Vec<f64> = if dense {
+        let res = dense_b(sys, &b) * DVector::from_column_slice(v) + DVector::from_vec(gt);
+        (-res).as_slice().to_vec()
+    } else {
+        let mut r: Vec<f64> = gt.iter().map(|x| -x).collect();
+        for &(row, c, val) in &b {
+            r[row] -= val * v[c];
+        }
+        r
+    };
+    let dv = correction(sys, &b, r, dense)?
         .ok_or_else(|| ModelError::Assembly("constraint Jacobian is rank-deficient".into()))?;
-    rep.velocity_correction = inf(dv.as_slice());
+    rep.velocity_correction = inf(&dv);
     for (a, d) in v.iter_mut().zip(dv.iter()) {
         *a += d;
     }
     Ok(rep)
 }
 
+/// The minimum-norm x with B x = rhs (B as triplets); `None` when B B^T is singular.
+fn correction(
+    sys: &System,
+    b: &[(usize, usize, f64)],
+    rhs: Vec<f64>,
+    dense: bool,
+) -> Result<Option<Vec<f64>>, ModelError> {
+    if dense {
+        let bm = dense_b(sys, b);
+        return Ok(min_norm(&bm, &DVector::from_vec(rhs)).map(|x| x.as_slice().to_vec()));
+    }
+    normal::min_norm_sparse(sys, &normal::rows_of(sys.m, b), &rhs)
+}
+
 /// Accelerations v' and multipliers lambda for consistent q, v:
 /// [M B^T; B 0] [v'; lambda] = [f; gamma], gamma = -d(B v + g_t)/dt at fixed v.
 ///
 /// M is block diagonal (one block per body), so the multipliers follow from the Schur
-/// complement (B M^-1 B^T) lambda = B M^-1 f - gamma, dense and positive definite when the
-/// kept rows are independent, and v' = M^-1 (f - B^T lambda). Per output sample this costs
-/// a quarter of a sparse LU of the whole saddle-point matrix. When that Cholesky factor
-/// does not exist (a massless body, a dependent row left in), the sparse LU is used, which
-/// reports the singularity.
+/// complement (B M^-1 B^T) lambda = B M^-1 f - gamma, positive definite when the kept
+/// rows are independent, and v' = M^-1 (f - B^T lambda). Per output sample this costs
+/// a quarter of a sparse LU of the whole saddle-point matrix. The Schur complement is
+/// dense up to [`normal::DENSE_ROWS`] rows and sparse (rows meet where they share a
+/// body) above. When its Cholesky factor does not exist (a massless body, a dependent
+/// row left in), the sparse LU is used, which reports the singularity.
 pub fn accelerations(
     sys: &System,
     t: f64,
@@ -109,18 +144,28 @@ pub fn accelerations(
     v: &[f64],
     x: &[f64],
 ) -> Result<(Vec<f64>, Vec<f64>), ModelError> {
+    accelerations_with(sys, t, q, v, x, normal::dense(sys.m))
+}
+
+/// [`accelerations`] with the Schur complement dense (`dense`) or sparse;
+/// [`accelerations`] chooses by [`normal::DENSE_ROWS`].
+pub fn accelerations_with(
+    sys: &System,
+    t: f64,
+    q: &[f64],
+    v: &[f64],
+    x: &[f64],
+    dense: bool,
+) -> Result<(Vec<f64>, Vec<f64>), ModelError> {
     let f = sys.loads(t, q, v, x, None);
     let (rows, rhs_c) = kept_rows(sys, t, q, v);
-    if let Some(sol) = schur_solve(sys, q, &f, &rows, &rhs_c) {
+    if let Some(sol) = schur_solve(sys, q, &f, &rows, &rhs_c, dense)? {
         return Ok(sol);
     }
     saddle_point_lu(sys, q, f, &rows, &rhs_c)
 }
 
-/// The kept constraint rows as (multiplier index, [(velocity unknown, B entry)]) and the
-/// right-hand side -gamma of B v' = -gamma.
-type Rows = Vec<(usize, Vec<(usize, f64)>)>;
-
+/// The kept constraint rows and the right-hand side -gamma of B v' = -gamma.
 fn kept_rows(sys: &System, t: f64, q: &[f64], v: &[f64]) -> (Rows, Vec<f64>) {
     let mut rows = Vec::with_capacity(sys.m);
     let mut rhs_c = vec![0.0; sys.m];
@@ -174,91 +219,96 @@ impl BodyInverse {
     }
 }
 
-/// The Schur-complement solve; `None` when a mass block or B M^-1 B^T is not positive
-/// definite.
+/// Accelerations v' and multipliers lambda.
+type Solution = (Vec<f64>, Vec<f64>);
+
+/// The Schur-complement solve, S dense or sparse; `None` when a mass block or
+/// S = B M^-1 B^T is not positive definite.
 fn schur_solve(
     sys: &System,
     q: &[f64],
     f: &[f64],
     rows: &Rows,
     rhs_c: &[f64],
-) -> Option<(Vec<f64>, Vec<f64>)> {
-    let (n, m) = (sys.nv, sys.m);
-    let nb = sys.nb();
-    let mut owner = vec![0; n];
-    for b in 0..nb {
-        owner[sys.vo[b]..sys.vo[b] + sys.width(Some(b))].fill(b);
-    }
-    // Rows touching each body, in order.
-    let mut touching: Vec<Vec<usize>> = vec![Vec::new(); nb];
-    for (k, (_, entries)) in rows.iter().enumerate() {
-        for &(c, _) in entries {
-            let b = owner[c];
-            if touching[b].last() != Some(&k) {
-                touching[b].push(k);
-            }
-        }
-    }
-    let mut s = faer::Mat::<f64>::zeros(m, m);
-    let mut lam = faer::Mat::<f64>::zeros(m, 1);
+    dense: bool,
+) -> Result<Option<Solution>, ModelError> {
+    let m = sys.m;
+    let blocks = Blocks::of(sys, rows);
+    let mut s_dense = faer::Mat::<f64>::zeros(if dense { m } else { 0 }, if dense { m } else { 0 });
+    let mut s_sparse = if dense {
+        None
+    } else {
+        Some(normal::matrix(sys)?)
+    };
+    let mut lam = vec![0.0; m];
     for (row, _) in rows {
-        lam[(*row, 0)] = -rhs_c[*row];
+        lam[*row] = -rhs_c[*row];
     }
     let mut acc = f.to_vec();
-    // Per body: its part of B (one dense row of width w per touching row) and M^-1 times
-    // it, kept for v' = M^-1 f - (M^-1 B^T) lambda.
-    let mut parts: Vec<(Vec<f64>, Vec<f64>)> = Vec::with_capacity(nb);
-    for b in 0..nb {
+    // Per body: M^-1 times its rows of B, kept for v' = M^-1 f - (M^-1 B^T) lambda.
+    let mut parts: Vec<Vec<f64>> = Vec::with_capacity(sys.nb());
+    for (b, (rk, bb)) in blocks.body.iter().enumerate() {
         let (w, o) = (sys.width(Some(b)), sys.vo[b]);
         let inv = match sys.mass_block(b, q) {
-            MassBlock::Full(mb) => BodyInverse::Full(mb.cholesky()?),
-            MassBlock::Diagonal { mass, inertia } => BodyInverse::Diagonal {
-                inv_mass: 1.0 / mass,
-                inv_j: Matrix3::from_fn(|r, c| inertia[r][c]).cholesky()?.inverse(),
+            MassBlock::Full(mb) => match mb.cholesky() {
+                Some(ch) => BodyInverse::Full(ch),
+                None => return Ok(None),
             },
-        };
-        inv.apply(&mut acc[o..o + w]);
-        let rk = &touching[b];
-        let mut bb = vec![0.0; rk.len() * w];
-        for (i, &k) in rk.iter().enumerate() {
-            for &(c, val) in &rows[k].1 {
-                if owner[c] == b {
-                    bb[i * w + c - o] += val;
+            MassBlock::Diagonal { mass, inertia } => {
+                match Matrix3::from_fn(|r, c| inertia[r][c]).cholesky() {
+                    Some(ch) => BodyInverse::Diagonal {
+                        inv_mass: 1.0 / mass,
+                        inv_j: ch.inverse(),
+                    },
+                    None => return Ok(None),
                 }
             }
-        }
+        };
+        inv.apply(&mut acc[o..o + w]);
         let mut xb = bb.clone();
         for x in xb.chunks_mut(w) {
             inv.apply(x);
         }
         let u = &acc[o..o + w];
         for (i, &ki) in rk.iter().enumerate() {
-            let bi = &bb[i * w..(i + 1) * w];
-            let ri = rows[ki].0;
-            lam[(ri, 0)] += dot(bi, u);
-            for (j, &kj) in rk.iter().enumerate() {
-                s[(ri, rows[kj].0)] += dot(bi, &xb[j * w..(j + 1) * w]);
-            }
+            lam[rows[ki].0] += dot(&bb[i * w..(i + 1) * w], u);
         }
-        parts.push((bb, xb));
+        match s_sparse.as_mut() {
+            None => add_body(rows, rk, w, bb, &xb, true, &mut |i, j, v| {
+                s_dense[(i, j)] += v
+            }),
+            Some(a) => add_body(rows, rk, w, bb, &xb, false, &mut |i, j, v| {
+                a.add(i, j, v).expect("pair of rows sharing a body")
+            }),
+        }
+        parts.push(xb);
     }
-    let llt = s.llt(faer::Side::Lower).ok()?;
-    faer::linalg::solvers::Solve::solve_in_place(&llt, lam.as_mut());
-    let lam: Vec<f64> = (0..m).map(|i| lam[(i, 0)]).collect();
-    for (b, (_, xb)) in parts.iter().enumerate() {
+    match s_sparse.as_mut() {
+        None => {
+            let Ok(llt) = s_dense.llt(faer::Side::Lower) else {
+                return Ok(None);
+            };
+            let mut l = faer::Mat::<f64>::from_fn(m, 1, |i, _| lam[i]);
+            faer::linalg::solvers::Solve::solve_in_place(&llt, l.as_mut());
+            lam = (0..m).map(|i| l[(i, 0)]).collect();
+        }
+        Some(a) => {
+            if a.factor().is_err() {
+                return Ok(None);
+            }
+            a.solve(&mut lam);
+        }
+    }
+    for (b, xb) in parts.iter().enumerate() {
         let (w, o) = (sys.width(Some(b)), sys.vo[b]);
-        for (i, &k) in touching[b].iter().enumerate() {
+        for (i, &k) in blocks.body[b].0.iter().enumerate() {
             let l = lam[rows[k].0];
             for c in 0..w {
                 acc[o + c] -= xb[i * w + c] * l;
             }
         }
     }
-    acc.iter().all(|a| a.is_finite()).then_some((acc, lam))
-}
-
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
+    Ok(acc.iter().all(|a| a.is_finite()).then_some((acc, lam)))
 }
 
 /// The sparse LU of [M B^T; B 0] (kept for what the Schur complement cannot do, and for

@@ -142,6 +142,9 @@ pub struct System {
     /// The sparse matrix [M B^T; B 0] of the acceleration-level solve, structure built
     /// once (outputs solve it at every sample).
     pub(crate) accel: std::cell::RefCell<Option<towride_solver::linear::NewtonMatrix>>,
+    /// The sparse symmetric matrix B W B^T of the start and the outputs on large models
+    /// (`model::normal`), symbolic analysis made once.
+    pub(crate) normal: std::cell::RefCell<Option<towride_solver::linear::SparseCholesky>>,
     /// Marker axes as quaternions (body frame), for bushings.
     mquat: Vec<[f64; 4]>,
     /// Force elements: (index in model.forces, marker i, marker j or None).
@@ -218,6 +221,7 @@ impl System {
             ne,
             controls_active: std::cell::Cell::new(true),
             accel: std::cell::RefCell::new(None),
+            normal: std::cell::RefCell::new(None),
             mquat,
             felems,
             full,
