@@ -214,3 +214,72 @@ fn set_replaces_a_value_for_one_run_and_a_set_that_matches_nothing_is_refused() 
     assert!(String::from_utf8_lossy(&out.stderr).contains("FILE:PATH=VALUE"));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn bench_scaling_times_each_family_by_phase() {
+    let dir = std::env::temp_dir().join(format!("towride-scaling-{}", std::process::id()));
+    let out = towride(&[
+        "bench",
+        "scaling",
+        "--chain",
+        "2,8",
+        "--ladder",
+        "1,3",
+        "--hitch-modes",
+        "2",
+        "--json",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["schema_version"], 1);
+    let pts = v["points"].as_array().unwrap();
+    assert_eq!(pts.len(), 5);
+    for p in pts {
+        assert_eq!(p["status"], "completed", "{p}");
+        let (n, rows) = (
+            p["size"].as_u64().unwrap(),
+            p["constraint_rows"].as_u64().unwrap(),
+        );
+        let parts: f64 = ["setup_s", "start_s", "integration_s", "outputs_s"]
+            .iter()
+            .map(|k| p[k].as_f64().unwrap())
+            .sum();
+        assert!((parts - p["total_s"].as_f64().unwrap()).abs() < 1e-6, "{p}");
+        match p["family"].as_str().unwrap() {
+            // Five rows per revolute joint, none repeated.
+            "chain" => assert_eq!((rows, p["redundant_rows"].as_u64().unwrap()), (5 * n, 0)),
+            // A planar four-bar of 3D revolutes: 20 rows, 17 independent.
+            "ladder" => assert_eq!(
+                (rows, p["redundant_rows"].as_u64().unwrap()),
+                (17 * n, 3 * n)
+            ),
+            _ => assert_eq!(n, 2),
+        }
+    }
+    let csv = std::fs::read_to_string(dir.join("scaling.csv")).unwrap();
+    assert!(csv.starts_with("family,size [-],equations [-]"), "{csv}");
+    let png = std::fs::read(dir.join("scaling.png")).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+    // A vehicle case the study file does not have is refused by name.
+    let out = towride(&[
+        "bench",
+        "scaling",
+        "--hitch-modes",
+        "7",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("hitch_modes = 7") && err.contains("scaling.toml"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

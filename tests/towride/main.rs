@@ -21,6 +21,7 @@ mod inputs_and_builder;
 mod model_mechanisms;
 mod model_modal;
 mod model_modal_full;
+mod model_scaling;
 mod model_tyres;
 mod road_obstacles;
 mod road_profile_mesh;

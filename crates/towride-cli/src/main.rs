@@ -5,6 +5,7 @@ mod analyse;
 mod bench;
 mod modes;
 mod run;
+mod scaling;
 mod scene_bench;
 mod scene_stress;
 mod sweep;
@@ -67,6 +68,9 @@ struct BenchArgs {
 enum BenchCommand {
     /// Wall time, steps and accuracy over a tolerance range for the built-in problems.
     Solver(bench::BenchSolverArgs),
+    /// Set-up, start, integration and output times of growing models (chains, ladders of
+    /// loops, the vehicle with more hitch modes) and their growth exponents.
+    Scaling(scaling::ScalingArgs),
 }
 
 /// `--method` values on the command line.
@@ -101,6 +105,10 @@ fn run() -> i32 {
             cmd: Some(BenchCommand::Solver(a)),
             ..
         }) => bench::run_solver(&a),
+        Command::Bench(BenchArgs {
+            cmd: Some(BenchCommand::Scaling(a)),
+            ..
+        }) => scaling::run(&a),
         Command::Bench(a) => scene_bench::run_bench(&a.scene),
         Command::Run(a) => run::run(&a),
         Command::Linear(a) => analyse::linear(&a),

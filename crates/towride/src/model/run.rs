@@ -30,6 +30,24 @@ pub struct Samples {
     pub last: Option<(f64, Vec<f64>, Vec<f64>)>,
     /// Modal coordinates of every modal body at every sample: (body, rows[k][mode]).
     pub modal: Vec<(usize, Vec<Vec<f64>>)>,
+    /// Where the wall time went.
+    pub phases: Phases,
+}
+
+/// Wall time of a run's phases [s] (they add up to `Samples::wall_s` but for the
+/// bookkeeping between them).
+#[derive(Clone, Debug, Default, serde::Serialize)]
+pub struct Phases {
+    /// The consistent initial state (assembly, velocity projection, accelerations and
+    /// multipliers), when the run makes it rather than being handed one.
+    pub start_s: f64,
+    /// The integrator's set-up: the iteration matrix's structure, its fill-reducing
+    /// order and column colouring, the first evaluation.
+    pub solver_setup_s: f64,
+    /// Stepping to the sample times.
+    pub integration_s: f64,
+    /// The output channels at the samples (interpolation and evaluation).
+    pub outputs_s: f64,
 }
 
 /// Runs from `t0` (state from the model's initial values, or `start` if given) to
@@ -58,6 +76,13 @@ pub fn simulate(
             .filter(|&b| sys.nm[b] > 0)
             .map(|b| (b, Vec::new()))
             .collect(),
+        phases: Phases::default(),
+    };
+    let mut lap = Instant::now();
+    let mut took = || {
+        let s = lap.elapsed().as_secs_f64();
+        lap = Instant::now();
+        s
     };
     let (y0, yp0) = match start {
         Some(s) => s,
@@ -76,9 +101,11 @@ pub fn simulate(
             }
         }
     };
+    res.phases.start_s = took();
     res.times.push(t0);
     res.rows.push(evaluate(sys, t0, &y0, &yp0));
     record_modal(sys, &mut res, &y0);
+    res.phases.outputs_s += took();
     // BDF or Radau IIA, as `opts.method` says.
     let mut bdf = match Integrator::new(sys, t0, &y0, &yp0, opts.clone()) {
         Ok(b) => b,
@@ -87,6 +114,7 @@ pub fn simulate(
             return res;
         }
     };
+    res.phases.solver_setup_s = took();
     bdf.set_stop_time(t_end);
     let n = ((t_end - t0) * rate).round() as usize;
     progress.begin(n as u64);
@@ -105,12 +133,15 @@ pub fn simulate(
                 }
             }
         }
+        res.phases.integration_s += took();
         bdf.interpolate(ts, &mut y, &mut yp);
         res.times.push(ts);
         res.rows.push(evaluate(sys, ts, &y, &yp));
         record_modal(sys, &mut res, &y);
         progress.set(k as u64);
+        res.phases.outputs_s += took();
     }
+    res.phases.integration_s += took();
     unwrap_angles(&mut res);
     res.stats = bdf.stats().clone();
     res.stats.step_limiters = bdf.step_limiters(5);

@@ -83,6 +83,7 @@ fn draw<DB: DrawingBackend>(
         };
         let xr = span(pts.iter().map(|p| p.0).collect());
         let yr = span(pts.iter().map(|p| p.1).collect());
+        let corner = emptiest_corner(panel, &xr, &yr);
         let mut chart = ChartBuilder::on(area)
             .caption(&panel.title, ("sans-serif", 16))
             .margin(8)
@@ -124,7 +125,7 @@ fn draw<DB: DrawingBackend>(
         }
         chart
             .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
+            .position(corner)
             .background_style(WHITE.mix(0.8))
             .border_style(BLACK)
             .label_font(("sans-serif", 11))
@@ -133,6 +134,47 @@ fn draw<DB: DrawingBackend>(
     }
     root.present().map_err(|x| e(&x))?;
     Ok(())
+}
+
+/// The quarter of the panel (log axes) that the series' lines cross least, for the
+/// legend: growth plots fill the lower left and upper right, and a legend there hid
+/// their largest points.
+fn emptiest_corner(
+    panel: &Panel,
+    xr: &std::ops::Range<f64>,
+    yr: &std::ops::Range<f64>,
+) -> SeriesLabelPosition {
+    let (xm, ym) = (0.5 * (xr.start + xr.end), 0.5 * (yr.start + yr.end));
+    let mut count = [0usize; 4]; // upper left, upper right, lower left, lower right
+    for s in &panel.series {
+        let pts: Vec<(f64, f64)> = s
+            .points
+            .iter()
+            .filter(|(x, y)| *x > 0.0 && *y > 0.0 && x.is_finite() && y.is_finite())
+            .map(|(x, y)| (x.log10(), y.log10()))
+            .collect();
+        let mut at =
+            |(x, y): (f64, f64)| count[2 * usize::from(y < ym) + usize::from(x >= xm)] += 1;
+        pts.iter().for_each(|&p| at(p));
+        for w in pts.windows(2) {
+            for k in 1..10 {
+                let f = k as f64 / 10.0;
+                at((
+                    w[0].0 + f * (w[1].0 - w[0].0),
+                    w[0].1 + f * (w[1].1 - w[0].1),
+                ));
+            }
+        }
+    }
+    let best = (0..4)
+        .min_by_key(|&k| (count[k], [1, 0, 3, 2][k]))
+        .unwrap_or(1);
+    match best {
+        0 => SeriesLabelPosition::UpperLeft,
+        1 => SeriesLabelPosition::UpperRight,
+        2 => SeriesLabelPosition::LowerLeft,
+        _ => SeriesLabelPosition::LowerRight,
+    }
 }
 
 /// A tick label with two significant digits: 0.25, 3.5, 1.2e-5.

@@ -1,8 +1,10 @@
 //! Studies made of many runs of one scene: the work-precision study ([`bench`]) and the
 //! stress test of integrator settings and physics ([`stress`]). Both compare runs with a
-//! tight-tolerance reference run ([`Reference`]) and run their cases in parallel.
+//! tight-tolerance reference run ([`Reference`]) and run their cases in parallel. The
+//! scaling study ([`scaling`]) times runs of growing models by phase.
 
 pub mod bench;
+pub mod scaling;
 pub mod stress;
 
 use crate::error::{Error, Result};
