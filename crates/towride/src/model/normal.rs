@@ -3,10 +3,9 @@
 //! by body: rows i and j meet only where they share a body, so the matrix is as sparse
 //! as the mechanism is local (block tridiagonal for a chain).
 //!
-//! Dense below [`DENSE_ROWS`] kept rows, where the dense factorisations are measured to
-//! be faster (and the figures of the models that ran before the sparse path existed stay
-//! bit for bit); a sparse Cholesky factorisation above, on a pattern analysed once per
-//! [`System`].
+//! Dense up to [`DENSE_ROWS`] kept rows (the figures of the models that ran before the
+//! sparse path existed stay bit for bit, and the dense path is as fast there); a sparse
+//! Cholesky factorisation above, on a pattern analysed once per [`System`].
 
 use std::cell::RefMut;
 
@@ -15,8 +14,10 @@ use super::ModelError;
 use towride_solver::linear::SparseCholesky;
 
 /// Up to this many kept constraint rows the start and outputs use dense algebra.
-/// Measured with `towride bench scaling` on chains (docs/performance.md, "Start"): the
-/// dense and the sparse path cost the same near 100 rows; the vehicle has 71.
+/// Measured (assembly, projection and accelerations; docs/performance.md, "What is
+/// sparse"): the two cost the same near 50 to 60 rows and the dense path is 3x slower
+/// at 100 (0.31 against 0.10 ms): kept up to 100 so the vehicle (71 rows) keeps its
+/// figures bit for bit.
 pub const DENSE_ROWS: usize = 100;
 
 /// Kept constraint rows as (multiplier index, [(velocity unknown, B entry)]).
