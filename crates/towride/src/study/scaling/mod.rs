@@ -171,6 +171,9 @@ pub struct Point {
     /// Building the model and the equations (redundancy sweep included) and the
     /// integrator's set-up [s].
     pub setup_s: f64,
+    /// The integrator's part of `setup_s` (iteration matrix structure, fill-reducing
+    /// order, column colouring, first evaluation) [s].
+    pub integrator_setup_s: f64,
     /// The consistent start (assembly, statics and settling run where the scene asks)
     /// [s].
     pub start_s: f64,
@@ -386,6 +389,7 @@ fn measure(
         redundant_rows: job.system.redundant.len(),
         steps,
         setup_s,
+        integrator_setup_s: ph.solver_setup_s,
         start_s,
         integration_s: ph.integration_s,
         outputs_s,
@@ -475,6 +479,7 @@ impl Study {
             "redundant rows [-]",
             "steps [-]",
             "set-up [s]",
+            "integrator set-up [s]",
             "start [s]",
             "integration [s]",
             "outputs [s]",
@@ -493,6 +498,7 @@ impl Study {
                 p.redundant_rows.to_string(),
                 p.steps.to_string(),
                 format!("{:.6}", p.setup_s),
+                format!("{:.6}", p.integrator_setup_s),
                 format!("{:.6}", p.start_s),
                 format!("{:.6}", p.integration_s),
                 format!("{:.6}", p.outputs_s),
