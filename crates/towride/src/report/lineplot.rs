@@ -3,6 +3,7 @@
 use plotters::prelude::*;
 use std::path::Path;
 
+use super::figure::{AxisMap, PanelLayout};
 use super::plot::register_font;
 use super::ReportError;
 
@@ -47,6 +48,22 @@ pub fn line_panels(path: &Path, panels: &[LinePanel], cols: usize) -> Result<(),
     }
 }
 
+/// Draws panels in a grid of `size` pixels into a PNG; returns where each panel went.
+pub fn draw_panels_layout(
+    path: &Path,
+    panels: &[LinePanel],
+    cols: usize,
+    size: (u32, u32),
+) -> Result<Vec<PanelLayout>, ReportError> {
+    register_font();
+    let rows = panels.len().div_ceil(cols);
+    let root = BitMapBackend::new(path, size).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| e.to_string())?;
+    let layout = draw_panels_with_layout(&root, panels, rows, cols)?;
+    root.present().map_err(|e| e.to_string())?;
+    Ok(layout)
+}
+
 /// Draws panels in a `rows` x `cols` grid into `root` (part of a larger page, say).
 pub fn draw_panels<DB: DrawingBackend>(
     root: &DrawingArea<DB, plotters::coord::Shift>,
@@ -54,6 +71,19 @@ pub fn draw_panels<DB: DrawingBackend>(
     rows: usize,
     cols: usize,
 ) -> Result<(), ReportError> {
+    draw_panels_with_layout(root, panels, rows, cols).map(|_| ())
+}
+
+fn draw_panels_with_layout<DB: DrawingBackend>(
+    root: &DrawingArea<DB, plotters::coord::Shift>,
+    panels: &[LinePanel],
+    rows: usize,
+    cols: usize,
+) -> Result<Vec<PanelLayout>, ReportError> {
+    use plotters::coord::ranged1d::ValueFormatter;
+    use plotters::coord::types::RangedCoordf64;
+    use std::cell::RefCell;
+    let mut layouts = Vec::new();
     let e = |x: &dyn std::fmt::Display| x.to_string();
     for (panel, area) in panels.iter().zip(root.split_evenly((rows, cols)).iter()) {
         let pts: Vec<(f64, f64)> = panel
@@ -78,6 +108,20 @@ pub fn draw_panels<DB: DrawingBackend>(
         };
         let xr = range(&mut pts.iter().map(|p| p.0));
         let yr = range(&mut pts.iter().map(|p| p.1));
+        let (xr0, yr0) = (xr.clone(), yr.clone());
+        // The labels plotters draws, recorded by value (its own formatter, unchanged).
+        let x_seen: RefCell<Vec<(f64, String)>> = RefCell::new(Vec::new());
+        let y_seen: RefCell<Vec<(f64, String)>> = RefCell::new(Vec::new());
+        let record = |seen: &RefCell<Vec<(f64, String)>>, v: &f64| {
+            let s = <RangedCoordf64 as ValueFormatter<f64>>::format(v);
+            let mut seen = seen.borrow_mut();
+            if !seen.iter().any(|(w, _)| w == v) {
+                seen.push((*v, s.clone()));
+            }
+            s
+        };
+        let x_fmt = |v: &f64| record(&x_seen, v);
+        let y_fmt = |v: &f64| record(&y_seen, v);
         let mut chart = ChartBuilder::on(area)
             .caption(&panel.title, ("sans-serif", 16))
             .margin(8)
@@ -90,9 +134,45 @@ pub fn draw_panels<DB: DrawingBackend>(
             .x_desc(&panel.x_label)
             .y_desc(&panel.y_label)
             .label_style(("sans-serif", 11))
+            .x_label_formatter(&x_fmt)
+            .y_label_formatter(&y_fmt)
             .light_line_style(TRANSPARENT)
             .draw()
             .map_err(|x| e(&x))?;
+        let (px, py) = chart.plotting_area().get_pixel_range();
+        let at = |x: f64, y: f64| chart.backend_coord(&(x, y));
+        let labels = |seen: &RefCell<Vec<(f64, String)>>| {
+            let mut v = seen.borrow().clone();
+            v.sort_by(|a, b| a.0.total_cmp(&b.0));
+            v.into_iter().map(|(_, s)| s).collect()
+        };
+        layouts.push(PanelLayout {
+            plot: [px.start, py.start, px.end, py.end],
+            x: AxisMap {
+                lo: xr0.start,
+                hi: xr0.end,
+                px_lo: at(xr0.start, yr0.start).0 as f64,
+                px_hi: at(xr0.end, yr0.start).0 as f64,
+            },
+            y: AxisMap {
+                lo: yr0.start,
+                hi: yr0.end,
+                px_lo: at(xr0.start, yr0.start).1 as f64,
+                px_hi: at(xr0.start, yr0.end).1 as f64,
+            },
+            x_ticks: labels(&x_seen),
+            y_ticks: labels(&y_seen),
+            // DejaVu Sans digits are 0.729 em high.
+            tick_digit_px: 11.0 * 0.729,
+            colours: (0..panel.lines.len())
+                .map(|i| {
+                    let c = Palette99::pick(i).to_rgba();
+                    [c.0, c.1, c.2]
+                })
+                .collect(),
+            // Inside the plot area, where plotters puts it.
+            legend: None,
+        });
         for (i, l) in panel.lines.iter().enumerate() {
             let colour = Palette99::pick(i).to_rgba();
             chart
@@ -114,5 +194,5 @@ pub fn draw_panels<DB: DrawingBackend>(
             .draw()
             .map_err(|x| e(&x))?;
     }
-    Ok(())
+    Ok(layouts)
 }

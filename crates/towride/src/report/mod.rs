@@ -1,6 +1,7 @@
 //! Figures and reports as files: plotting with a bundled font (no system fonts needed),
 //! and the page of plots a vehicle run writes.
 
+pub mod figure;
 pub mod lineplot;
 pub mod plot;
 mod run;
