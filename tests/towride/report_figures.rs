@@ -7,7 +7,7 @@
 use std::collections::VecDeque;
 use std::path::Path;
 
-use towride::report::figure::{render, Figure, Panel, PanelLayout, Trace};
+use towride::report::figure::{render, Figure, Panel, PanelLayout};
 
 struct Drawn {
     img: image::RgbImage,
@@ -17,19 +17,10 @@ struct Drawn {
 /// Renders one panel with one trace into `dir/name.png` and reads it back.
 fn draw(dir: &Path, name: &str, points: Vec<(f64, f64)>) -> Drawn {
     let path = dir.join(format!("{name}.png"));
-    let fig = Figure {
-        width: 1600,
-        cols: 1,
-        panels: vec![Panel {
-            title: name.into(),
-            x_label: "time [s]".into(),
-            y_label: "value [-]".into(),
-            traces: vec![Trace {
-                label: "signal".into(),
-                points,
-            }],
-        }],
-    };
+    let panel = Panel::new(name, "time [s]", "value [-]").lines([("signal".into(), points)]);
+    let mut fig = Figure::new(vec![panel], 1);
+    fig.width = 1600;
+    fig.panel_height = 1000;
     let mut layout = render(&path, &fig).expect("figure drawn");
     assert_eq!(layout.len(), 1);
     let img = image::open(&path).expect("a PNG").to_rgb8();

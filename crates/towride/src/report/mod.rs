@@ -1,11 +1,14 @@
 //! Figures and reports as files: plotting with a bundled font (no system fonts needed),
 //! and the page of plots a vehicle run writes.
 
+pub mod canvas;
+pub mod decimate;
 pub mod figure;
 pub mod lineplot;
 pub mod plot;
 mod run;
 pub mod steps;
+pub mod ticks;
 
 pub use run::run_page;
 
