@@ -25,6 +25,7 @@ mod model_tyres;
 mod report_figures;
 mod road_obstacles;
 mod road_profile_mesh;
+mod scene_outputs;
 mod tyre_cleat;
 mod tyre_enveloping;
 mod tyre_lift_off;
