@@ -23,6 +23,7 @@ mod model_modal;
 mod model_modal_full;
 mod model_tyres;
 mod report_figures;
+mod report_html;
 mod road_obstacles;
 mod road_profile_mesh;
 mod scene_outputs;
