@@ -22,6 +22,7 @@ mod model_mechanisms;
 mod model_modal;
 mod model_modal_full;
 mod model_tyres;
+mod report_compare;
 mod report_figures;
 mod report_html;
 mod road_obstacles;

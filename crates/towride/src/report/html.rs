@@ -12,10 +12,22 @@ use super::psd::{segment_length, welch};
 use super::run::run_panels;
 use crate::model::run::Samples;
 
-const UPLOT_JS: &str = include_str!("vendor/uplot/uPlot.iife.min.js");
-const UPLOT_CSS: &str = include_str!("vendor/uplot/uPlot.min.css");
+pub(crate) const UPLOT_JS: &str = include_str!("vendor/uplot/uPlot.iife.min.js");
+pub(crate) const UPLOT_CSS: &str = include_str!("vendor/uplot/uPlot.min.css");
+/// DOM helpers, formats and uPlot plugins shared by the pages.
+pub(crate) const COMMON_JS: &str = include_str!("assets/common.js");
 const REPORT_JS: &str = include_str!("assets/report.js");
-const REPORT_CSS: &str = include_str!("assets/report.css");
+pub(crate) const REPORT_CSS: &str = include_str!("assets/report.css");
+/// Records uncaught errors on `<html data-errors>` (the browser test reads them).
+pub(crate) const ERROR_HOOK: &str = "<script>window.onerror = (m, f, l) => { const b = document.documentElement; \
+    b.setAttribute(\"data-errors\", (b.getAttribute(\"data-errors\") || \"\") + m + \" (line \" + l + \"); \"); };</script>";
+
+/// `s` with `&`, `<` and `>` escaped for HTML text.
+pub(crate) fn escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}
 
 /// Longest Welch segment [samples]: 0.5 Hz resolution at 1 kHz sampling.
 const PSD_MAX_SEGMENT: usize = 2048;
@@ -56,7 +68,7 @@ fn array(out: &mut String, values: impl IntoIterator<Item = f64>) {
 /// A signal as integers and a scale (`{"s":scale,"q":[...]}`, value = q s): a millionth
 /// of the signal's largest magnitude, finer than any chart shows or the read-out's five
 /// digits near the peak; integers keep the file small and quick to write.
-fn quantised(out: &mut String, values: impl Iterator<Item = f64> + Clone) {
+pub(crate) fn quantised(out: &mut String, values: impl Iterator<Item = f64> + Clone) {
     let peak = values
         .clone()
         .filter(|v| v.is_finite())
@@ -78,7 +90,7 @@ fn quantised(out: &mut String, values: impl Iterator<Item = f64> + Clone) {
     out.push_str("]}");
 }
 
-fn string(out: &mut String, s: &str) {
+pub(crate) fn string(out: &mut String, s: &str) {
     // serde_json escapes quotes and control characters; `</` is split so that no
     // string can close the script element.
     out.push_str(
@@ -257,10 +269,7 @@ pub fn run_report(
     d.push('}');
 
     let mut h = String::with_capacity(d.len() + UPLOT_JS.len() + 16384);
-    let esc = title
-        .replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;");
+    let esc = escape(title);
     let _ = write!(
         h,
         "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
@@ -269,9 +278,8 @@ pub fn run_report(
          <body>\n<h1>{esc}</h1>\n<div id=\"app\"><noscript>This report needs JavaScript \
          (no network: everything is in this file).</noscript></div>\n\
          <script type=\"application/json\" id=\"data\">{d}</script>\n\
-         <script>window.onerror = (m, f, l) => {{ const b = document.documentElement; \
-         b.setAttribute(\"data-errors\", (b.getAttribute(\"data-errors\") || \"\") + m + \" (line \" + l + \"); \"); }};</script>\n\
-         <script>{UPLOT_JS}</script>\n<script>{REPORT_JS}</script>\n</body></html>\n",
+         {ERROR_HOOK}\n\
+         <script>{UPLOT_JS}</script>\n<script>{COMMON_JS}</script>\n<script>{REPORT_JS}</script>\n</body></html>\n",
         env!("CARGO_PKG_VERSION")
     );
     h

@@ -2,6 +2,7 @@
 //! the page of plots a vehicle run writes, and its interactive HTML report.
 
 pub mod canvas;
+pub mod compare;
 pub mod decimate;
 pub mod figure;
 pub mod html;
