@@ -184,5 +184,16 @@ fn report_opens_in_chromium_without_errors_and_draws_every_chart() {
         .filter(|p| p.0.iter().max().unwrap() - p.0.iter().min().unwrap() > 40)
         .count();
     assert!(colour > 5000, "{colour} coloured pixels in the screenshot");
+    // The comparison page of this run against itself opens without errors too.
+    let run = towride::report::compare::load(&dir).unwrap();
+    let runs = vec![run.clone(), run];
+    let mut c = towride::report::compare::compare(&runs);
+    let cmp = dir.join("cmp");
+    towride::report::compare::write(&runs, &mut c, &cmp, "png").unwrap();
+    let url = format!("file://{}", cmp.join("compare.html").display());
+    let out = chromium(&["--window-size=1400,1000", "--dump-dom", &url], &profile);
+    let dom = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(attribute(&dom, "html", "data-errors"), None, "JavaScript error");
+    assert_eq!(attribute(&dom, "body", "data-ready").as_deref(), Some("1"));
     std::fs::remove_dir_all(&dir).ok();
 }
