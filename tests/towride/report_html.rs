@@ -193,7 +193,11 @@ fn report_opens_in_chromium_without_errors_and_draws_every_chart() {
     let url = format!("file://{}", cmp.join("compare.html").display());
     let out = chromium(&["--window-size=1400,1000", "--dump-dom", &url], &profile);
     let dom = String::from_utf8_lossy(&out.stdout);
-    assert_eq!(attribute(&dom, "html", "data-errors"), None, "JavaScript error");
+    assert_eq!(
+        attribute(&dom, "html", "data-errors"),
+        None,
+        "JavaScript error"
+    );
     assert_eq!(attribute(&dom, "body", "data-ready").as_deref(), Some("1"));
     std::fs::remove_dir_all(&dir).ok();
 }
