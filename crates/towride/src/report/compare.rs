@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 
 use super::figure::{render, Figure, Panel, Style, Trace};
-use crate::input::InputError;
+use crate::input::csv_table;
 use crate::Error;
 
 /// Version of the comparison document.
@@ -26,14 +26,7 @@ pub struct Run {
 }
 
 fn bad(file: &Path, line: Option<usize>, field: &str, message: String) -> Error {
-    InputError {
-        file: file.to_path_buf(),
-        line,
-        column: None,
-        field: field.to_string(),
-        message,
-    }
-    .into()
+    csv_table::error(file, line, field, message).into()
 }
 
 /// Reads `dir/outputs.csv` (headers `name [unit]`, the first column time).
