@@ -283,3 +283,37 @@ fn bench_scaling_times_each_family_by_phase() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn list_names_shows_what_a_scene_can_ask_for() {
+    let out = towride(&[
+        "run",
+        repo!("scenes/default.toml"),
+        "--list-names",
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["schema_version"], 1);
+    let names: Vec<&str> = v["quantities"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|q| q["name"].as_str().unwrap())
+        .collect();
+    for n in [
+        "susp_fl_travel",
+        "damper_rl_force",
+        "body_pitch",
+        "tyre_tr_fx",
+    ] {
+        assert!(names.contains(&n), "{n} not in {names:?}");
+    }
+    let markers = v["markers"].as_array().unwrap();
+    assert!(markers.iter().any(|m| m == "wheel_fl.centre"));
+    assert!(v["fixed_channels"][1]["name"] == "hitch_fx");
+}

@@ -3,6 +3,7 @@
 
 mod analyse;
 mod bench;
+mod compare;
 mod modes;
 mod run;
 mod scaling;
@@ -53,6 +54,9 @@ enum Command {
     /// Compare the simulation with recorded runs (RUN.toml or a folder); `validate synth`
     /// writes synthetic runs.
     Validate(validate::ValidateArgs),
+    /// Overlay the channels of two or more runs (HTML page and PNG) with peak and RMS
+    /// differences against the first.
+    Compare(compare::CompareArgs),
 }
 
 #[derive(clap::Args, Debug)]
@@ -118,6 +122,7 @@ fn run() -> i32 {
         Command::Sweep(a) => sweep::run(&a),
         Command::Stress(a) => scene_stress::run_stress(&a),
         Command::Validate(a) => validate::run(&a),
+        Command::Compare(a) => compare::run(&a),
     };
     match result {
         Ok(code) => code,

@@ -7,7 +7,7 @@ use clap::Args;
 
 use towride::input::{Loader, Override};
 use towride::job::{Job, RunResult};
-use towride::scene::{plan, SceneError};
+use towride::scene::{self, plan, Changes, SceneError};
 
 use crate::CliResult;
 
@@ -32,6 +32,10 @@ pub struct RunArgs {
     /// Repeatable.
     #[arg(long = "set", value_name = "FILE:PATH=VALUE")]
     pub(crate) set: Vec<String>,
+    /// Scenes: list what `[[output]]` tables can ask for (named quantities, bodies,
+    /// markers, joints, elements) and stop.
+    #[arg(long)]
+    pub(crate) list_names: bool,
 }
 
 pub fn run(a: &RunArgs) -> CliResult {
@@ -41,6 +45,9 @@ pub fn run(a: &RunArgs) -> CliResult {
         .map(|s| Override::from_argument(s))
         .collect::<Result<Vec<_>, _>>()?;
     let loader = Loader::with_overrides(overrides);
+    if a.list_names {
+        return list_names(a, &loader);
+    }
     if !plan::is_plan(&a.file) {
         let job = Job::from_file(&a.file, &loader)?;
         return run_job(&job, &a.out, a.json);
@@ -71,6 +78,57 @@ pub fn run(a: &RunArgs) -> CliResult {
         code = code.max(run_job(&job, &a.out.join(&c.name), a.json)?);
     }
     Ok(code)
+}
+
+/// Prints what a scene's `[[output]]` tables can name.
+fn list_names(a: &RunArgs, loader: &Loader) -> CliResult {
+    if !scene::is_scene(&a.file) || plan::is_plan(&a.file) {
+        return Err(SceneError::Plan {
+            file: a.file.clone(),
+            message: "--list-names needs a scene file (with [scene])".into(),
+        }
+        .into());
+    }
+    let s = scene::load_with(&a.file, &Changes::default(), loader)?;
+    let n = &s.names;
+    if a.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(n).expect("names serialise")
+        );
+        return Ok(0);
+    }
+    println!("named quantities ([[output]] quantity = \"...\"):");
+    for q in &n.quantities {
+        println!("  {:<26} {:<9} {}", q.name, format!("[{}]", q.unit), q.what);
+    }
+    println!("fixed channels (always written):");
+    for c in &n.fixed_channels {
+        println!("  {:<26} [{}]", c.name, c.unit);
+    }
+    let list = |title: &str, items: Vec<String>| {
+        println!("{title}:");
+        for i in items {
+            println!("  {i}");
+        }
+    };
+    list("bodies (centre of mass marker <body>.cm)", n.bodies.clone());
+    list(
+        "markers (marker = ...; position, velocity, acceleration, angular_velocity, angular_acceleration)",
+        n.markers.clone(),
+    );
+    list(
+        "joints (joint = ...; force, torque, displacement)",
+        n.joints.clone(),
+    );
+    list(
+        "elements (element = ...; force, deflection, velocity)",
+        n.elements
+            .iter()
+            .map(|(e, k)| format!("{e:<26} {k}"))
+            .collect(),
+    );
+    Ok(0)
 }
 
 /// Runs one job, writes its files and prints its summary; exit code 1 when the solver

@@ -118,7 +118,7 @@ pub fn run(a: &ValidateArgs) -> CliResult {
     if !a.no_plots {
         for r in &res.runs {
             let dir = a.out.join(&r.name);
-            report::overlays(r, &dir)?;
+            report::overlays(r, &dir, report::Format::Png)?;
             let page = dir.join("report.png");
             report::page(r, &page)?;
             pages.push((r.clone(), page));

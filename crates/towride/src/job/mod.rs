@@ -227,12 +227,16 @@ impl Job {
         let wall = Instant::now();
         let start = self.start_state()?;
         let start_wall_s = wall.elapsed().as_secs_f64();
+        // The report shows step size and order over time; recording does not change
+        // the steps.
+        let mut solver = self.solver.clone();
+        solver.record_steps = true;
         let samples = simulate(
             &self.system,
             0.0,
             self.settings.t_end,
             self.settings.sample_rate,
-            &self.solver,
+            &solver,
             start.state.clone(),
             progress,
         );
@@ -289,7 +293,8 @@ impl RunResult {
     }
 
     /// Writes `outputs.csv` (units in the headers), the plot page of a scene
-    /// (`plots.png`) and `summary.json` into `dir`; the summary records the files.
+    /// (`plots.png`), the HTML report (`report.html`) and `summary.json` into `dir`; the
+    /// summary records the files.
     pub fn write(&mut self, dir: &Path) -> Result<()> {
         std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
         let csv = dir.join("outputs.csv");
@@ -304,6 +309,19 @@ impl RunResult {
                 Err(e) => format!("not written: {e}"),
             });
         }
+        let html = dir.join("report.html");
+        self.summary.report = Some(html.display().to_string());
+        let wall = Instant::now();
+        let page = crate::report::html::run_report(
+            &self.summary.name,
+            &self.samples,
+            &self.summary.to_json(),
+            &self.samples.stats.step_history,
+        );
+        if let Err(e) = std::fs::write(&html, page) {
+            self.summary.report = Some(format!("not written: {e}"));
+        }
+        self.summary.report_wall_s = Some(wall.elapsed().as_secs_f64());
         let path = dir.join("summary.json");
         let text = self.summary.to_json();
         std::fs::write(&path, text).map_err(|e| Error::io(&path, e))

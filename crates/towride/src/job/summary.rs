@@ -247,6 +247,10 @@ pub struct RunSummary {
     pub outputs_csv: Option<String>,
     /// The plot page written (or why not), once written.
     pub plots: Option<String>,
+    /// The HTML report written (or why not), once written.
+    pub report: Option<String>,
+    /// Wall time of writing the HTML report [s] (spectra included).
+    pub report_wall_s: Option<f64>,
 }
 
 impl RunSummary {
@@ -314,6 +318,8 @@ impl RunSummary {
             channels: channels(samples),
             outputs_csv: None,
             plots: None,
+            report: None,
+            report_wall_s: None,
         }
     }
 

@@ -282,6 +282,42 @@ pub enum TyreQuantity {
     Contact,
     /// Longitudinal contact force [N].
     LongitudinalForce,
+    /// Height of the effective road plane under the wheel (the enveloped obstacle as the
+    /// tyre feels it) [m].
+    EffectiveRoadHeight,
+}
+
+/// One law of a spring-damper line element.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LinePart {
+    /// The spring with its preload.
+    Spring,
+    /// The damper.
+    Damper,
+    /// The bump stop (in compression).
+    BumpStop,
+    /// The rebound stop (in extension).
+    ReboundStop,
+}
+
+/// A relative kinematic quantity of two markers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RelativeQuantity {
+    /// Position of I's origin relative to J's, in J's axes [m].
+    Position,
+    /// Its time derivative as seen from J (in J's axes) [m/s].
+    Velocity,
+}
+
+/// A body's rigid motion at its centre of mass.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BodyQuantity {
+    /// Height of the centre of mass above its reference [m].
+    Heave,
+    /// Pitch angle (ISO 8855 yaw-pitch-roll sequence; positive nose down) [rad].
+    Pitch,
+    /// Roll angle (positive right side down) [rad].
+    Roll,
 }
 
 /// What a modal-body output reports.
@@ -342,6 +378,37 @@ pub enum Request {
         element: usize,
         /// Which quantity.
         quantity: ElementQuantity,
+    },
+    /// One law's share of a spring-damper line's force, positive pushing the ends apart
+    /// (compression in a suspension spring or strut) [N].
+    LinePart {
+        /// The spring-damper element (index into `Model::forces`).
+        element: usize,
+        /// Which law.
+        part: LinePart,
+    },
+    /// One component of marker I's origin relative to marker J's, in J's axes, less
+    /// `offset` (or its rate).
+    Relative {
+        /// Marker I (index into `Model::markers`).
+        i: usize,
+        /// Marker J (index into `Model::markers`).
+        j: usize,
+        /// Component 0, 1, 2 (x, y, z of J).
+        axis: usize,
+        /// Position or velocity.
+        quantity: RelativeQuantity,
+        /// Subtracted from the position [m] (its design value, say).
+        offset: f64,
+    },
+    /// A body's heave, pitch or roll at its centre of mass.
+    Body {
+        /// The body (index into `Model::bodies`).
+        body: usize,
+        /// Which quantity.
+        quantity: BodyQuantity,
+        /// Reference height of the centre of mass [m] (heave is measured from it).
+        z_ref: f64,
     },
 }
 

@@ -2,9 +2,10 @@
 //! from a solver state (y, y') and laid out as named channels with units.
 
 use super::desc::{
-    Accelerations, Axes, ElementQuantity, JointQuantity, MarkerQuantity, ModalQuantity, Model,
-    MotionDof, Output, Request, TyreQuantity,
+    Accelerations, Axes, BodyQuantity, ElementQuantity, JointQuantity, LinePart, MarkerQuantity,
+    ModalQuantity, Model, MotionDof, Output, RelativeQuantity, Request, TyreQuantity,
 };
+use super::elements::Force;
 use super::joint::joint_coordinate;
 use super::math::{add, cross, mtv, mv, rot, sub};
 use super::system::{Owner, System};
@@ -72,7 +73,17 @@ fn raw_channels(m: &Model, o: &Output) -> Vec<ChannelInfo> {
         Request::Tyre { quantity, .. } => out.push(match quantity {
             TyreQuantity::NormalForce | TyreQuantity::LongitudinalForce => one("N"),
             TyreQuantity::Contact => one("-"),
+            TyreQuantity::EffectiveRoadHeight => one("m"),
         }),
+        Request::LinePart { .. } => out.push(one("N")),
+        Request::Relative { quantity, .. } => out.push(one(match quantity {
+            RelativeQuantity::Position => "m",
+            RelativeQuantity::Velocity => "m/s",
+        })),
+        Request::Body { quantity, .. } => out.push(one(match quantity {
+            BodyQuantity::Heave => "m",
+            BodyQuantity::Pitch | BodyQuantity::Roll => "rad",
+        })),
         Request::Modal { body, quantity } => match quantity {
             ModalQuantity::Coordinates => {
                 let n = m.bodies[*body]
@@ -251,6 +262,50 @@ pub fn evaluate(sys: &System, t: f64, y: &[f64], yp: &[f64]) -> Vec<f64> {
                     TyreQuantity::NormalForce => c.normal_force,
                     TyreQuantity::LongitudinalForce => c.longitudinal_force,
                     TyreQuantity::Contact => f64::from(c.normal_force > 0.0),
+                    TyreQuantity::EffectiveRoadHeight => c.effective.height,
+                });
+            }
+            Request::LinePart { element, part } => {
+                let (_, _, meas) = sys.force_eval(*element, t, q, v);
+                let (_, x, rate) = meas[0];
+                out.push(line_part(&m.forces[*element], *part, x, rate));
+            }
+            Request::Relative {
+                i,
+                j,
+                axis,
+                quantity,
+                offset,
+            } => {
+                let (fi, fj) = (sys.marker_frame(q, *i), sys.marker_frame(q, *j));
+                let d = sub(&fi.origin, &fj.origin);
+                out.push(match quantity {
+                    RelativeQuantity::Position => mtv(&fj.axes, &d)[*axis] - offset,
+                    RelativeQuantity::Velocity => {
+                        let kin = |k: usize, what| match m.markers[k].body {
+                            Some(b) => marker_kinematics(sys, k, b, what, q, v, &yp[ov..ol]),
+                            None => [0.0; 3],
+                        };
+                        let vi = kin(*i, MarkerQuantity::Velocity);
+                        let vj = kin(*j, MarkerQuantity::Velocity);
+                        let wj = kin(*j, MarkerQuantity::AngularVelocity);
+                        // d/dt (A^T d) = A^T (d' - w x d) for axes A turning at w.
+                        let rate = sub(&sub(&vi, &vj), &cross(&wj, &d));
+                        mtv(&fj.axes, &rate)[*axis]
+                    }
+                });
+            }
+            Request::Body {
+                body,
+                quantity,
+                z_ref,
+            } => {
+                let (r, p) = sys.pose(q, *body);
+                let a = rot(&p);
+                out.push(match quantity {
+                    BodyQuantity::Heave => r[2] - z_ref,
+                    BodyQuantity::Pitch => -a[2][0].clamp(-1.0, 1.0).asin(),
+                    BodyQuantity::Roll => a[2][1].atan2(a[2][2]),
                 });
             }
             Request::Modal { body, quantity } => {
@@ -297,6 +352,26 @@ pub fn evaluate(sys: &System, t: f64, y: &[f64], yp: &[f64]) -> Vec<f64> {
         finish(o, &mut out, start);
     }
     out
+}
+
+/// One law's share of a spring-damper line's repulsive force at extension `x` [m] and
+/// its rate [m/s] (zero for a law the element does not have, or another element).
+fn line_part(f: &Force, part: LinePart, x: f64, rate: f64) -> f64 {
+    let Force::Spring(s) = f else {
+        return 0.0;
+    };
+    match part {
+        LinePart::Spring => s.preload - s.spring.at(x),
+        LinePart::Damper => -s.damper.at(rate),
+        LinePart::BumpStop => s
+            .bump_stop
+            .as_ref()
+            .map_or(0.0, |st| st.force(-x - st.clearance, -rate)),
+        LinePart::ReboundStop => s
+            .rebound_stop
+            .as_ref()
+            .map_or(0.0, |st| -st.force(x - st.clearance, rate)),
+    }
 }
 
 /// Reaction force (world) on joint `jk`'s I body at marker I, and torque about marker I,

@@ -6,6 +6,7 @@
 //! (hardpoints), as vehicle engineers give them; the builder turns them into body-fixed
 //! markers once.
 
+use super::suggest::did_you_mean;
 use std::path::Path;
 
 use serde::Deserialize;
@@ -363,7 +364,10 @@ fn check_run(src: &Source, r: &RunSpec) -> Result<(), InputError> {
     Ok(())
 }
 
-fn output_of(
+/// The output `[[output]]` number `k` asks for, its names resolved against `m` (an unknown
+/// name is an error at its field, with the closest names suggested). Scenes read their
+/// `[[output]]` tables through this too.
+pub(crate) fn output_of(
     src: &Source,
     m: &Model,
     k: usize,
@@ -373,15 +377,24 @@ fn output_of(
     let p = |x: &str| path!["output", k, x];
     let axes = match o.axes.as_deref() {
         None | Some("world") => Axes::World,
-        Some(name) => Axes::Marker(
-            m.marker_index(name)
-                .ok_or_else(|| src.error(&p("axes"), format!("no marker '{name}'")))?,
-        ),
+        Some(name) => Axes::Marker(m.marker_index(name).ok_or_else(|| {
+            src.error(
+                &p("axes"),
+                format!(
+                    "no marker '{name}'{}",
+                    did_you_mean(name, m.markers.iter().map(|k| k.name.as_str()))
+                ),
+            )
+        })?),
     };
     let bad_q = |allowed: &str| {
         src.error(
             &p("quantity"),
-            format!("'{}' is not one of {allowed}", o.quantity),
+            format!(
+                "'{}' is not one of {allowed}{}",
+                o.quantity,
+                did_you_mean(&o.quantity, allowed.split(", "))
+            ),
         )
     };
     let (request, default_name) = match (&o.marker, &o.joint, &o.element) {
@@ -390,7 +403,8 @@ fn output_of(
                 src.error(
                     &p("marker"),
                     format!(
-                        "names a marker '{mk}' that does not exist (body centres are '<body>.cm')"
+                        "names a marker '{mk}' that does not exist{} (body centres are '<body>.cm')",
+                        did_you_mean(mk, m.markers.iter().map(|k| k.name.as_str()))
                     ),
                 )
             })?;
@@ -415,7 +429,15 @@ fn output_of(
             )
         }
         (None, Some(j), None) => {
-            let &joint = joints.get(j).ok_or_else(|| src.error(&p("joint"), format!("names a joint '{j}' that does not exist (or was replaced by a bushing: ask for its element outputs)")))?;
+            let &joint = joints.get(j).ok_or_else(|| {
+                src.error(
+                    &p("joint"),
+                    format!(
+                        "names a joint '{j}' that does not exist{} (or was replaced by a bushing: ask for its element outputs)",
+                        did_you_mean(j, m.joints.iter().map(|k| k.name.as_str()))
+                    ),
+                )
+            })?;
             let quantity = match o.quantity.as_str() {
                 "force" => JointQuantity::Force,
                 "torque" => JointQuantity::Torque,
@@ -435,7 +457,10 @@ fn output_of(
             let element = m.forces.iter().position(|f| f.name() == e).ok_or_else(|| {
                 src.error(
                     &p("element"),
-                    format!("names an element '{e}' that does not exist"),
+                    format!(
+                        "names an element '{e}' that does not exist{}",
+                        did_you_mean(e, m.forces.iter().map(|f| f.name()))
+                    ),
                 )
             })?;
             let quantity = match o.quantity.as_str() {

@@ -1,10 +1,17 @@
 //! Figures and reports as files: plotting with a bundled font (no system fonts needed),
-//! and the page of plots a vehicle run writes.
+//! the page of plots a vehicle run writes, and its interactive HTML report.
 
+pub mod canvas;
+pub mod compare;
+pub mod decimate;
+pub mod figure;
+pub mod html;
 pub mod lineplot;
 pub mod plot;
+pub mod psd;
 mod run;
 pub mod steps;
+pub mod ticks;
 
 pub use run::run_page;
 

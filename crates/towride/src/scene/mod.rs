@@ -30,6 +30,9 @@
 //! file = "fabia/hitch.toml"    # matched by the end of the file's path
 //! path = "ball_coupling.kind"  # TOML `table.key`, .tir `SECTION.KEY`, CSV `column[row]`
 //! value = "bushing"
+//!
+//! [[output]]                   # more channels: a named vehicle quantity or a
+//! quantity = "susp_fl_travel"  # marker, joint or element ([`outputs`])
 //! ```
 //!
 //! [`load`] gives the [`Scene`]: the vehicle's model with its road and the standard
@@ -37,6 +40,7 @@
 //! template scene over obstacles, speeds and load cases.
 
 pub mod channels;
+pub mod outputs;
 pub mod plan;
 
 use std::path::{Path, PathBuf};
@@ -110,6 +114,9 @@ struct File {
     sensor: Vec<SensorSpec>,
     #[serde(default, rename = "override")]
     overrides: Vec<OverrideSec>,
+    /// Outputs beyond the fixed channels ([`outputs`]).
+    #[serde(default)]
+    output: Vec<crate::model::spec::OutputSpec>,
 }
 
 /// A scene's `[[override]]`: one value of a file the scene reads.
@@ -199,8 +206,10 @@ pub struct Scene {
     /// Scale of the model's per-unknown absolute tolerances; `None` when the scene's
     /// `[solver]` gives `atol` itself.
     pub atol_scale: Option<f64>,
-    /// The output channels, in CSV order.
+    /// The output channels, in CSV order: the fixed ones, then the `[[output]]` tables'.
     pub channels: Vec<Channel>,
+    /// What `[[output]]` tables can name (`run SCENE --list-names`).
+    pub names: outputs::Names,
     /// The road file in use.
     pub road_file: PathBuf,
 }
@@ -388,12 +397,16 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
         extra?
     };
     v.handles.sensors.extend(extra);
-    let (outputs, channels) = channels::standard(&v);
+    let (mut outputs, mut channels) = channels::standard(&v);
     for (k, c) in channels.iter().enumerate() {
         if channels[..k].iter().any(|d| d.name == c.name) {
             return Err(src.error(&path!["sensor"], format!("channel '{}' is defined twice (sensor names must differ from the vehicle's channels)", c.name)));
         }
     }
+    let names = outputs::names(&v, &channels);
+    let (more, more_channels) = outputs::requested(&src, &mut v, &f.output, &channels)?;
+    outputs.extend(more);
+    channels.extend(more_channels);
     v.model.outputs = outputs;
     v.model.road = Some(road);
     v.model.accelerations = f.run.accelerations;
@@ -410,6 +423,7 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
         solver,
         atol_scale,
         channels,
+        names,
         road_file,
     })
 }

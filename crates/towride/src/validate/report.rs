@@ -6,13 +6,16 @@ use super::ValidateError;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use plotters::prelude::*;
-
-use crate::report::lineplot::{draw_panels, line_panels, Line, LinePanel};
-use crate::report::plot::register_font;
-use crate::report::ReportError;
+use crate::report::figure::{
+    render, Figure, HeaderLine, Panel, Rgb, Style, Trace, MEASURED, SIMULATED,
+};
 
 use super::pipeline::{Comparison, RunValidation};
+pub use crate::report::figure::Format;
+
+const BLACK: Rgb = [0, 0, 0];
+const RED: Rgb = [190, 0, 0];
+const BLUE: Rgb = [0, 80, 160];
 
 /// The grade of a rating, by the thresholds commonly quoted for ISO/TS 18571.
 pub fn grade(r: f64) -> &'static str {
@@ -27,7 +30,7 @@ pub fn grade(r: f64) -> &'static str {
     }
 }
 
-fn panel(run: &RunValidation, c: &Comparison, i: usize) -> LinePanel {
+fn panel(run: &RunValidation, c: &Comparison, i: usize) -> Panel {
     let f = &c.channels[i];
     let name = &f.channel;
     // Time from the obstacle as this comparison places it, in milliseconds.
@@ -38,39 +41,33 @@ fn panel(run: &RunValidation, c: &Comparison, i: usize) -> LinePanel {
             .map(|(t, v)| ((t - c.obstacle_time_s) * 1e3, *v))
             .collect()
     };
-    LinePanel {
-        title: format!(
-            "{}: R {:.3} {}, {:.2} km/h{}",
-            c.label,
-            f.rating.overall,
-            grade(f.rating.overall),
-            c.speed_mps * 3.6,
-            if c.label == "corrected" {
-                format!(", {:+.1} ms", c.shift_s * 1e3)
-            } else {
-                String::new()
-            }
-        ),
-        x_label: "time from obstacle [ms]".into(),
-        y_label: format!("{name} [m/s^2]"),
-        lines: vec![
-            Line {
-                label: if run.synthetic {
-                    "measured (synthetic)".into()
-                } else {
-                    "measured".into()
-                },
-                points: pts(&c.measured[name]),
-            },
-            Line {
-                label: "simulated".into(),
-                points: pts(&c.simulated[name]),
-            },
+    let title = format!(
+        "{}: R {:.3} {}, {:.2} km/h{}",
+        c.label,
+        f.rating.overall,
+        grade(f.rating.overall),
+        c.speed_mps * 3.6,
+        if c.label == "corrected" {
+            format!(", {:+.1} ms", c.shift_s * 1e3)
+        } else {
+            String::new()
+        }
+    );
+    let measured = if run.synthetic {
+        "measured (synthetic)"
+    } else {
+        "measured"
+    };
+    Panel {
+        traces: vec![
+            Trace::new(measured, pts(&c.measured[name]), Style::line(MEASURED)),
+            Trace::new("simulated", pts(&c.simulated[name]), Style::line(SIMULATED)),
         ],
+        ..Panel::new(title, "time from obstacle [ms]", format!("{name} [m/s²]"))
     }
 }
 
-fn panels_of(run: &RunValidation, i: usize) -> Vec<LinePanel> {
+fn panels_of(run: &RunValidation, i: usize) -> Vec<Panel> {
     let mut v = vec![panel(run, &run.uncorrected, i)];
     if let Some(c) = &run.corrected {
         v.push(panel(run, c, i));
@@ -78,24 +75,29 @@ fn panels_of(run: &RunValidation, i: usize) -> Vec<LinePanel> {
     v
 }
 
-/// Writes `dir/<channel>.png` for every channel; returns the files.
-pub fn overlays(run: &RunValidation, dir: &Path) -> Result<Vec<PathBuf>, ValidateError> {
+/// Writes `dir/<channel>.<format>` for every channel; returns the files.
+pub fn overlays(
+    run: &RunValidation,
+    dir: &Path,
+    format: Format,
+) -> Result<Vec<PathBuf>, ValidateError> {
     std::fs::create_dir_all(dir).map_err(|e| ValidateError::Io {
         path: dir.to_path_buf(),
         source: e,
     })?;
     let mut files = Vec::new();
     for (i, f) in run.uncorrected.channels.iter().enumerate() {
-        let p = dir.join(format!("{}.png", f.channel));
+        let p = format.file(dir, &f.channel);
         let panels = panels_of(run, i);
-        line_panels(&p, &panels, panels.len())?;
+        let cols = panels.len();
+        render(&p, &Figure::new(panels, cols))?;
         files.push(p);
     }
     Ok(files)
 }
 
 /// The run's figures as lines of text for the page header.
-fn header(run: &RunValidation) -> Vec<(String, RGBColor)> {
+fn header(run: &RunValidation) -> Vec<(String, Rgb)> {
     let mut lines = Vec::new();
     let title = format!(
         "{}: {} with trailer {}",
@@ -148,29 +150,22 @@ fn header(run: &RunValidation) -> Vec<(String, RGBColor)> {
     lines
 }
 
-/// Writes the one-page report (PNG): figures on top, overlays below.
+/// Writes the one-page report (PNG or SVG by extension): figures on top, overlays below.
 pub fn page(run: &RunValidation, path: &Path) -> Result<(), ValidateError> {
-    register_font();
-    let e = |x: &dyn std::fmt::Display| ReportError::Plot(format!("{}: {x}", path.display()));
     let rows = run.uncorrected.channels.len();
     let cols = if run.corrected.is_some() { 2 } else { 1 };
-    let head_h = 150;
-    let size = (620 * cols as u32, head_h + 300 * rows as u32);
-    let root = BitMapBackend::new(path, size).into_drawing_area();
-    root.fill(&WHITE).map_err(|x| e(&x))?;
-    let (top, body) = root.split_vertically(head_h);
-    for (k, (text, colour)) in header(run).iter().enumerate() {
-        let size = if k == 0 { 24 } else { 17 };
-        top.draw(&Text::new(
-            text.clone(),
-            (16, 12 + 27 * k as i32),
-            ("sans-serif", size).into_font().color(colour),
-        ))
-        .map_err(|x| e(&x))?;
-    }
-    let panels: Vec<LinePanel> = (0..rows).flat_map(|i| panels_of(run, i)).collect();
-    draw_panels(&body, &panels, rows, cols)?;
-    root.present().map_err(|x| e(&x))?;
+    let mut fig = Figure::new((0..rows).flat_map(|i| panels_of(run, i)).collect(), cols);
+    fig.panel_height = 460;
+    fig.header = header(run)
+        .into_iter()
+        .enumerate()
+        .map(|(k, (text, colour))| HeaderLine {
+            text,
+            size: if k == 0 { 30.0 } else { 22.0 },
+            colour,
+        })
+        .collect();
+    render(path, &fig)?;
     Ok(())
 }
 

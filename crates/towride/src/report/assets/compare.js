@@ -1,0 +1,51 @@
+// towride comparison page: overlays one channel of every run (uPlot) and tabulates the
+// differences against the first run.
+"use strict";
+(function () {
+  const D = JSON.parse(document.getElementById("data").textContent);
+  const C = D.comparison;
+  const app = document.getElementById("app");
+  for (const r of D.runs) {
+    r.t = decode(r.t);
+    for (const c of Object.values(r.channels)) c.v = decode(c.v);
+  }
+  const colours = ["#0072b2", "#d55e00", "#009e73", "#cc79a7", "#e69f00", "#56b4e9", "#f0e442"];
+  const pick = el("select", { id: "channel" });
+  for (const n of C.channels) pick.append(el("option", { value: n }, n));
+  app.append(el("p", { class: "hint" }, "Channel: ", pick, " — drag to zoom, double click to reset, wheel zooms time, shift + wheel pans."));
+  const box = el("div", { class: "chart" });
+  app.append(box);
+  let chart = null;
+  // Runs sampled on different grids: one x array of every run's times, each run's
+  // values where it has a sample (uPlot joins across the gaps).
+  const draw = () => {
+    const n = pick.value;
+    const all = [...new Set(D.runs.flatMap((r) => r.t))].sort((a, b) => a - b);
+    const at = new Map(all.map((t, k) => [t, k]));
+    const data = [all].concat(D.runs.map((r) => {
+      const y = new Array(all.length).fill(undefined);
+      r.t.forEach((t, k) => { y[at.get(t)] = r.channels[n].v[k]; });
+      return y;
+    }));
+    if (chart) chart.destroy();
+    const unit = D.runs[0].channels[n].unit;
+    chart = new uPlot({
+      width: width(), height: 360,
+      cursor: { drag: { x: true, y: false } },
+      scales: { x: { time: false } },
+      axes: [{ label: "time [s]", values: ticks }, { label: `${n} [${unit}]`, size: 70, values: ticks }],
+      series: [{ label: "t [s]", value: (u, v) => fmt(v) }].concat(D.runs.map((r, i) => ({
+        label: r.label, stroke: colours[i % colours.length], width: 2, spanGaps: true,
+        dash: i >= colours.length ? [8, 4] : undefined, value: (u, v) => fmt(v),
+      }))),
+      plugins: [wheel()],
+    }, data, box);
+  };
+  pick.addEventListener("change", draw);
+  const hf = C.channels.includes("hitch_fx") ? "hitch_fx" : C.channels[0];
+  if (hf) { pick.value = hf; draw(); }
+  app.append(el("h2", {}, `Differences against ${C.runs[0]}`));
+  app.append(table(["channel", "unit", "run", `peak ${C.runs[0]}`, "peak", "peak difference", "RMS difference"],
+    C.differences.map((d) => [d.channel, d.unit, d.run, d.reference_peak, d.peak, d.peak_difference, d.rms_difference])));
+  setTimeout(() => document.body.setAttribute("data-ready", chart ? "1" : "0"), 0);
+})();

@@ -1,0 +1,130 @@
+// towride run report: builds the page from the JSON in #data with uPlot.
+"use strict";
+(function () {
+  const D = JSON.parse(document.getElementById("data").textContent);
+  D.t = decode(D.t);
+  for (const c of D.channels) c.v = decode(c.v);
+  const S = D.summary;
+  const app = document.getElementById("app");
+  const charts = [];
+  window.towrideCharts = charts;
+
+  // --- summary
+  app.append(el("h2", { id: "summary" }, "Run summary"));
+  const status = el("span", { class: S.status === "completed" ? "" : "failed" }, S.status);
+  app.append(el("p", {}, status, ` · ${S.file} · ${fmt(S.t_reached_s)} of ${fmt(S.t_end_s)} s · ${S.samples} samples at ${fmt(S.sample_rate_hz)} Hz · ${fmt(S.wall_s)} s wall`));
+  if (S.error) app.append(el("p", { class: "failed" }, `stopped at ${fmt(S.failed_at_s)} s: ${S.error}`));
+  app.append(el("h3", {}, "Solver"));
+  app.append(table(["steps", "rejected", "Newton iterations", "residuals", "Jacobians", "LU factorisations", "steps per order 1..5"],
+    [[S.steps, S.rejected_steps, S.newton_iterations, S.residual_evals, S.jacobian_evals, S.lu_factorizations, (S.order_counts || []).join(" / ")]]));
+  // --- time histories
+  app.append(el("h2", { id: "histories" }, "Time histories"));
+  app.append(el("p", { class: "hint" }, "Drag to zoom, double click to reset, mouse wheel zooms time, shift + wheel pans; click a legend entry to hide or show it. The time cursor is shared by all charts."));
+  const t = D.t;
+  for (const g of D.groups) {
+    const box = el("div", { class: "chart" });
+    app.append(el("h3", {}, g.title), box);
+    const opts = {
+      width: width(), height: 280,
+      cursor: { sync: { key: "t", setSeries: false }, drag: { x: true, y: false } },
+      scales: { x: { time: false } },
+      axes: [{ label: "time [s]", values: ticks }, { label: g.y, size: 70, values: ticks }],
+      series: [{ label: "t [s]", value: (u, v) => fmt(v) }].concat(g.series.map((s) => ({
+        label: `${D.channels[s.ch].name} [${D.channels[s.ch].unit}]`,
+        stroke: s.colour, width: s.width, dash: s.dash ? [8, 4] : undefined,
+        value: (u, v) => fmt(v),
+      }))),
+      plugins: [wheel()],
+    };
+    const data = [t].concat(g.series.map((s) => D.channels[s.ch].v));
+    charts.push(new uPlot(opts, data, box));
+  }
+
+  // --- spectra
+  app.append(el("h2", { id: "spectra" }, "Spectra"));
+  const pick = el("select", { id: "psd-channel" });
+  D.channels.forEach((c, k) => { if (D.psd.density[k]) pick.append(el("option", { value: k }, `${c.name} [${c.unit}]`)); });
+  app.append(el("p", { class: "hint" }, `Welch power spectral density: Hann window, ${D.psd.segment} samples per segment (${fmt(D.psd.fs / D.psd.segment)} Hz resolution), half overlap. Channel: `, pick));
+  const psdBox = el("div", { class: "chart" });
+  app.append(psdBox);
+  let psdChart = null;
+  const drawPsd = () => {
+    const k = +pick.value;
+    const c = D.channels[k];
+    // Log axes: the zero-frequency bin and zero densities are left out.
+    const f = D.psd.f.slice(1);
+    const p = D.psd.density[k].slice(1).map((v) => (v > 0 ? v : null));
+    if (psdChart) psdChart.destroy();
+    psdChart = new uPlot({
+      width: width(), height: 320,
+      scales: { x: { time: false, distr: 3 }, y: { distr: 3 } },
+      axes: [{ label: "frequency [Hz]", values: logTicks }, { label: `PSD [(${c.unit})²/Hz]`, size: 80, values: logTicks }],
+      series: [{ label: "f [Hz]", value: (u, v) => fmt(v) },
+        { label: `${c.name}`, stroke: "#0072b2", width: 2, value: (u, v) => fmt(v) }],
+      plugins: [wheel()],
+    }, [f, p], psdBox);
+    charts.psd = psdChart;
+  };
+  pick.addEventListener("change", drawPsd);
+  if (pick.options.length) {
+    const hf = [...pick.options].find((o) => D.channels[+o.value].name === "hitch_fx");
+    if (hf) pick.value = hf.value;
+    drawPsd();
+  }
+
+  // --- solver steps
+  app.append(el("h2", { id: "steps" }, "Solver step size and order"));
+  if (D.steps.t.length) {
+    const box = el("div", { class: "chart" });
+    app.append(box);
+    charts.push(new uPlot({
+      width: width(), height: 300,
+      cursor: { drag: { x: true, y: false } },
+      scales: { x: { time: false }, h: { distr: 3 }, o: { range: [0.5, 5.5] } },
+      axes: [{ label: "time [s]", values: ticks }, { scale: "h", label: "step [s] (log)", size: 70, values: logTicks },
+        { scale: "o", side: 1, label: "order", grid: { show: false }, values: ticks }],
+      series: [{ label: "t [s]", value: (u, v) => fmt(v) },
+        { label: "step [s]", scale: "h", stroke: "#0072b2", width: 1, value: (u, v) => fmt(v), points: { show: true, size: 3 } },
+        { label: "order", scale: "o", stroke: "#d55e00", width: 1, paths: uPlot.paths.stepped({ align: 1 }), value: (u, v) => fmt(v) }],
+      plugins: [wheel()],
+    }, [D.steps.t, D.steps.h, D.steps.order], box));
+  } else {
+    app.append(el("p", {}, "no steps recorded"));
+  }
+  app.append(el("h2", { id: "details" }, "Run summary: details"));
+  if ((S.lift_off || []).length) {
+    app.append(el("h3", {}, "Wheels off the road"));
+    app.append(table(["wheel", "from [s]", "to [s]", "for [s]"],
+      S.lift_off.map((l) => [l.wheel, l.start_s, l.end_s == null ? "end" : l.end_s, l.duration_s])));
+  }
+  for (const m of S.modal_energy || []) {
+    app.append(el("h3", {}, `Strain energy of '${m.body}' by mode (peak total ${fmt(m.peak_total_j)} J)`));
+    app.append(table(["mode", "frequency [Hz]", "peak [J]", "share of peak", "share of integral", "kept at 1 %"],
+      m.modes.map((q) => [q.number, q.frequency_hz, q.peak_j, q.share_peak, q.share_integral, m.kept_at_1_percent.includes(q.number) ? "yes" : ""])));
+  }
+  const peaks = Object.entries(S.channels || {});
+  app.append(el("h3", {}, "Channel extremes"));
+  app.append(table(["channel", "unit", "min", "at [s]", "max", "at [s]"],
+    peaks.map(([n, c]) => [n, c.unit, c.min, c.t_min, c.max, c.t_max])));
+
+  // For the browser test: per chart, the canvas pixels in colour (the traces; axes,
+  // grid and text are grey).
+  // uPlot draws in a microtask after construction: count after it.
+  setTimeout(() => {
+  const all = charts.concat(psdChart ? [psdChart] : []);
+  const coloured = all.map((u) => {
+    const px = u.ctx.getImageData(0, 0, u.ctx.canvas.width, u.ctx.canvas.height).data;
+    let n = 0;
+    for (let i = 0; i < px.length; i += 4) {
+      const hi = Math.max(px[i], px[i + 1], px[i + 2]), lo = Math.min(px[i], px[i + 1], px[i + 2]);
+      if (px[i + 3] > 0 && hi - lo > 40) n++;
+    }
+    return n;
+  });
+  document.body.setAttribute("data-coloured-pixels", coloured.join(","));
+  document.body.setAttribute("data-ready", String(all.length));
+  // Built after load: follow a link to a section (#spectra) now.
+  const target = location.hash && document.getElementById(location.hash.slice(1));
+  if (target) target.scrollIntoView();
+  }, 0);
+})();
