@@ -267,3 +267,19 @@ fn a_signal_spanning_1e_minus_7_gets_distinct_ticks() {
     d.one_line("tiny", start, 0.0, 3.0, &mut bad);
     report(bad);
 }
+
+#[test]
+fn log_axis_labels_use_one_notation() {
+    use towride::report::ticks::log_labels;
+    // A range crossing 1e-3 takes prefixes on every tick, not "0.002" beside "500µ".
+    assert_eq!(
+        log_labels(&[2e-4, 5e-4, 1e-3, 2e-3], 2),
+        ["200µ", "500µ", "1m", "2m"]
+    );
+    // Inside 1e-3..1e4 plain decimals stay.
+    assert_eq!(
+        log_labels(&[0.01, 0.1, 1.0, 10.0], 2),
+        ["0.01", "0.1", "1", "10"]
+    );
+    assert_eq!(log_labels(&[1e3, 1e4, 1e5], 2), ["1k", "10k", "100k"]);
+}

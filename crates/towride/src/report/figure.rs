@@ -407,7 +407,8 @@ fn range(axis: &Axis, vals: impl Iterator<Item = f64>) -> (f64, f64) {
 fn axis_ticks(a: &Axis, lo: f64, hi: f64, len: f64, gap: f64, along: bool) -> Vec<(f64, String)> {
     if a.log {
         let t = ticks::log(lo, hi);
-        return t.iter().map(|&v| (v, ticks::si(v, 2))).collect();
+        let labels = ticks::log_labels(&t, 2);
+        return t.into_iter().zip(labels).collect();
     }
     let (mut t, mut step) = ticks::linear(lo, hi, (len / gap).floor().max(2.0) as usize);
     loop {

@@ -111,11 +111,24 @@ pub fn labels(ticks: &[f64], step: f64) -> Vec<String> {
 /// One value with an SI prefix and `sig` significant digits, trailing zeros dropped
 /// (log-axis labels, table entries): 2.5e-5 -> "25µ", 3000 -> "3k", 0.5 -> "0.5".
 pub fn si(v: f64, sig: usize) -> String {
+    si_with(v, sig, false)
+}
+
+/// Labels of log-axis ticks: all with an SI prefix when any of them needs one, so that
+/// one axis does not mix "0.002" with "500µ".
+pub fn log_labels(ticks: &[f64], sig: usize) -> Vec<String> {
+    let prefixed = ticks
+        .iter()
+        .any(|v| *v != 0.0 && !(1e-3..1e4).contains(&v.abs()));
+    ticks.iter().map(|&v| si_with(v, sig, prefixed)).collect()
+}
+
+fn si_with(v: f64, sig: usize, always_prefix: bool) -> String {
     if v == 0.0 || !v.is_finite() {
         return if v == 0.0 { "0".into() } else { format!("{v}") };
     }
     let e = v.abs().log10().floor() as i32;
-    let p = if (-3..4).contains(&e) {
+    let p = if (-3..4).contains(&e) && !always_prefix {
         0
     } else {
         3 * e.div_euclid(3)
