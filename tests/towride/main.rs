@@ -22,6 +22,7 @@ mod model_mechanisms;
 mod model_modal;
 mod model_modal_full;
 mod model_tyres;
+mod reliability;
 mod road_obstacles;
 mod road_profile_mesh;
 mod tyre_cleat;

@@ -14,7 +14,7 @@ pub struct StressArgs {
     /// The scene file (the default scene's vehicle and road files are varied).
     pub scene: PathBuf,
     /// Parallel runs.
-    #[arg(long)]
+    #[arg(long, value_parser = crate::bounded::jobs)]
     pub jobs: Option<usize>,
     /// Only the cases whose group contains this text.
     #[arg(long)]

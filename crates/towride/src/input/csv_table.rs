@@ -59,6 +59,9 @@ pub fn read_columns(
             if !v.is_finite() {
                 return Err(err(line, name, format!("must be finite, got {v}")));
             }
+            let v = super::bounds::for_key(name)
+                .check(v)
+                .map_err(|e| err(line, name, e.message))?;
             values.push(v);
         }
         rows.push(Row { line, values });

@@ -5,6 +5,7 @@
 //! checks that follow (a negative mass, a joint naming a missing body, NaN) are reported
 //! as `file:line:column: field `path`: message`, the line found from the TOML spans.
 
+pub mod bounds;
 pub(crate) mod csv_table;
 pub(crate) mod loader;
 pub(crate) mod overrides;
@@ -170,11 +171,15 @@ impl Source {
     /// Parses `text` as if read from `path` (used by tests and generated inputs).
     pub fn from_text(path: &Path, text: String) -> Result<Source, InputError> {
         match ImDocument::parse(text.clone()) {
-            Ok(doc) => Ok(Source {
-                path: path.to_path_buf(),
-                text,
-                doc,
-            }),
+            Ok(doc) => {
+                let src = Source {
+                    path: path.to_path_buf(),
+                    text,
+                    doc,
+                };
+                src.check_bounds()?;
+                Ok(src)
+            }
             Err(e) => {
                 let (line, column) = match e.span() {
                     Some(s) => line_col(&text, s.start),
@@ -188,6 +193,96 @@ impl Source {
                     message: format!("TOML syntax: {}", e.message()),
                 })
             }
+        }
+    }
+
+    /// Every number of the file against its key's plausibility bound
+    /// ([`bounds::for_key`]); a key without a bound of its own inherits its table's
+    /// (`stiffness_n_m = { x = [...], y = [...] }`).
+    fn check_bounds(&self) -> Result<(), InputError> {
+        fn value(
+            v: &toml_edit::Value,
+            b: &'static bounds::Bound,
+            path: &mut Vec<Seg>,
+        ) -> Option<(Vec<Seg>, String)> {
+            use toml_edit::Value as V;
+            let x = match v {
+                V::Float(f) => *f.value(),
+                V::Integer(i) => *i.value() as f64,
+                V::Array(a) => {
+                    for (k, e) in a.iter().enumerate() {
+                        path.push(Seg::Index(k));
+                        let r = value(e, b, path);
+                        path.pop();
+                        if r.is_some() {
+                            return r;
+                        }
+                    }
+                    return None;
+                }
+                V::InlineTable(t) => {
+                    for (k, e) in t.iter() {
+                        path.push(Seg::Key(k.to_string()));
+                        let r = value(e, bound_of(k, b), path);
+                        path.pop();
+                        if r.is_some() {
+                            return r;
+                        }
+                    }
+                    return None;
+                }
+                _ => return None,
+            };
+            (!b.accepts(x)).then(|| (path.clone(), b.message(x)))
+        }
+        fn bound_of(key: &str, inherited: &'static bounds::Bound) -> &'static bounds::Bound {
+            let own = bounds::for_key(key);
+            if std::ptr::eq(own, bounds::any_number()) {
+                inherited
+            } else {
+                own
+            }
+        }
+        fn table(
+            t: &toml_edit::Table,
+            b: &'static bounds::Bound,
+            path: &mut Vec<Seg>,
+        ) -> Option<(Vec<Seg>, String)> {
+            for (k, e) in t.iter() {
+                path.push(Seg::Key(k.to_string()));
+                let r = item(e, bound_of(k, b), path);
+                path.pop();
+                if r.is_some() {
+                    return r;
+                }
+            }
+            None
+        }
+        fn item(
+            it: &Item,
+            b: &'static bounds::Bound,
+            path: &mut Vec<Seg>,
+        ) -> Option<(Vec<Seg>, String)> {
+            match it {
+                Item::Table(t) => table(t, b, path),
+                Item::ArrayOfTables(a) => {
+                    for (k, t) in a.iter().enumerate() {
+                        path.push(Seg::Index(k));
+                        let r = table(t, b, path);
+                        path.pop();
+                        if r.is_some() {
+                            return r;
+                        }
+                    }
+                    None
+                }
+                Item::Value(v) => value(v, b, path),
+                Item::None => None,
+            }
+        }
+        match item(self.doc.as_item(), bounds::any_number(), &mut Vec::new()) {
+            Some((path, message)) => Err(self.error(&path, message)),
+            None => Ok(()),
         }
     }
 

@@ -87,10 +87,26 @@ impl TirFile {
         let mut sections: HashMap<String, Section> = HashMap::new();
         let mut current: Option<String> = None;
         let mut brace_depth = 0usize;
+        // The line of the `{` still open, so an unclosed one is reported, not swallowing
+        // the rest of the file.
+        let mut brace_line = 0usize;
+        // Editors on Windows start files with a byte-order mark.
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+        let unclosed = |from: usize| {
+            err(
+                from,
+                1,
+                String::new(),
+                "`{` is never closed (a table header must end with `}`)".into(),
+            )
+        };
         for (idx, raw) in text.lines().enumerate() {
             let line_no = idx + 1;
             let indent = raw.len() - raw.trim_start().len();
             let line = raw.trim();
+            if brace_depth > 0 && (line.starts_with('[') || line.contains('=')) {
+                return Err(unclosed(brace_line));
+            }
             if brace_depth > 0 {
                 brace_depth += line.matches('{').count();
                 brace_depth = brace_depth.saturating_sub(line.matches('}').count());
@@ -100,6 +116,7 @@ impl TirFile {
                 continue;
             }
             if line.starts_with('{') {
+                brace_line = line_no;
                 brace_depth = line
                     .matches('{')
                     .count()
@@ -202,6 +219,9 @@ impl TirFile {
                 },
             );
         }
+        if brace_depth > 0 {
+            return Err(unclosed(brace_line));
+        }
         Ok(TirFile {
             path: path.to_path_buf(),
             sections,
@@ -254,7 +274,9 @@ impl TirFile {
         if !v.is_finite() {
             return Err(self.error(section, key, format!("must be finite, got {v}")));
         }
-        Ok(v)
+        crate::input::bounds::for_key(key)
+            .check(v)
+            .map_err(|e| self.error(section, key, e.message))
     }
 
     /// An optional number with a default.
