@@ -199,3 +199,94 @@ fn a_sweep_interrupted_and_resumed_gives_the_uninterrupted_summary() {
     assert_eq!(table(&parts), table(&whole));
     assert!(!parts.join("summary.csv.journal").exists());
 }
+
+fn scene_error(set: &str) -> towride::input::InputError {
+    let o = towride::input::Override::from_argument(set).unwrap();
+    let loader = towride::input::Loader::with_overrides(vec![o]);
+    match towride::scene::load_with(
+        Path::new(repo!("scenes/default.toml")),
+        &Default::default(),
+        &loader,
+    ) {
+        Err(e) => e,
+        Ok(_) => panic!("accepted: {set}"),
+    }
+}
+
+#[test]
+fn a_missing_hitch_variant_is_blamed_on_the_scene() {
+    let e = scene_error("default.toml:scene.hitch_variant=11");
+    assert!(e.file.ends_with("scenes/default.toml"), "{e}");
+    assert_eq!(e.field, "scene.hitch_variant", "{e}");
+    assert!(e.to_string().contains("no variant 11"), "{e}");
+}
+
+#[test]
+fn a_missing_referenced_file_is_named_with_the_field_that_refers_to_it() {
+    let e = scene_error("hitch.toml:hitch.fe_file=\"nope.toml\"");
+    assert!(e.file.ends_with("vehicles/fabia/hitch.toml"), "{e}");
+    assert_eq!(e.field, "hitch.fe_file", "{e}");
+    assert!(e.line.is_some() && e.to_string().contains("no file"), "{e}");
+    let d = tmp("road_missing");
+    let road = d.join("road.toml");
+    let text = std::fs::read_to_string(repo!("roads/profile_example.toml")).unwrap();
+    std::fs::write(&road, text).unwrap();
+    let e = towride::road::Road::from_file(&road, &towride::input::Loader::new())
+        .err()
+        .unwrap();
+    assert!(e.file.ends_with("road.toml"), "{e}");
+    assert_eq!(e.field, "road.file", "{e}");
+    assert!(e.line.is_some(), "{e}");
+}
+
+#[test]
+fn coincident_hardpoints_are_blamed_on_the_hardpoints() {
+    for (set, field) in [
+        (
+            "front_mcpherson.toml:hardpoints.lower_arm_rear_m=[0.12, 0.37, 0.190]",
+            "hardpoints.lower_arm_rear_m",
+        ),
+        (
+            "front_mcpherson.toml:hardpoints.strut_top_m=[-0.012, 0.640, 0.330]",
+            "hardpoints.strut_top_m",
+        ),
+        // This one panicked (a tie rod of zero length).
+        (
+            "front_mcpherson.toml:hardpoints.tie_rod_outer_m=[-0.150, 0.330, 0.290]",
+            "hardpoints.tie_rod_outer_m",
+        ),
+    ] {
+        let e = scene_error(set);
+        assert!(e.file.ends_with("front_mcpherson.toml"), "{e}");
+        assert_eq!(e.field, field, "{e}");
+        assert!(e.to_string().contains("coincides"), "{e}");
+    }
+}
+
+#[test]
+fn the_doctor_finds_the_default_scene_well_conditioned() {
+    // It said "condition number inf: expect Newton failures" of a scene that runs
+    // cleanly: the unscaled matrix, not the one the solver factors.
+    let job = towride::job::Job::from_file(
+        Path::new(repo!("scenes/default.toml")),
+        &towride::input::Loader::new(),
+    )
+    .unwrap();
+    let rep = towride::model::doctor::examine(&job.system, &job.solver, 1e-3);
+    let k = rep.newton_condition.unwrap();
+    assert!(k.is_finite() && k < 1e9, "{k}");
+    assert!(
+        !rep.advice.iter().any(|a| a.contains("condition number")),
+        "{:?}",
+        rep.advice
+    );
+}
+
+#[test]
+fn a_larger_peak_in_the_reference_s_direction_is_a_positive_change() {
+    use towride::study::stress::peak_change;
+    // The default scene's hitch peak is a pull of -5357 N; -14570 N is 2.72 times it.
+    assert!((peak_change(-14570.0, -5357.0) - 1.7198).abs() < 1e-3);
+    assert!((peak_change(6000.0, 5000.0) - 0.2).abs() < 1e-12);
+    assert!(peak_change(-4000.0, -5000.0) < 0.0);
+}

@@ -382,6 +382,17 @@ impl Source {
         }
     }
 
+    /// The file `rel` names, relative to this file's folder, or an error at `path` (the
+    /// field that refers to it) when there is no such file.
+    pub fn existing_file(&self, path: &[Seg], rel: &str) -> Result<PathBuf, InputError> {
+        let full = self.path.parent().unwrap_or(Path::new(".")).join(rel);
+        if full.is_file() {
+            Ok(full)
+        } else {
+            Err(self.error(path, format!("no file {}", full.display())))
+        }
+    }
+
     /// Checks that `value` is finite and > 0.
     pub fn positive(&self, path: &[Seg], value: f64) -> Result<f64, InputError> {
         self.finite(path, value)?;

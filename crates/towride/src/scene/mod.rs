@@ -400,7 +400,21 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
         ball_coupling: f.scene.ball_coupling.clone(),
         rear_cross_member: f.scene.rear_cross_member.clone(),
     };
-    let mut v = vehicle::load(&vehicle_file, &opts, &loader)?;
+    let mut v = vehicle::load(&vehicle_file, &opts, &loader).map_err(|e| {
+        // A variant the hitch's flexible body lacks is the scene's mistake when the scene
+        // chose it: blame `scene.hitch_variant`, not the flexible-body file.
+        match (o.hitch_variant, f.scene.hitch_variant) {
+            (None, Some(n))
+                if e.field == "variant" && e.message.starts_with(&format!("no variant {n}:")) =>
+            {
+                src.error(
+                    &path!["scene", "hitch_variant"],
+                    format!("{} ({})", e.message, e.file.display()),
+                )
+            }
+            _ => e,
+        }
+    })?;
     let extra = {
         let model = std::mem::take(&mut v.model);
         let mut b = Builder::new(ModelBuilder::from_model(model), &loader);
