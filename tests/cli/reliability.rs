@@ -274,3 +274,35 @@ fn ctrl_c_stops_a_run_keeping_its_rows_with_status_interrupted() {
         assert!(!n.to_string_lossy().ends_with(".part"), "{n:?}");
     }
 }
+
+/// The command-line part of the fuzz harness: hostile numbers for numeric options are
+/// refused by the argument parser, naming the option (they hung or ran absurd work).
+#[test]
+fn fuzz_numeric_options_are_refused_naming_the_option() {
+    let scene = repo!("scenes/default.toml");
+    let flex = repo!("flex/hitch_crossbeam.toml");
+    let sweep = repo!("scenes/examples/pendulum_sweep.toml");
+    let options: [(&[&str], &str); 7] = [
+        (&["doctor", scene], "--step"),
+        (&["linear", scene], "--at"),
+        (&["modes", flex], "--cutoff"),
+        (&["modes", flex], "--share"),
+        (&["sweep", sweep], "--jobs"),
+        (&["stress", scene], "--jobs"),
+        (
+            &["validate", "synth", "--obstacle", "bump_25mm"],
+            "--speed-kmh",
+        ),
+    ];
+    let mut n = 0;
+    for (args, opt) in options {
+        for v in ["nan", "inf", "-1", "1e300", "abc", "1,5"] {
+            let arg = format!("{opt}={v}");
+            let mut a: Vec<&str> = args.to_vec();
+            a.push(&arg);
+            refused(&a, &[opt]);
+            n += 1;
+        }
+    }
+    println!("fuzz (command line): {n} option values refused");
+}

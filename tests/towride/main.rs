@@ -17,6 +17,7 @@ mod validate_sim;
 mod flex_beam;
 mod flex_hitch;
 mod flex_input;
+mod fuzz;
 mod inputs_and_builder;
 mod model_mechanisms;
 mod model_modal;

@@ -64,7 +64,12 @@ pub fn rate_hz(s: &str) -> Result<f64, String> {
     non_negative(s, "rate_hz", false)
 }
 
-/// A percentage (`--share`, `--speed-error-pct`, `--gain-error-pct`).
+/// A share [%], above 0 (`--share`).
+pub fn share_pct(s: &str) -> Result<f64, String> {
+    non_negative(s, "error_pct", false)
+}
+
+/// A signed percentage (`--speed-error-pct`, `--gain-error-pct`).
 pub fn pct(s: &str) -> Result<f64, String> {
     number(s, bounds::for_key("error_pct"), true)
 }

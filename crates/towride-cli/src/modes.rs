@@ -25,7 +25,7 @@ pub struct ModesArgs {
     #[arg(long, value_delimiter = ',', num_args = 1, value_parser = crate::bounded::hz)]
     band: Option<Vec<f64>>,
     /// Load-path selection: minimum strain-energy share of a mode [%].
-    #[arg(long, value_parser = crate::bounded::pct)]
+    #[arg(long, value_parser = crate::bounded::share_pct)]
     share: Option<f64>,
     /// Fixed-interface modes of the Craig-Bampton reduction (default: the file's).
     #[arg(long, value_parser = crate::bounded::count)]

@@ -54,6 +54,45 @@ impl fmt::Display for InputError {
 
 impl std::error::Error for InputError {}
 
+/// The field a TOML syntax error at `line` (1-based) lies in: the key written on that
+/// line inside the table above it (`hardpoints.strut_top_m`), or the table header the
+/// line is.
+fn syntax_field(text: &str, line: usize) -> String {
+    let lines: Vec<&str> = text.lines().collect();
+    let header = |s: &str| {
+        let t = s.trim();
+        t.starts_with('[').then(|| {
+            t.split(']')
+                .next()
+                .unwrap_or("")
+                .trim_matches('[')
+                .trim()
+                .to_string()
+        })
+    };
+    let Some(here) = lines.get(line.saturating_sub(1)) else {
+        return String::new();
+    };
+    if let Some(h) = header(here) {
+        return h;
+    }
+    let key = here
+        .split_once('=')
+        .map(|(k, _)| k.trim())
+        .filter(|k| !k.is_empty() && !k.starts_with('#'))
+        .unwrap_or("");
+    let table = lines[..line - 1]
+        .iter()
+        .rev()
+        .find_map(|s| header(s))
+        .unwrap_or_default();
+    match (table.is_empty(), key.is_empty()) {
+        (true, _) => key.to_string(),
+        (false, true) => table,
+        (false, false) => format!("{table}.{key}"),
+    }
+}
+
 /// A value refused before it is located in a file: the field's path relative to the
 /// value checked (`bump_stop.clearance_m`, `stiffness_n_m[2]`; empty for the value
 /// itself) and the message. [`Source::locate`] puts it at its file, line and field.
@@ -189,7 +228,7 @@ impl Source {
                     file: path.to_path_buf(),
                     line,
                     column,
-                    field: String::new(),
+                    field: line.map_or(String::new(), |l| syntax_field(&text, l)),
                     message: format!("TOML syntax: {}", e.message()),
                 })
             }

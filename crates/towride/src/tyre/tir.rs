@@ -41,6 +41,8 @@ pub struct TirFile {
     /// The file read.
     pub path: PathBuf,
     sections: HashMap<String, Section>,
+    /// The last line: where a missing section is reported (the file ends without it).
+    end_line: usize,
 }
 
 impl TirFile {
@@ -225,6 +227,7 @@ impl TirFile {
         Ok(TirFile {
             path: path.to_path_buf(),
             sections,
+            end_line: text.lines().count().max(1),
         })
     }
 
@@ -238,12 +241,13 @@ impl TirFile {
         self.sections.contains_key(section)
     }
 
-    /// An error about `section.key`, located at the key, else at the section header.
+    /// An error about `section.key`, located at the key, else at the section header, else
+    /// (no such section) at the file's last line.
     pub fn error(&self, section: &str, key: &str, message: impl Into<String>) -> InputError {
         let (line, column) = match (self.entry(section, key), self.sections.get(section)) {
             (Some(e), _) => (Some(e.line), Some(e.column)),
             (None, Some(s)) => (Some(s.line), Some(1)),
-            (None, None) => (None, None),
+            (None, None) => (Some(self.end_line), None),
         };
         InputError {
             file: self.path.clone(),
@@ -322,7 +326,14 @@ impl TirFile {
     pub fn string(&self, section: &str, key: &str) -> Result<String, InputError> {
         match self.entry(section, key) {
             Some(e) => Ok(e.value.clone()),
-            None => Err(self.error(section, key, format!("missing key {key} in [{section}]"))),
+            None => {
+                let msg = if self.has_section(section) {
+                    format!("missing key {key} in [{section}]")
+                } else {
+                    format!("missing section [{section}] (needed for {key})")
+                };
+                Err(self.error(section, key, msg))
+            }
         }
     }
 }

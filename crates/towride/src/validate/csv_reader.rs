@@ -226,6 +226,10 @@ pub fn read_table(file: &Path, time_column: &str, columns: &[&str]) -> Result<Ta
                 continue;
             }
             match parse_number(s, decimal_comma_allowed) {
+                Some(v) if !crate::input::bounds::any_number().accepts(v) => {
+                    let m = crate::input::bounds::any_number().message(v);
+                    return Err(err(file, Some(ln), Some(col), wanted[k], m));
+                }
                 Some(v) => {
                     decimal_comma |= decimal_comma_allowed && s.contains(',');
                     values.push(Some(v));
