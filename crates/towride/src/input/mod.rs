@@ -73,7 +73,7 @@ fn syntax_field(text: &str, line: usize) -> String {
     let Some(here) = lines.get(line.saturating_sub(1)) else {
         return String::new();
     };
-    if let Some(h) = header(here) {
+    if let Some(h) = header(here).filter(|h| !h.is_empty()) {
         return h;
     }
     let key = here
@@ -87,7 +87,9 @@ fn syntax_field(text: &str, line: usize) -> String {
         .find_map(|s| header(s))
         .unwrap_or_default();
     match (table.is_empty(), key.is_empty()) {
-        (true, _) => key.to_string(),
+        // A line cut short: what is written there.
+        (true, true) => here.trim().chars().take(40).collect(),
+        (true, false) => key.to_string(),
         (false, true) => table,
         (false, false) => format!("{table}.{key}"),
     }
@@ -377,9 +379,14 @@ impl Source {
             Some(s) => line_col(&self.text, s.start),
             None => (None, None),
         };
-        let field = span
+        let mut field = span
             .map(|s| path_string(&self.path_at(s)))
             .unwrap_or_default();
+        if field.is_empty() {
+            // A value of the wrong type whose span the document does not map to a path:
+            // the key written on its line.
+            field = line.map_or(String::new(), |l| syntax_field(&self.text, l));
+        }
         InputError {
             file: self.path.clone(),
             line,

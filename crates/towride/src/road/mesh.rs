@@ -128,6 +128,14 @@ impl HeightField {
         let xs = uniq(pts.iter().map(|p| p.0).collect());
         let ys = uniq(pts.iter().map(|p| p.1).collect());
         let (nx, ny) = (xs.len(), ys.len());
+        if nx < 2 || ny < 2 {
+            let last = pts.last().and_then(|p| p.3);
+            return Err(err(
+                last,
+                if nx < 2 { "x_m" } else { "y_m" },
+                format!("a height field needs at least 2 x 2 nodes, got {nx} x {ny}"),
+            ));
+        }
         let mut seen = std::collections::HashSet::new();
         for &(x, y, _, line) in &pts {
             if !seen.insert((x.to_bits(), y.to_bits())) {

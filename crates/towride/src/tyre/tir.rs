@@ -134,7 +134,7 @@ impl TirFile {
                         err(
                             line_no,
                             indent + 1,
-                            String::new(),
+                            rest.trim().to_string(),
                             "section header without `]`".into(),
                         )
                     })?
@@ -166,10 +166,15 @@ impl TirFile {
                 {
                     continue;
                 }
+                // The field: the section and what stands on the line (a key cut short).
+                let field = match &current {
+                    Some(sec) => format!("{sec}.{line}"),
+                    None => line.to_string(),
+                };
                 return Err(err(
                     line_no,
                     indent + 1,
-                    String::new(),
+                    field,
                     format!("expected `KEY = value`, `[SECTION]` or a comment, found `{line}`"),
                 ));
             };
