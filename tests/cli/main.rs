@@ -13,6 +13,7 @@ mod validate_sim;
 
 mod basics;
 mod modes;
+mod reliability;
 mod sweep;
 mod tyre_rig;
 mod validate_folder;

@@ -17,7 +17,7 @@ pub struct LinearArgs {
     /// A mechanism file or a scene (TOML).
     file: PathBuf,
     /// Linearise about the state of a run at this time [s] instead of the equilibrium.
-    #[arg(long)]
+    #[arg(long, value_parser = crate::bounded::time_s)]
     at: Option<f64>,
     /// Print JSON.
     #[arg(long)]
@@ -119,7 +119,7 @@ pub struct DoctorArgs {
     /// A mechanism file or a scene (TOML).
     file: PathBuf,
     /// Step size for the condition-number estimate [s].
-    #[arg(long, default_value_t = 1e-3)]
+    #[arg(long, default_value_t = 1e-3, value_parser = crate::bounded::step_s)]
     step: f64,
     /// Print JSON.
     #[arg(long)]

@@ -1,10 +1,23 @@
 //! The `towride` command line: a thin layer over the library (one module per command):
 //! argument parsing, terminal output and progress bars, nothing else.
 
+// `println!` and `eprintln!` in this crate never panic on a closed or full stdout:
+// these shadow std's (macro_rules scoping: every module below sees them), see `out.rs`.
+macro_rules! println {
+    () => { $crate::out::line(format_args!("")) };
+    ($($t:tt)*) => { $crate::out::line(format_args!($($t)*)) };
+}
+macro_rules! eprintln {
+    ($($t:tt)*) => { $crate::out::err_line(format_args!($($t)*)) };
+}
+
 mod analyse;
 mod bench;
+mod bounded;
 mod compare;
+mod interrupt;
 mod modes;
+mod out;
 mod run;
 mod scaling;
 mod scene_bench;
@@ -171,6 +184,9 @@ impl towride::progress::Progress for Bar {
     }
     fn finish(&self) {
         self.0.finish_and_clear();
+    }
+    fn cancelled(&self) -> bool {
+        interrupt::requested()
     }
 }
 

@@ -16,19 +16,19 @@ pub struct ModesArgs {
     #[arg(long)]
     variant: Option<u32>,
     /// Keep the elastic modes up to this frequency [Hz] instead of the file's selection.
-    #[arg(long, conflicts_with_all = ["modes", "band"])]
+    #[arg(long, conflicts_with_all = ["modes", "band"], value_parser = crate::bounded::hz)]
     cutoff: Option<f64>,
     /// Keep these modes (mode-table numbers; 7 is the first elastic mode).
     #[arg(long, value_delimiter = ',', conflicts_with = "band")]
     modes: Vec<usize>,
     /// Load-path selection for this excitation band [Hz]: LOW,HIGH.
-    #[arg(long, value_delimiter = ',', num_args = 1)]
+    #[arg(long, value_delimiter = ',', num_args = 1, value_parser = crate::bounded::hz)]
     band: Option<Vec<f64>>,
     /// Load-path selection: minimum strain-energy share of a mode [%].
-    #[arg(long)]
+    #[arg(long, value_parser = crate::bounded::share_pct)]
     share: Option<f64>,
     /// Fixed-interface modes of the Craig-Bampton reduction (default: the file's).
-    #[arg(long)]
+    #[arg(long, value_parser = crate::bounded::count)]
     fixed_modes: Option<usize>,
     /// Print machine-readable JSON instead of tables.
     #[arg(long)]

@@ -6,8 +6,9 @@ use std::path::{Path, PathBuf};
 use clap::Args;
 
 use towride::input::{Loader, Override};
-use towride::job::{Job, RunResult};
-use towride::scene::{self, plan, Changes, SceneError};
+use towride::job::{Job, RunResult, RunStatus};
+use towride::scene::plan::{self, PlanRun};
+use towride::scene::{self, Changes, SceneError};
 
 use crate::CliResult;
 
@@ -50,7 +51,12 @@ pub fn run(a: &RunArgs) -> CliResult {
     }
     if !plan::is_plan(&a.file) {
         let job = Job::from_file(&a.file, &loader)?;
-        return run_job(&job, &a.out, a.json);
+        crate::interrupt::install();
+        let res = run_job(&job, &a.out, a.json)?;
+        if a.json {
+            println!("{}", res.summary.to_json());
+        }
+        return Ok(exit_code(&res, &a.out));
     }
     let p = plan::load(&a.file)?;
     if a.list {
@@ -68,14 +74,29 @@ pub fn run(a: &RunArgs) -> CliResult {
             .into());
         }
     }
+    crate::interrupt::install();
     let mut code = 0;
+    let mut table = PlanRun::new(&p, &a.file);
     for c in p
         .cases
         .iter()
         .filter(|c| a.case.is_empty() || a.case.contains(&c.name))
     {
+        let out = a.out.join(&c.name);
+        if crate::interrupt::requested() {
+            table.push(c, &out, None);
+            continue;
+        }
         let job = Job::from_scene(p.scene(c, &loader)?)?;
-        code = code.max(run_job(&job, &a.out.join(&c.name), a.json)?);
+        let res = run_job(&job, &out, a.json)?;
+        code = code.max(exit_code(&res, &out));
+        table.push(c, &out, Some(&res));
+    }
+    let csv = table.write(&a.out)?;
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&table)?);
+    } else {
+        println!("plan summary: {}", csv.display());
     }
     Ok(code)
 }
@@ -131,9 +152,8 @@ fn list_names(a: &RunArgs, loader: &Loader) -> CliResult {
     Ok(0)
 }
 
-/// Runs one job, writes its files and prints its summary; exit code 1 when the solver
-/// stopped it early.
-fn run_job(job: &Job, out: &Path, json: bool) -> CliResult {
+/// Runs one job, writes its files and, without `--json`, prints its summary.
+fn run_job(job: &Job, out: &Path, json: bool) -> Result<RunResult, Box<dyn std::error::Error>> {
     if !json {
         for w in &job.warnings {
             eprintln!("warning: {w}");
@@ -143,19 +163,30 @@ fn run_job(job: &Job, out: &Path, json: bool) -> CliResult {
     let pb = crate::progress(samples, json);
     let mut res = job.run(&pb)?;
     res.write(out)?;
-    if json {
-        println!("{}", res.summary.to_json());
-    } else {
+    if !json {
         print_summary(&res);
     }
+    Ok(res)
+}
+
+/// 0 completed, 1 stopped by the solver, 130 interrupted (each said on stderr).
+fn exit_code(res: &RunResult, out: &Path) -> i32 {
+    let csv = out.join("outputs.csv");
     if let Some((e, t)) = res.failure() {
         eprintln!(
             "error: run stopped at t = {t:.6} s: {e}\n  results up to that time are in {}",
-            out.join("outputs.csv").display()
+            csv.display()
         );
-        return Ok(1);
+        return 1;
     }
-    Ok(0)
+    if let Some(t) = res.summary.interrupted_at_s {
+        eprintln!(
+            "interrupted at t = {t:.6} s: results up to that time are in {}",
+            csv.display()
+        );
+        return crate::interrupt::EXIT;
+    }
+    0
 }
 
 fn print_summary(r: &RunResult) {
@@ -163,7 +194,11 @@ fn print_summary(r: &RunResult) {
     println!(
         "{}: {} in {:.1} s wall, {} steps, {} Newton iterations, {} Jacobians; outputs in {}",
         s.name,
-        if r.completed() { "completed" } else { "FAILED" },
+        match s.status {
+            RunStatus::Completed => "completed",
+            RunStatus::Failed => "FAILED",
+            RunStatus::Interrupted => "INTERRUPTED",
+        },
         s.wall_s,
         s.solver.steps,
         s.solver.newton_iterations,

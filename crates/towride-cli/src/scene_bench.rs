@@ -15,10 +15,10 @@ pub struct BenchSceneArgs {
     #[arg(required = true)]
     pub scene: Option<PathBuf>,
     /// Relative tolerances of the study.
-    #[arg(long, value_delimiter = ',', default_values_t = vec![1e-2, 3e-3, 1e-3, 3e-4, 1e-4])]
+    #[arg(long, value_delimiter = ',', default_values_t = vec![1e-2, 3e-3, 1e-3, 3e-4, 1e-4], value_parser = crate::bounded::tolerance)]
     pub tol: Vec<f64>,
     /// Relative tolerance of the reference run.
-    #[arg(long, default_value_t = 1e-6)]
+    #[arg(long, default_value_t = 1e-6, value_parser = crate::bounded::tolerance)]
     pub reference_tol: f64,
     /// Methods compared.
     #[arg(long, value_enum, value_delimiter = ',', default_values = ["variable", "fixed", "radau"])]
@@ -32,10 +32,10 @@ pub struct BenchSceneArgs {
     pub equal_band_error: Vec<f64>,
     /// Band of the in-band sensor error [Hz]: the acquisition low-pass of the
     /// measurements (`cutoff_hz` in `measurements/`), a 4th-order Butterworth.
-    #[arg(long, default_value_t = 100.0)]
+    #[arg(long, default_value_t = 100.0, value_parser = crate::bounded::hz)]
     pub band_hz: f64,
     /// Parallel runs (1 keeps the timings undisturbed).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = crate::bounded::jobs)]
     pub jobs: usize,
     /// Runs of each setting; the fastest wall time is reported (the results of repeated
     /// runs are identical, their wall times are not on a shared machine).

@@ -14,7 +14,7 @@ pub struct StressArgs {
     /// The scene file (the default scene's vehicle and road files are varied).
     pub scene: PathBuf,
     /// Parallel runs.
-    #[arg(long)]
+    #[arg(long, value_parser = crate::bounded::jobs)]
     pub jobs: Option<usize>,
     /// Only the cases whose group contains this text.
     #[arg(long)]
@@ -27,6 +27,19 @@ pub struct StressArgs {
     pub out: PathBuf,
     #[arg(long)]
     pub json: bool,
+}
+
+/// The peak against the reference's: an error for a same-physics case (`+0.12 % err`),
+/// for a case that changes the physics (speed, load, obstacle) a ratio marked as such
+/// (`x2.72 of ref`), as it compares two different experiments.
+fn change(o: &stress::Outcome) -> String {
+    if !o.peak_deviation.is_finite() {
+        format!("{:>13}", "")
+    } else if o.same_physics {
+        format!("{:>+8.2} % err", 100.0 * o.peak_deviation)
+    } else {
+        format!("{:>6.2}x of ref", 1.0 + o.peak_deviation)
+    }
 }
 
 pub fn run_stress(a: &StressArgs) -> CliResult {
@@ -51,7 +64,7 @@ pub fn run_stress(a: &StressArgs) -> CliResult {
         );
         for o in &st.outcomes {
             println!(
-                "{:<18} {:<46} {:<10} peak {:>9.1} N  {:>+7.2} %  {:>6} steps {:>6.2} s {}",
+                "{:<18} {:<46} {:<10} peak {:>9.1} N  {}  {:>6} steps {:>6.2} s {}",
                 o.group,
                 o.case,
                 if o.status == "completed" {
@@ -60,7 +73,7 @@ pub fn run_stress(a: &StressArgs) -> CliResult {
                     "FAILED"
                 },
                 o.hitch_peak_n,
-                100.0 * o.peak_deviation,
+                change(o),
                 o.steps,
                 o.wall_s,
                 match o.agrees {

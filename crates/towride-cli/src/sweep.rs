@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use clap::{Args, Subcommand};
-use towride::sweep::exec::{merge, run_sweep};
+use towride::sweep::exec::{merge, run_sweep_in};
 use towride::sweep::{parse_shard, Sweep};
 
 use crate::CliResult;
@@ -17,7 +17,7 @@ pub struct SweepArgs {
     #[arg(required = true)]
     file: Option<PathBuf>,
     /// Parallel cases (default: all cores).
-    #[arg(long)]
+    #[arg(long, value_parser = crate::bounded::jobs)]
     jobs: Option<usize>,
     /// Run only the cases with index mod N = I (0 <= I < N), for job arrays.
     #[arg(long)]
@@ -28,6 +28,10 @@ pub struct SweepArgs {
     /// Print the summary as JSON.
     #[arg(long)]
     json: bool,
+    /// Keep the cases an earlier, interrupted run of this sweep (and shard) left in
+    /// --out (its summary or journal) and run only the others.
+    #[arg(long)]
+    resume: bool,
 }
 
 #[derive(Subcommand, Debug)]
@@ -40,13 +44,25 @@ enum SweepCmd {
         /// The merged table.
         #[arg(long, default_value = "out/sweep/summary.csv")]
         out: PathBuf,
+        /// Print what was merged as JSON.
+        #[arg(long)]
+        json: bool,
     },
 }
 
 pub fn run(a: &SweepArgs) -> CliResult {
-    if let Some(SweepCmd::Merge { inputs, out }) = &a.cmd {
-        let n = merge(inputs, out)?;
-        println!("{n} cases merged into {}", out.display());
+    if let Some(SweepCmd::Merge { inputs, out, json }) = &a.cmd {
+        let m = merge(inputs, out)?;
+        if *json {
+            println!("{}", serde_json::to_string_pretty(&m)?);
+        } else {
+            println!(
+                "{} cases of {} merged into {}",
+                m.cases,
+                m.sweep,
+                out.display()
+            );
+        }
         return Ok(0);
     }
     let file = a.file.as_ref().ok_or("a sweep file is required")?;
@@ -59,20 +75,22 @@ pub fn run(a: &SweepArgs) -> CliResult {
         .jobs
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
     let pb = crate::progress(0, a.json);
-    let mut res = run_sweep(&sweep, shard, jobs, &pb)?;
-    let csv_path = res.write(&sweep, &a.out)?;
+    crate::interrupt::install();
+    let res = run_sweep_in(&sweep, shard, jobs, &a.out, a.resume, &pb)?;
+    let csv_path = res.summary_csv.clone().unwrap_or_default();
     if a.json {
         println!("{}", serde_json::to_string_pretty(&res)?);
     } else {
         println!(
-            "{}: {} cases ({} failed) on {jobs} threads in {:.2} s; summary in {}",
+            "{}: {} cases ({} failed, {} interrupted, {} kept from before) on {jobs} threads in {:.2} s; summary in {csv_path}",
             sweep.name,
             res.cases,
             res.failed,
+            res.interrupted,
+            res.resumed,
             res.wall_s,
-            csv_path.display()
         );
-        for r in res.rows.iter().filter(|r| r.status != "completed") {
+        for r in res.rows.iter().filter(|r| r.status == "failed") {
             eprintln!(
                 "  case {} {:?}: {}",
                 r.index,
@@ -80,6 +98,14 @@ pub fn run(a: &SweepArgs) -> CliResult {
                 r.error.as_deref().unwrap_or("")
             );
         }
+    }
+    if res.interrupted > 0 {
+        eprintln!(
+            "interrupted: {} cases not finished; `towride sweep {} --resume` runs them",
+            res.interrupted,
+            file.display()
+        );
+        return Ok(crate::interrupt::EXIT);
     }
     Ok(if res.failed == 0 { 0 } else { 1 })
 }

@@ -17,7 +17,7 @@ pub struct TyreRigArgs {
     #[arg(long)]
     json: bool,
     /// Relative tolerance (overrides the file's [solver] rtol).
-    #[arg(long)]
+    #[arg(long, value_parser = crate::bounded::tolerance)]
     rtol: Option<f64>,
     /// Directory for `<name>.csv` (history) and `<name>.png` (plot).
     #[arg(long)]

@@ -31,7 +31,7 @@ pub struct ValidateArgs {
     #[arg(long)]
     no_plots: bool,
     /// Bound of the time-shift search [ms].
-    #[arg(long, default_value_t = 100.0)]
+    #[arg(long, default_value_t = 100.0, value_parser = crate::bounded::time_ms)]
     max_shift_ms: f64,
 }
 
@@ -57,7 +57,7 @@ struct SynthArgs {
     #[arg(long)]
     obstacle: Option<String>,
     /// Single run: nominal (speedometer) speed [km/h].
-    #[arg(long, required_unless_present = "plan")]
+    #[arg(long, required_unless_present = "plan", value_parser = crate::bounded::speed_kmh)]
     speed_kmh: Option<f64>,
     /// Single run: trailer load case.
     #[arg(long, default_value = "empty")]
@@ -65,27 +65,30 @@ struct SynthArgs {
     /// Single run: file name stem (default OBSTACLE_SPEEDkmh_LOAD).
     #[arg(long)]
     name: Option<String>,
-    #[arg(long, default_value_t = 0.05)]
+    #[arg(long, default_value_t = 0.05, value_parser = crate::bounded::mps2)]
     noise_rms_mps2: f64,
-    #[arg(long, default_value_t = 37.0)]
+    #[arg(long, default_value_t = 37.0, value_parser = crate::bounded::time_ms)]
     trigger_delay_ms: f64,
-    #[arg(long, default_value_t = 3.0)]
+    #[arg(long, default_value_t = 3.0, value_parser = crate::bounded::pct)]
     speed_error_pct: f64,
-    #[arg(long, default_value_t = 5.0)]
+    #[arg(long, default_value_t = 5.0, value_parser = crate::bounded::pct)]
     gain_error_pct: f64,
-    #[arg(long, default_value_t = 1000.0)]
+    #[arg(long, default_value_t = 1000.0, value_parser = crate::bounded::rate_hz)]
     rate_hz: f64,
-    #[arg(long, default_value_t = 4)]
+    #[arg(long, default_value_t = 4, value_parser = crate::bounded::count)]
     filter_order: usize,
-    #[arg(long, default_value_t = 100.0)]
+    #[arg(long, default_value_t = 100.0, value_parser = crate::bounded::rate_hz)]
     cutoff_hz: f64,
-    #[arg(long, default_value_t = 0.1)]
+    #[arg(long, default_value_t = 0.1, value_parser = crate::bounded::time_ms)]
     foil_jitter_ms: f64,
     /// Write the channels in g instead of m/s^2.
     #[arg(long)]
     in_g: bool,
     #[arg(long, default_value_t = 1)]
     seed: u64,
+    /// Print what was written as JSON.
+    #[arg(long)]
+    json: bool,
 }
 
 pub fn run(a: &ValidateArgs) -> CliResult {
@@ -181,7 +184,7 @@ fn synth(a: &SynthArgs) -> CliResult {
     let sim = default_simulator();
     let files = if let Some(file) = &a.plan {
         let runs = plan::plan(&towride::scene::plan::load(file)?);
-        let pb = crate::progress(runs.len() as u64, false);
+        let pb = crate::progress(runs.len() as u64, a.json);
         let files = plan::write_plan(sim.as_ref(), &runs, &sensor, &a.out, &|i| {
             pb.set_position(i as u64)
         })?;
@@ -213,11 +216,22 @@ fn synth(a: &SynthArgs) -> CliResult {
             &a.out,
         )?]
     };
-    println!(
-        "wrote {} synthetic run(s) made by the {} into {}",
-        files.len(),
-        sim.name(),
-        a.out.display()
-    );
+    if a.json {
+        let v = serde_json::json!({
+            "schema_version": 1,
+            "simulator": sim.name(),
+            "out": a.out.display().to_string(),
+            "synthetic": true,
+            "descriptors": files.iter().map(|f| f.display().to_string()).collect::<Vec<_>>(),
+        });
+        println!("{}", serde_json::to_string_pretty(&v)?);
+    } else {
+        println!(
+            "wrote {} synthetic run(s) made by the {} into {}",
+            files.len(),
+            sim.name(),
+            a.out.display()
+        );
+    }
     Ok(0)
 }

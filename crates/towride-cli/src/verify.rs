@@ -31,7 +31,7 @@ pub struct VerifyArgs {
     #[arg(long, value_delimiter = ',')]
     problems: Vec<String>,
     /// Tolerances (rtol = atol) to run.
-    #[arg(long, value_delimiter = ',', default_values_t = [1e-6, 1e-8, 1e-9, 1e-10])]
+    #[arg(long, value_delimiter = ',', default_values_t = [1e-6, 1e-8, 1e-9, 1e-10], value_parser = crate::bounded::tolerance)]
     tol: Vec<f64>,
     /// Integration method: a BDF variant or Radau IIA (`radau`: the first step is then
     /// the tolerance, as in the test set's RADAU5 runs, and the Fortran RADAU5's own

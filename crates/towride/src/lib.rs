@@ -40,6 +40,7 @@
 #![allow(clippy::needless_range_loop)]
 #![warn(missing_docs)]
 
+pub mod atomic;
 pub mod error;
 pub mod flex;
 pub mod input;

@@ -13,6 +13,12 @@ pub trait Progress: Sync {
     fn inc(&self, _n: u64) {}
     /// The work ended (completed, failed or stopped).
     fn finish(&self) {}
+    /// True when the caller asks the work to stop (Ctrl-C on the command line): a run
+    /// stops before its next output sample and keeps what it computed (status
+    /// `interrupted`); a batch starts no further case. Polled, so it must be cheap.
+    fn cancelled(&self) -> bool {
+        false
+    }
 }
 
 /// Reports nothing.

@@ -46,8 +46,31 @@ pub fn read_columns(
         .collect::<Result<Vec<usize>, InputError>>()?;
     let mut rows = Vec::new();
     for rec in rdr.records() {
-        let rec =
-            rec.map_err(|e| err(e.position().map(|p| p.line() as usize), "", e.to_string()))?;
+        let rec = rec.map_err(|e| {
+            let line = e.position().map(|p| p.line() as usize);
+            match e.kind() {
+                // Name the column: the first one missing, or the first of a row with more
+                // (decimal commas, `0,5`, split a number in two).
+                csv::ErrorKind::UnequalLengths {
+                    expected_len, len, ..
+                } => {
+                    let (col, hint) = if len < expected_len {
+                        (headers.get(*len as usize).unwrap_or(""), "")
+                    } else {
+                        (
+                            headers.get(0).unwrap_or(""),
+                            ": decimal commas? (write `0.5`)",
+                        )
+                    };
+                    err(
+                        line,
+                        col,
+                        format!("row has {len} fields, the header {expected_len}{hint}"),
+                    )
+                }
+                _ => err(line, "", e.to_string()),
+            }
+        })?;
         let line = rec.position().map(|p| p.line() as usize);
         let mut values = Vec::with_capacity(cols.len());
         for (&c, name) in cols.iter().zip(names) {
@@ -59,6 +82,9 @@ pub fn read_columns(
             if !v.is_finite() {
                 return Err(err(line, name, format!("must be finite, got {v}")));
             }
+            let v = super::bounds::for_key(name)
+                .check(v)
+                .map_err(|e| err(line, name, e.message))?;
             values.push(v);
         }
         rows.push(Row { line, values });

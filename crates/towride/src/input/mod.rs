@@ -5,6 +5,7 @@
 //! checks that follow (a negative mass, a joint naming a missing body, NaN) are reported
 //! as `file:line:column: field `path`: message`, the line found from the TOML spans.
 
+pub mod bounds;
 pub(crate) mod csv_table;
 pub(crate) mod loader;
 pub(crate) mod overrides;
@@ -52,6 +53,47 @@ impl fmt::Display for InputError {
 }
 
 impl std::error::Error for InputError {}
+
+/// The field a TOML syntax error at `line` (1-based) lies in: the key written on that
+/// line inside the table above it (`hardpoints.strut_top_m`), or the table header the
+/// line is.
+fn syntax_field(text: &str, line: usize) -> String {
+    let lines: Vec<&str> = text.lines().collect();
+    let header = |s: &str| {
+        let t = s.trim();
+        t.starts_with('[').then(|| {
+            t.split(']')
+                .next()
+                .unwrap_or("")
+                .trim_matches('[')
+                .trim()
+                .to_string()
+        })
+    };
+    let Some(here) = lines.get(line.saturating_sub(1)) else {
+        return String::new();
+    };
+    if let Some(h) = header(here).filter(|h| !h.is_empty()) {
+        return h;
+    }
+    let key = here
+        .split_once('=')
+        .map(|(k, _)| k.trim())
+        .filter(|k| !k.is_empty() && !k.starts_with('#'))
+        .unwrap_or("");
+    let table = lines[..line - 1]
+        .iter()
+        .rev()
+        .find_map(|s| header(s))
+        .unwrap_or_default();
+    match (table.is_empty(), key.is_empty()) {
+        // A line cut short: what is written there.
+        (true, true) => here.trim().chars().take(40).collect(),
+        (true, false) => key.to_string(),
+        (false, true) => table,
+        (false, false) => format!("{table}.{key}"),
+    }
+}
 
 /// A value refused before it is located in a file: the field's path relative to the
 /// value checked (`bump_stop.clearance_m`, `stiffness_n_m[2]`; empty for the value
@@ -170,11 +212,15 @@ impl Source {
     /// Parses `text` as if read from `path` (used by tests and generated inputs).
     pub fn from_text(path: &Path, text: String) -> Result<Source, InputError> {
         match ImDocument::parse(text.clone()) {
-            Ok(doc) => Ok(Source {
-                path: path.to_path_buf(),
-                text,
-                doc,
-            }),
+            Ok(doc) => {
+                let src = Source {
+                    path: path.to_path_buf(),
+                    text,
+                    doc,
+                };
+                src.check_bounds()?;
+                Ok(src)
+            }
             Err(e) => {
                 let (line, column) = match e.span() {
                     Some(s) => line_col(&text, s.start),
@@ -184,10 +230,100 @@ impl Source {
                     file: path.to_path_buf(),
                     line,
                     column,
-                    field: String::new(),
+                    field: line.map_or(String::new(), |l| syntax_field(&text, l)),
                     message: format!("TOML syntax: {}", e.message()),
                 })
             }
+        }
+    }
+
+    /// Every number of the file against its key's plausibility bound
+    /// ([`bounds::for_key`]); a key without a bound of its own inherits its table's
+    /// (`stiffness_n_m = { x = [...], y = [...] }`).
+    fn check_bounds(&self) -> Result<(), InputError> {
+        fn value(
+            v: &toml_edit::Value,
+            b: &'static bounds::Bound,
+            path: &mut Vec<Seg>,
+        ) -> Option<(Vec<Seg>, String)> {
+            use toml_edit::Value as V;
+            let x = match v {
+                V::Float(f) => *f.value(),
+                V::Integer(i) => *i.value() as f64,
+                V::Array(a) => {
+                    for (k, e) in a.iter().enumerate() {
+                        path.push(Seg::Index(k));
+                        let r = value(e, b, path);
+                        path.pop();
+                        if r.is_some() {
+                            return r;
+                        }
+                    }
+                    return None;
+                }
+                V::InlineTable(t) => {
+                    for (k, e) in t.iter() {
+                        path.push(Seg::Key(k.to_string()));
+                        let r = value(e, bound_of(k, b), path);
+                        path.pop();
+                        if r.is_some() {
+                            return r;
+                        }
+                    }
+                    return None;
+                }
+                _ => return None,
+            };
+            (!b.accepts(x)).then(|| (path.clone(), b.message(x)))
+        }
+        fn bound_of(key: &str, inherited: &'static bounds::Bound) -> &'static bounds::Bound {
+            let own = bounds::for_key(key);
+            if std::ptr::eq(own, bounds::any_number()) {
+                inherited
+            } else {
+                own
+            }
+        }
+        fn table(
+            t: &toml_edit::Table,
+            b: &'static bounds::Bound,
+            path: &mut Vec<Seg>,
+        ) -> Option<(Vec<Seg>, String)> {
+            for (k, e) in t.iter() {
+                path.push(Seg::Key(k.to_string()));
+                let r = item(e, bound_of(k, b), path);
+                path.pop();
+                if r.is_some() {
+                    return r;
+                }
+            }
+            None
+        }
+        fn item(
+            it: &Item,
+            b: &'static bounds::Bound,
+            path: &mut Vec<Seg>,
+        ) -> Option<(Vec<Seg>, String)> {
+            match it {
+                Item::Table(t) => table(t, b, path),
+                Item::ArrayOfTables(a) => {
+                    for (k, t) in a.iter().enumerate() {
+                        path.push(Seg::Index(k));
+                        let r = table(t, b, path);
+                        path.pop();
+                        if r.is_some() {
+                            return r;
+                        }
+                    }
+                    None
+                }
+                Item::Value(v) => value(v, b, path),
+                Item::None => None,
+            }
+        }
+        match item(self.doc.as_item(), bounds::any_number(), &mut Vec::new()) {
+            Some((path, message)) => Err(self.error(&path, message)),
+            None => Ok(()),
         }
     }
 
@@ -243,9 +379,14 @@ impl Source {
             Some(s) => line_col(&self.text, s.start),
             None => (None, None),
         };
-        let field = span
+        let mut field = span
             .map(|s| path_string(&self.path_at(s)))
             .unwrap_or_default();
+        if field.is_empty() {
+            // A value of the wrong type whose span the document does not map to a path:
+            // the key written on its line.
+            field = line.map_or(String::new(), |l| syntax_field(&self.text, l));
+        }
         InputError {
             file: self.path.clone(),
             line,
@@ -284,6 +425,17 @@ impl Source {
             Ok(value)
         } else {
             Err(self.error(path, format!("must be a finite number, got {value}")))
+        }
+    }
+
+    /// The file `rel` names, relative to this file's folder, or an error at `path` (the
+    /// field that refers to it) when there is no such file.
+    pub fn existing_file(&self, path: &[Seg], rel: &str) -> Result<PathBuf, InputError> {
+        let full = self.path.parent().unwrap_or(Path::new(".")).join(rel);
+        if full.is_file() {
+            Ok(full)
+        } else {
+            Err(self.error(path, format!("no file {}", full.display())))
         }
     }
 

@@ -224,6 +224,7 @@ impl Job {
     /// keeps everything computed up to it (status `failed` in the summary); an error is
     /// returned only when the run cannot start.
     pub fn run(&self, progress: &dyn Progress) -> Result<RunResult> {
+        self.check_budget()?;
         let wall = Instant::now();
         let start = self.start_state()?;
         let start_wall_s = wall.elapsed().as_secs_f64();
@@ -243,6 +244,29 @@ impl Job {
         progress.finish();
         let summary = RunSummary::of(self, &samples, start, start_wall_s);
         Ok(RunResult { samples, summary })
+    }
+}
+
+impl Job {
+    /// Refuses a run whose samples would not fit the limits of
+    /// [`crate::input::bounds::budget`], before anything is computed.
+    pub fn check_budget(&self) -> Result<()> {
+        let columns = crate::model::output::channels(&self.system).len()
+            + self.system.nm.iter().sum::<usize>();
+        crate::input::bounds::budget::check(self.settings.t_end, self.settings.sample_rate, columns)
+            .map(|_| ())
+            .map_err(|message| {
+                scene::SceneError::TooLarge {
+                    file: self.file.clone(),
+                    field: if self.scene.is_some() {
+                        "run.duration_s, run.sample_rate_hz".into()
+                    } else {
+                        "run.end_time_s, run.sample_rate_hz".into()
+                    },
+                    message,
+                }
+                .into()
+            })
     }
 }
 
@@ -273,9 +297,16 @@ impl RunResult {
         self.summary.status == RunStatus::Completed
     }
 
-    /// An error when the solver stopped the run early (for callers that need the whole
-    /// run).
+    /// An error when the solver stopped the run early or it was interrupted (for callers
+    /// that need the whole run).
     pub fn require_completed(&self) -> Result<()> {
+        if let Some(t) = self.samples.interrupted {
+            return Err(scene::SceneError::Interrupted {
+                name: self.summary.name.clone(),
+                t,
+            }
+            .into());
+        }
         match &self.samples.error {
             None => Ok(()),
             Some((message, t)) => Err(scene::SceneError::RunFailed {
@@ -294,7 +325,8 @@ impl RunResult {
 
     /// Writes `outputs.csv` (units in the headers), the plot page of a scene
     /// (`plots.png`), the HTML report (`report.html`) and `summary.json` into `dir`; the
-    /// summary records the files.
+    /// summary records the files. Each file is written whole or not at all
+    /// ([`crate::atomic`]), the summary last.
     pub fn write(&mut self, dir: &Path) -> Result<()> {
         std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
         let csv = dir.join("outputs.csv");
@@ -318,13 +350,13 @@ impl RunResult {
             &self.summary.to_json(),
             &self.samples.stats.step_history,
         );
-        if let Err(e) = std::fs::write(&html, page) {
+        if let Err(e) = crate::atomic::write(&html, page) {
             self.summary.report = Some(format!("not written: {e}"));
         }
         self.summary.report_wall_s = Some(wall.elapsed().as_secs_f64());
         let path = dir.join("summary.json");
         let text = self.summary.to_json();
-        std::fs::write(&path, text).map_err(|e| Error::io(&path, e))
+        crate::atomic::write(&path, text).map_err(|e| Error::io(&path, e))
     }
 }
 

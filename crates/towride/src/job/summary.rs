@@ -27,6 +27,8 @@ pub enum RunStatus {
     Completed,
     /// The solver stopped early; the samples up to `failed_at_s` are kept.
     Failed,
+    /// Stopped on request (Ctrl-C); the samples up to `interrupted_at_s` are kept.
+    Interrupted,
 }
 
 /// Solver effort, as the integrator counted it.
@@ -204,6 +206,8 @@ pub struct RunSummary {
     pub error: Option<String>,
     /// Time reached when it stopped early [s].
     pub failed_at_s: Option<f64>,
+    /// Time of the last sample kept when the run was interrupted [s].
+    pub interrupted_at_s: Option<f64>,
     /// End time asked for [s].
     pub t_end_s: f64,
     /// Last sample time [s].
@@ -267,13 +271,16 @@ impl RunSummary {
             },
             name: job.name.clone(),
             file: job.file.display().to_string(),
-            status: if samples.error.is_none() {
-                RunStatus::Completed
-            } else {
+            status: if samples.error.is_some() {
                 RunStatus::Failed
+            } else if samples.interrupted.is_some() {
+                RunStatus::Interrupted
+            } else {
+                RunStatus::Completed
             },
             error: samples.error.as_ref().map(|e| e.0.clone()),
             failed_at_s: samples.error.as_ref().map(|e| e.1),
+            interrupted_at_s: samples.interrupted,
             t_end_s: job.settings.t_end,
             t_reached_s: samples.times.last().copied().unwrap_or(0.0),
             sample_rate_hz: job.settings.sample_rate,

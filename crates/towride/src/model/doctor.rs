@@ -54,7 +54,8 @@ pub struct Report {
     pub redundant: Vec<RedundantRow>,
     /// Step used for the condition estimate [s].
     pub step_s: f64,
-    /// 2-norm condition number of the (unscaled) Newton matrix dF/dy + dF/dy' / h.
+    /// 2-norm condition number of the Newton matrix dF/dy + dF/dy' / h as the solver
+    /// factors it (scaled as `SolverOptions::scale_newton_matrix` says).
     pub newton_condition: Option<f64>,
     /// Largest over smallest body mass.
     pub mass_ratio: f64,
@@ -139,7 +140,7 @@ pub fn examine(sys: &System, opts: &SolverOptions, step: f64) -> Report {
             )
         }
     };
-    let newton_condition = state.as_ref().and_then(|y| condition(sys, y, step));
+    let newton_condition = state.as_ref().and_then(|y| condition(sys, opts, y, step));
     if let Some(k) = newton_condition {
         if k > 1e12 {
             advice.push(format!(
@@ -231,8 +232,13 @@ fn ratio(v: &[f64]) -> f64 {
     }
 }
 
-/// Condition number of dF/dy + dF/dy' / h (BDF1 at step h), by dense SVD.
-fn condition(sys: &System, y: &[f64], h: f64) -> Option<f64> {
+/// Condition number of dF/dy + dF/dy' / h (BDF1 at step h) as the solver factors it,
+/// by dense SVD: with `scale_newton_matrix`, the columns of index-k unknowns times
+/// h^(k-1) and every row divided by its largest entry. Unscaled, a multibody model's
+/// multiplier columns are 1e-9 of its stiffness entries and the SVD deflates them to 0
+/// (an infinite condition number on the default scene, which runs cleanly).
+fn condition(sys: &System, opts: &SolverOptions, y: &[f64], h: f64) -> Option<f64> {
+    use towride_solver::problem::DaeProblem;
     let n = sys.size();
     if n > 3000 {
         return None;
@@ -242,6 +248,19 @@ fn condition(sys: &System, y: &[f64], h: f64) -> Option<f64> {
     let mut a = DMatrix::<f64>::zeros(n, n);
     for (r, c, v) in e {
         a[(r, c)] += v;
+    }
+    if opts.scale_newton_matrix {
+        let hs = h.min(1.0);
+        for (c, k) in sys.var_kinds().iter().enumerate() {
+            let f = hs.powi(k.level() - 1);
+            a.column_mut(c).scale_mut(1.0 / f);
+        }
+        for r in 0..n {
+            let m = a.row(r).amax();
+            if m > 0.0 {
+                a.row_mut(r).scale_mut(1.0 / m);
+            }
+        }
     }
     let s = a.singular_values();
     let hi = s.iter().fold(0.0f64, |a, b| a.max(*b));

@@ -26,6 +26,9 @@ pub struct Samples {
     pub assembly: AssemblyReport,
     /// Set when the run stopped early: the message and the time reached.
     pub error: Option<(String, f64)>,
+    /// Set when the caller interrupted the run ([`crate::progress::Progress::cancelled`]):
+    /// the time of the last sample kept.
+    pub interrupted: Option<f64>,
     /// Final solver state (t, y, y'), for follow-up analyses.
     pub last: Option<(f64, Vec<f64>, Vec<f64>)>,
     /// Modal coordinates of every modal body at every sample: (body, rows[k][mode]).
@@ -71,6 +74,7 @@ pub fn simulate(
         wall_s: 0.0,
         assembly: AssemblyReport::default(),
         error: None,
+        interrupted: None,
         last: None,
         modal: (0..sys.nb())
             .filter(|&b| sys.nm[b] > 0)
@@ -121,6 +125,10 @@ pub fn simulate(
     let mut y = vec![0.0; y0.len()];
     let mut yp = vec![0.0; y0.len()];
     'samples: for k in 1..=n {
+        if progress.cancelled() {
+            res.interrupted = res.times.last().copied();
+            break;
+        }
         let ts = if k == n { t_end } else { t0 + k as f64 / rate };
         loop {
             match bdf.advance(ts) {
@@ -146,7 +154,7 @@ pub fn simulate(
     res.stats = bdf.stats().clone();
     res.stats.step_limiters = bdf.step_limiters(5);
     if let Some(&t) = res.times.last() {
-        if res.error.is_none() {
+        if res.error.is_none() && res.interrupted.is_none() {
             res.last = Some((t, y.clone(), yp.clone()));
         }
     }
@@ -180,10 +188,11 @@ fn unwrap_angles(res: &mut Samples) {
 }
 
 impl Samples {
-    /// Writes the samples as CSV with units in the headers.
+    /// Writes the samples as CSV with units in the headers (whole or not at all:
+    /// [`crate::atomic`]).
     pub fn write_csv(&self, path: &std::path::Path) -> std::io::Result<()> {
         use std::io::Write;
-        let mut w = csv::Writer::from_path(path)?;
+        let mut w = csv::Writer::from_writer(crate::atomic::Atomic::create(path)?);
         let mut head = vec!["time [s]".to_string()];
         head.extend(
             self.channels
@@ -200,7 +209,7 @@ impl Samples {
             }
             out.write_all(b"\n")?;
         }
-        out.flush()
+        out.into_inner().map_err(|e| e.into_error())?.commit()
     }
 
     /// The samples of channel `name`.

@@ -128,12 +128,41 @@ impl HeightField {
         let xs = uniq(pts.iter().map(|p| p.0).collect());
         let ys = uniq(pts.iter().map(|p| p.1).collect());
         let (nx, ny) = (xs.len(), ys.len());
-        if pts.len() != nx * ny {
+        if nx < 2 || ny < 2 {
+            let last = pts.last().and_then(|p| p.3);
             return Err(err(
-                None,
-                "",
+                last,
+                if nx < 2 { "x_m" } else { "y_m" },
+                format!("a height field needs at least 2 x 2 nodes, got {nx} x {ny}"),
+            ));
+        }
+        let mut seen = std::collections::HashSet::new();
+        for &(x, y, _, line) in &pts {
+            if !seen.insert((x.to_bits(), y.to_bits())) {
+                return Err(err(line, "x_m", format!("node ({x}, {y}) given twice")));
+            }
+        }
+        if pts.len() != nx * ny {
+            // Name the row whose coordinate the fewest rows share: a typo makes a lone
+            // value, a missing row leaves its column one short.
+            let mut counts = std::collections::HashMap::new();
+            for p in &pts {
+                *counts.entry((0, p.0.to_bits())).or_insert(0usize) += 1;
+                *counts.entry((1, p.1.to_bits())).or_insert(0usize) += 1;
+            }
+            let (line, field, v, n) = pts
+                .iter()
+                .flat_map(|p| [(p.3, 0, p.0), (p.3, 1, p.1)])
+                .map(|(l, c, v)| (l, c, v, counts[&(c, v.to_bits())]))
+                .min_by_key(|t| t.3)
+                .map(|(l, c, v, n)| (l, ["x_m", "y_m"][c], v, n))
+                .unwrap_or((None, "", 0.0, 0));
+            return Err(err(
+                line,
+                field,
                 format!(
-                    "{} rows do not fill the {nx} x {ny} grid of their coordinates",
+                    "{} rows do not fill the {nx} x {ny} grid of their coordinates: \
+                     {field} = {v} is shared by {n} row(s) only",
                     pts.len()
                 ),
             ));

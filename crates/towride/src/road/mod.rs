@@ -150,7 +150,6 @@ impl Road {
     /// Builds the road from an already read TOML source.
     pub fn from_source(src: &Source, loader: &crate::input::Loader) -> Result<Road, InputError> {
         let f: RoadFile = src.parse()?;
-        let dir = src.path.parent().unwrap_or(Path::new("."));
         let kind = match f.road {
             RoadSection::Flat { height_m } => {
                 src.finite(&path!["road", "height_m"], height_m)?;
@@ -179,7 +178,7 @@ impl Road {
                 if let Some(h) = outside_height_m {
                     src.finite(&path!["road", "outside_height_m"], h)?;
                 }
-                let csv = dir.join(&file);
+                let csv = src.existing_file(&path!["road", "file"], &file)?;
                 Kind::Profile(TrackProfile::from_csv(
                     &csv,
                     track_width_m,
@@ -194,7 +193,8 @@ impl Road {
                         "obstacles are only allowed on a flat road",
                     ));
                 }
-                Kind::Mesh(Box::new(HeightField::from_csv(&dir.join(&file), loader)?))
+                let csv = src.existing_file(&path!["road", "file"], &file)?;
+                Kind::Mesh(Box::new(HeightField::from_csv(&csv, loader)?))
             }
         };
         Ok(Road {

@@ -86,6 +86,25 @@ pub enum SceneError {
         /// The solver's message.
         message: String,
     },
+    /// A run stopped on request (Ctrl-C) that had to complete.
+    #[error("{name}: interrupted at t = {t:.6} s")]
+    Interrupted {
+        /// The scene or model.
+        name: String,
+        /// Time of the last sample kept [s].
+        t: f64,
+    },
+    /// A run that would hold more samples than the memory limit allows
+    /// (`input::bounds::budget`).
+    #[error("{}: field `{field}`: {message}", file.display())]
+    TooLarge {
+        /// The input file of the run.
+        file: PathBuf,
+        /// The run settings that set its size.
+        field: String,
+        /// Rows and memory against the limits.
+        message: String,
+    },
     /// A case or group asked for by name that does not exist.
     #[error("{0}")]
     NoSuchCase(String),
@@ -312,6 +331,8 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
     )?;
     let sample_rate = src.positive(&path!["run", "sample_rate_hz"], f.run.sample_rate_hz)?;
     let settle = src.non_negative(&path!["run", "settle_s"], f.run.settle_s)?;
+    crate::input::bounds::budget::check(duration, sample_rate, 0)
+        .map_err(|m| src.error(&path!["run", "sample_rate_hz"], m))?;
     // Which [solver] keys the file itself sets (the parsed options carry defaults).
     let raw: Option<toml::Table> = src.text().parse().ok();
     let solver_sets = |key: &str| {
@@ -388,7 +409,21 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
         ball_coupling: f.scene.ball_coupling.clone(),
         rear_cross_member: f.scene.rear_cross_member.clone(),
     };
-    let mut v = vehicle::load(&vehicle_file, &opts, &loader)?;
+    let mut v = vehicle::load(&vehicle_file, &opts, &loader).map_err(|e| {
+        // A variant the hitch's flexible body lacks is the scene's mistake when the scene
+        // chose it: blame `scene.hitch_variant`, not the flexible-body file.
+        match (o.hitch_variant, f.scene.hitch_variant) {
+            (None, Some(n))
+                if e.field == "variant" && e.message.starts_with(&format!("no variant {n}:")) =>
+            {
+                src.error(
+                    &path!["scene", "hitch_variant"],
+                    format!("{} ({})", e.message, e.file.display()),
+                )
+            }
+            _ => e,
+        }
+    })?;
     let extra = {
         let model = std::mem::take(&mut v.model);
         let mut b = Builder::new(ModelBuilder::from_model(model), &loader);

@@ -59,7 +59,9 @@ pub struct Outcome {
     pub steps: usize,
     /// Signed hitch-force peak [N].
     pub hitch_peak_n: f64,
-    /// (peak - reference peak) / |reference peak|.
+    /// (peak - reference peak) / reference peak ([`peak_change`]): > 0 a larger peak in
+    /// the reference's direction. For a case that changes the physics (speed, load,
+    /// obstacle) it compares different experiments, not an error.
     pub peak_deviation: f64,
     /// RMS of the hitch-force difference over the reference's RMS.
     pub hitch_rms_deviation: f64,
@@ -282,6 +284,13 @@ fn run_case(scene: &Path, c: &Case, method: Option<Method>) -> Result<RunResult>
         .run(&Silent)
 }
 
+/// `peak` against the reference's `reference` peak, both signed: (peak - reference) /
+/// reference, so a peak larger in the reference's direction is positive whatever that
+/// direction (dividing by |reference| showed a larger push as a drop).
+pub fn peak_change(peak: f64, reference: f64) -> f64 {
+    (peak - reference) / reference
+}
+
 fn outcome(c: &Case, r: Result<RunResult>, refdata: &Reference) -> Outcome {
     let mut o = Outcome {
         group: c.group.into(),
@@ -302,7 +311,7 @@ fn outcome(c: &Case, r: Result<RunResult>, refdata: &Reference) -> Outcome {
             o.wall_s = total_wall(&r);
             o.steps = r.summary.solver.steps;
             o.hitch_peak_n = e.peak;
-            o.peak_deviation = (e.peak - refdata.peak) / refdata.peak.abs();
+            o.peak_deviation = peak_change(e.peak, refdata.peak);
             o.hitch_rms_deviation = e.hitch_rms;
             o.agrees = c
                 .same_physics
@@ -328,7 +337,7 @@ impl Stress {
         std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
         let json = dir.join("stress.json");
         let text = serde_json::to_string_pretty(self).unwrap_or_default();
-        std::fs::write(&json, text).map_err(|e| Error::io(&json, e))?;
+        crate::atomic::write(&json, text).map_err(|e| Error::io(&json, e))?;
         Ok(json)
     }
 }

@@ -1,7 +1,15 @@
 //! Running sweep cases in parallel and writing and merging their summary.
+//!
+//! Nothing finished is lost: each finished case is appended to a journal
+//! (`summary.csv.journal`, one JSON line per case) as it ends, the summary is written
+//! whole at the end ([`crate::atomic`]), a case not run because the caller interrupted
+//! the batch is recorded with status `interrupted`, and [`run_sweep_in`] with `resume`
+//! runs only the cases neither the summary nor the journal holds.
 
 use std::collections::BTreeSet;
-use std::path::Path;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 use std::time::Instant;
 
 use rayon::prelude::*;
@@ -10,20 +18,20 @@ use super::{Case, Sweep};
 use crate::error::{Error, Result};
 use crate::input::Loader;
 use crate::job::{Job, RunResult};
-use crate::progress::{Progress, Silent};
+use crate::progress::Progress;
 use crate::scene::SceneError;
 
 /// Named figures of one case (peaks, energies), in a stable order.
 pub type Figures = Vec<(String, f64)>;
 
 /// What a case produced.
-#[derive(Clone, Debug, serde::Serialize)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct CaseRow {
     /// Case number in the full product.
     pub index: usize,
     /// The parameters' values (TOML text).
     pub values: Vec<String>,
-    /// "completed" or "failed".
+    /// "completed", "failed" or "interrupted" (stopped, or not started, on request).
     pub status: String,
     /// Why it failed.
     pub error: Option<String>,
@@ -33,18 +41,30 @@ pub struct CaseRow {
     pub figures: Figures,
 }
 
-/// Runs `cases` on `jobs` threads with `run` (given the sweep's scene and a loader
-/// holding the case's overrides); a failed or panicking case is recorded and the others
-/// go on. `progress` counts finished cases.
+/// Passes only the caller's stop request on to a case's run (the batch's bar counts
+/// cases, not samples).
+struct StopOnly<'a>(&'a dyn Progress);
+
+impl Progress for StopOnly<'_> {
+    fn cancelled(&self) -> bool {
+        self.0.cancelled()
+    }
+}
+
+/// Runs `cases` on `jobs` threads with `run` (given the sweep's scene, a loader holding
+/// the case's overrides and the stop request); a failed or panicking case is recorded
+/// and the others go on; once `progress` is cancelled no case starts (recorded
+/// `interrupted`). `progress` counts finished cases; `done` sees each finished row.
 pub fn run_cases<F>(
     sweep: &Sweep,
     cases: &[Case],
     jobs: usize,
     run: &F,
     progress: &dyn Progress,
+    done: &(dyn Fn(&CaseRow) + Sync),
 ) -> Result<Vec<CaseRow>>
 where
-    F: Fn(&Path, &Loader) -> Result<Figures> + Sync,
+    F: Fn(&Path, &Loader, &dyn Progress) -> Result<Figures> + Sync,
 {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(jobs.max(1))
@@ -56,13 +76,26 @@ where
             .par_iter()
             .map(|c| {
                 let t = Instant::now();
+                if progress.cancelled() {
+                    return CaseRow {
+                        index: c.index,
+                        values: c.values.clone(),
+                        status: "interrupted".into(),
+                        error: Some("not started: the sweep was interrupted".into()),
+                        wall_s: 0.0,
+                        figures: vec![],
+                    };
+                }
                 let loader = Loader::with_overrides(c.overrides.clone());
                 let out = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                    run(&sweep.scene, &loader)
+                    run(&sweep.scene, &loader, &StopOnly(progress))
                 }));
                 progress.inc(1);
                 let (status, error, figures) = match out {
                     Ok(Ok(f)) => ("completed", None, f),
+                    Ok(Err(e @ Error::Scene(SceneError::Interrupted { .. }))) => {
+                        ("interrupted", Some(e.to_string()), vec![])
+                    }
                     Ok(Err(e)) => ("failed", Some(e.to_string()), vec![]),
                     Err(p) => {
                         let msg = p
@@ -73,14 +106,18 @@ where
                         ("failed", Some(format!("internal error: {msg}")), vec![])
                     }
                 };
-                CaseRow {
+                let row = CaseRow {
                     index: c.index,
                     values: c.values.clone(),
                     status: status.into(),
                     error,
                     wall_s: t.elapsed().as_secs_f64(),
                     figures,
+                };
+                if row.status != "interrupted" {
+                    done(&row);
                 }
+                row
             })
             .collect()
     });
@@ -91,9 +128,9 @@ where
 
 /// Runs one case: the file (a mechanism or a scene) read through `loader`, integrated,
 /// and its figures. A run the solver stops is a failed case.
-pub fn run_case(path: &Path, loader: &Loader) -> Result<Figures> {
+pub fn run_case(path: &Path, loader: &Loader, stop: &dyn Progress) -> Result<Figures> {
     let job = Job::from_file(path, loader)?;
-    let r = job.run(&Silent)?;
+    let r = job.run(stop)?;
     r.require_completed()?;
     Ok(figures(&r))
 }
@@ -140,7 +177,8 @@ pub fn figures(r: &RunResult) -> Figures {
     out
 }
 
-/// Writes the summary CSV: case, parameters, status, wall time, every figure, error.
+/// Writes the summary CSV: case, parameters, status, wall time, every figure, error
+/// (whole or not at all).
 pub fn write_summary(path: &Path, sweep: &Sweep, rows: &[CaseRow]) -> Result<()> {
     let names: Vec<String> = {
         let mut seen = BTreeSet::new();
@@ -155,7 +193,8 @@ pub fn write_summary(path: &Path, sweep: &Sweep, rows: &[CaseRow]) -> Result<()>
         v
     };
     let io = |e: csv::Error| Error::io(path, e.into());
-    let mut w = csv::Writer::from_path(path).map_err(io)?;
+    let file = crate::atomic::Atomic::create(path).map_err(|e| Error::io(path, e))?;
+    let mut w = csv::Writer::from_writer(file);
     let mut head = vec!["case".to_string()];
     head.extend(sweep.parameters.iter().map(|p| p.name.clone()));
     head.extend(["status".into(), "wall_time [s]".into()]);
@@ -178,11 +217,62 @@ pub fn write_summary(path: &Path, sweep: &Sweep, rows: &[CaseRow]) -> Result<()>
         rec.push(r.error.clone().unwrap_or_default());
         w.write_record(&rec).map_err(io)?;
     }
-    w.flush().map_err(|e| Error::io(path, e))
+    w.into_inner()
+        .map_err(|e| Error::io(path, e.into_error()))?
+        .commit()
+        .map_err(|e| Error::io(path, e))
 }
 
-/// Joins shard summaries (same columns) into one, ordered by case.
-pub fn merge(inputs: &[std::path::PathBuf], out: &Path) -> Result<usize> {
+/// Version of a merged table's report (`sweep merge --json`).
+pub const MERGE_SCHEMA_VERSION: u32 = 1;
+
+/// What [`merge`] joined.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct Merged {
+    /// Layout version.
+    pub schema_version: u32,
+    /// The sweep's name (from the shards' JSON twins).
+    pub sweep: String,
+    /// Cases merged; equal to `cases_total` (a gap is an error).
+    pub cases: usize,
+    /// Cases of the whole product.
+    pub cases_total: usize,
+    /// The shard files joined.
+    pub inputs: Vec<String>,
+    /// The merged table.
+    pub out: String,
+}
+
+/// The JSON twin of a shard's summary CSV: the sweep's name and its case count.
+fn shard_meta(csv: &Path) -> Result<(String, usize)> {
+    let json = csv.with_extension("json");
+    let bad = |message: String| -> Error {
+        SceneError::Merge {
+            file: json.clone(),
+            message,
+        }
+        .into()
+    };
+    let text = std::fs::read_to_string(&json).map_err(|e| {
+        bad(format!(
+            "cannot read the shard's JSON twin (written beside every summary CSV; it \
+             says how many cases the sweep has): {e}"
+        ))
+    })?;
+    let v: serde_json::Value =
+        serde_json::from_str(&text).map_err(|e| bad(format!("not JSON: {e}")))?;
+    let name = v["sweep"].as_str().map(String::from);
+    let total = v["cases_total"].as_u64().map(|n| n as usize);
+    match (name, total) {
+        (Some(n), Some(t)) => Ok((n, t)),
+        _ => Err(bad("no `sweep` and `cases_total` fields".into())),
+    }
+}
+
+/// Joins shard summaries (same columns, same sweep) into one table ordered by case,
+/// written whole. Refused unless every case of the sweep appears exactly once and none
+/// was interrupted: the case count comes from each shard's JSON twin.
+pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<Merged> {
     let bad = |p: &Path, message: String| -> Error {
         SceneError::Merge {
             file: p.to_path_buf(),
@@ -190,11 +280,26 @@ pub fn merge(inputs: &[std::path::PathBuf], out: &Path) -> Result<usize> {
         }
         .into()
     };
+    let first = inputs
+        .first()
+        .ok_or_else(|| bad(out, "nothing to merge".into()))?;
+    let (name, total) = shard_meta(first)?;
     let mut header: Option<csv::StringRecord> = None;
     let mut rows: Vec<(usize, csv::StringRecord)> = Vec::new();
     for p in inputs {
+        let (n, t) = shard_meta(p)?;
+        if n != name || t != total {
+            return Err(bad(
+                p,
+                format!(
+                    "a shard of sweep '{n}' with {t} cases, but {} is of '{name}' with {total}",
+                    first.display()
+                ),
+            ));
+        }
         let mut r = csv::Reader::from_path(p).map_err(|e| Error::io(p, e.into()))?;
         let h = r.headers().map_err(|e| bad(p, e.to_string()))?.clone();
+        let status = h.iter().position(|c| c == "status");
         match &header {
             None => header = Some(h),
             Some(h0) if *h0 != h => {
@@ -202,7 +307,7 @@ pub fn merge(inputs: &[std::path::PathBuf], out: &Path) -> Result<usize> {
                     p,
                     format!(
                         "columns differ from {} (shards of different sweeps?)",
-                        inputs[0].display()
+                        first.display()
                     ),
                 ))
             }
@@ -216,6 +321,21 @@ pub fn merge(inputs: &[std::path::PathBuf], out: &Path) -> Result<usize> {
                     format!("line {}: first column is not a case number", line + 2),
                 )
             })?;
+            if idx >= total {
+                return Err(bad(
+                    p,
+                    format!("line {}: case {idx}, but the sweep has {total}", line + 2),
+                ));
+            }
+            if status.and_then(|c| rec.get(c)) == Some("interrupted") {
+                return Err(bad(
+                    p,
+                    format!(
+                        "line {}: case {idx} was interrupted: finish the shard with `sweep --resume` first",
+                        line + 2
+                    ),
+                ));
+            }
             rows.push((idx, rec));
         }
     }
@@ -229,19 +349,44 @@ pub fn merge(inputs: &[std::path::PathBuf], out: &Path) -> Result<usize> {
             ),
         ));
     }
+    if rows.len() != total {
+        let have: BTreeSet<usize> = rows.iter().map(|(i, _)| *i).collect();
+        let missing: Vec<usize> = (0..total).filter(|i| !have.contains(i)).collect();
+        let shown: Vec<String> = missing.iter().take(10).map(|i| i.to_string()).collect();
+        return Err(bad(
+            out,
+            format!(
+                "{} of the sweep's {total} cases are missing (cases {}{}): a shard not given?",
+                missing.len(),
+                shown.join(", "),
+                if missing.len() > 10 { ", ..." } else { "" }
+            ),
+        ));
+    }
     let header = header.ok_or_else(|| bad(out, "nothing to merge".into()))?;
     let io = |e: csv::Error| Error::io(out, e.into());
-    let mut w = csv::Writer::from_path(out).map_err(io)?;
+    let file = crate::atomic::Atomic::create(out).map_err(|e| Error::io(out, e))?;
+    let mut w = csv::Writer::from_writer(file);
     w.write_record(&header).map_err(io)?;
     for (_, r) in &rows {
         w.write_record(r).map_err(io)?;
     }
-    w.flush().map_err(|e| Error::io(out, e))?;
-    Ok(rows.len())
+    w.into_inner()
+        .map_err(|e| Error::io(out, e.into_error()))?
+        .commit()
+        .map_err(|e| Error::io(out, e))?;
+    Ok(Merged {
+        schema_version: MERGE_SCHEMA_VERSION,
+        sweep: name,
+        cases: rows.len(),
+        cases_total: total,
+        inputs: inputs.iter().map(|p| p.display().to_string()).collect(),
+        out: out.display().to_string(),
+    })
 }
 
 /// Version of a sweep summary's layout (`summary.json`).
-pub const SCHEMA_VERSION: u32 = 1;
+pub const SCHEMA_VERSION: u32 = 2;
 
 /// A sweep (or one shard of it) run and summarised.
 #[derive(Clone, Debug, serde::Serialize)]
@@ -250,16 +395,23 @@ pub struct SweepRun {
     pub schema_version: u32,
     /// The sweep's name.
     pub sweep: String,
-    /// Cases run here.
+    /// "completed" (every case of the shard ran, completed or failed) or "interrupted"
+    /// (some did not: `sweep --resume` finishes them).
+    pub status: String,
+    /// Cases of this shard.
     pub cases: usize,
     /// Cases of the whole product.
     pub cases_total: usize,
+    /// Cases taken from an earlier, interrupted run (`--resume`).
+    pub resumed: usize,
     /// This shard, (I, N).
     pub shard: (usize, usize),
     /// Threads used.
     pub jobs: usize,
     /// Cases that failed.
     pub failed: usize,
+    /// Cases interrupted or not started.
+    pub interrupted: usize,
     /// Wall time of the batch [s].
     pub wall_s: f64,
     /// The CSV written, once written.
@@ -268,47 +420,243 @@ pub struct SweepRun {
     pub rows: Vec<CaseRow>,
 }
 
-/// Runs shard `shard` = (I, N) of `sweep` on `jobs` threads.
+/// Runs shard `shard` = (I, N) of `sweep` on `jobs` threads, in memory only.
 pub fn run_sweep(
     sweep: &Sweep,
     shard: (usize, usize),
     jobs: usize,
     progress: &dyn Progress,
 ) -> Result<SweepRun> {
-    let cases = sweep.shard(shard.0, shard.1);
+    run_with(sweep, shard, jobs, Vec::new(), progress, &|_| {})
+}
+
+fn run_with(
+    sweep: &Sweep,
+    shard: (usize, usize),
+    jobs: usize,
+    prior: Vec<CaseRow>,
+    progress: &dyn Progress,
+    done: &(dyn Fn(&CaseRow) + Sync),
+) -> Result<SweepRun> {
+    let have: BTreeSet<usize> = prior.iter().map(|r| r.index).collect();
+    let cases: Vec<Case> = sweep
+        .shard(shard.0, shard.1)
+        .into_iter()
+        .filter(|c| !have.contains(&c.index))
+        .collect();
     let wall = Instant::now();
-    let rows = run_cases(sweep, &cases, jobs, &run_case, progress)?;
+    let resumed = prior.len();
+    let mut rows = run_cases(sweep, &cases, jobs, &run_case, progress, done)?;
+    rows.extend(prior);
+    rows.sort_by_key(|r| r.index);
+    let interrupted = rows.iter().filter(|r| r.status == "interrupted").count();
     Ok(SweepRun {
         schema_version: SCHEMA_VERSION,
         sweep: sweep.name.clone(),
+        status: if interrupted > 0 {
+            "interrupted"
+        } else {
+            "completed"
+        }
+        .into(),
         cases: rows.len(),
         cases_total: sweep.len(),
+        resumed,
         shard,
         jobs,
-        failed: rows.iter().filter(|r| r.status != "completed").count(),
+        failed: rows.iter().filter(|r| r.status == "failed").count(),
+        interrupted,
         wall_s: wall.elapsed().as_secs_f64(),
         summary_csv: None,
         rows,
     })
 }
 
+/// The summary CSV of shard (I, N) in `dir`: `summary.csv`, or `summary_shardIofN.csv`.
+pub fn summary_path(dir: &Path, shard: (usize, usize)) -> PathBuf {
+    let (i, n) = shard;
+    dir.join(if n > 1 {
+        format!("summary_shard{i}of{n}.csv")
+    } else {
+        "summary.csv".into()
+    })
+}
+
+fn journal_path(csv: &Path) -> PathBuf {
+    let mut name = csv.file_name().unwrap_or_default().to_os_string();
+    name.push(".journal");
+    csv.with_file_name(name)
+}
+
+/// Runs shard `shard` of `sweep` with its files in `dir`: each finished case goes to the
+/// journal as it ends; at the end (or on interruption) the summary CSV and its JSON twin
+/// are written whole and the journal removed. With `resume`, the cases that an earlier
+/// run's summary or journal holds as completed or failed are kept, not run again, so
+/// the summary equals an uninterrupted run's (wall times aside).
+pub fn run_sweep_in(
+    sweep: &Sweep,
+    shard: (usize, usize),
+    jobs: usize,
+    dir: &Path,
+    resume: bool,
+    progress: &dyn Progress,
+) -> Result<SweepRun> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    let csv = summary_path(dir, shard);
+    let journal = journal_path(&csv);
+    let prior = if resume {
+        previous_rows(sweep, shard, &csv, &journal)?
+    } else {
+        Vec::new()
+    };
+    // The journal holds what the summary will hold; rewritten so a resumed run's old
+    // entries stay with its new ones.
+    let mut j = std::fs::File::create(&journal).map_err(|e| Error::io(&journal, e))?;
+    for r in &prior {
+        journal_line(&mut j, r).map_err(|e| Error::io(&journal, e))?;
+    }
+    let j = Mutex::new(j);
+    let done = |r: &CaseRow| {
+        if let Ok(mut f) = j.lock() {
+            // A journal that cannot be written costs only the resume of this case.
+            let _ = journal_line(&mut f, r);
+        }
+    };
+    let mut res = run_with(sweep, shard, jobs, prior, progress, &done)?;
+    res.write_to(sweep, &csv)?;
+    let _ = std::fs::remove_file(&journal);
+    Ok(res)
+}
+
+fn journal_line(f: &mut std::fs::File, r: &CaseRow) -> std::io::Result<()> {
+    let line = serde_json::to_string(r).map_err(std::io::Error::other)?;
+    f.write_all(format!("{line}\n").as_bytes())?;
+    f.flush()
+}
+
+/// The completed and failed cases of an earlier run of this shard: its summary CSV
+/// (when written) and its journal (when it was killed before writing one).
+fn previous_rows(
+    sweep: &Sweep,
+    shard: (usize, usize),
+    csv: &Path,
+    journal: &Path,
+) -> Result<Vec<CaseRow>> {
+    let bad = |p: &Path, message: String| -> Error {
+        SceneError::Merge {
+            file: p.to_path_buf(),
+            message,
+        }
+        .into()
+    };
+    let mut rows: Vec<CaseRow> = Vec::new();
+    if csv.is_file() {
+        let mut r = csv::Reader::from_path(csv).map_err(|e| Error::io(csv, e.into()))?;
+        let h = r.headers().map_err(|e| bad(csv, e.to_string()))?.clone();
+        let np = sweep.parameters.len();
+        let cols: Vec<&str> = h.iter().collect();
+        let params: Vec<&str> = sweep.parameters.iter().map(|p| p.name.as_str()).collect();
+        if cols.len() < np + 4
+            || cols[0] != "case"
+            || cols[1..=np] != params[..]
+            || cols[np + 1] != "status"
+            || cols.last() != Some(&"error")
+        {
+            return Err(bad(
+                csv,
+                format!(
+                    "not a summary of this sweep (columns {cols:?}): remove it or run without --resume"
+                ),
+            ));
+        }
+        let figure_names = &cols[np + 3..cols.len() - 1];
+        for (k, rec) in r.records().enumerate() {
+            let line = k + 2;
+            let rec = rec.map_err(|e| bad(csv, format!("line {line}: {e}")))?;
+            let get = |c: usize| rec.get(c).unwrap_or("");
+            let index: usize = get(0)
+                .parse()
+                .map_err(|_| bad(csv, format!("line {line}: `case` is not a case number")))?;
+            if index >= sweep.len() || index % shard.1 != shard.0 {
+                return Err(bad(
+                    csv,
+                    format!("line {line}: case {index} is not a case of this shard"),
+                ));
+            }
+            let case = sweep.case(index);
+            for (p, v) in case.values.iter().enumerate() {
+                if get(p + 1) != v.trim_matches('"') {
+                    return Err(bad(
+                        csv,
+                        format!(
+                            "line {line}: case {index} has {} = {} but the sweep file gives {v}: \
+                             the sweep changed; remove the summary or run without --resume",
+                            params[p],
+                            get(p + 1)
+                        ),
+                    ));
+                }
+            }
+            let status = get(np + 1).to_string();
+            if status != "completed" && status != "failed" {
+                continue;
+            }
+            let mut figures = Figures::new();
+            for (f, name) in figure_names.iter().enumerate() {
+                let cell = get(np + 3 + f);
+                if !cell.is_empty() {
+                    let v = cell
+                        .parse()
+                        .map_err(|_| bad(csv, format!("line {line}: `{name}` is not a number")))?;
+                    figures.push((name.to_string(), v));
+                }
+            }
+            let error = get(cols.len() - 1);
+            rows.push(CaseRow {
+                index,
+                values: case.values,
+                status,
+                error: (!error.is_empty()).then(|| error.to_string()),
+                wall_s: get(np + 2).parse().unwrap_or(0.0),
+                figures,
+            });
+        }
+    }
+    if let Ok(text) = std::fs::read_to_string(journal) {
+        for (k, l) in text.lines().enumerate() {
+            // A line cut short by a kill is the case still running: run it again.
+            let Ok(r) = serde_json::from_str::<CaseRow>(l) else {
+                continue;
+            };
+            if r.index >= sweep.len() || sweep.case(r.index).values != r.values {
+                return Err(bad(
+                    journal,
+                    format!("line {}: case {} is not of this sweep", k + 1, r.index),
+                ));
+            }
+            if !rows.iter().any(|x| x.index == r.index) {
+                rows.push(r);
+            }
+        }
+    }
+    Ok(rows)
+}
+
 impl SweepRun {
     /// Writes the summary CSV (`summary.csv`, or `summary_shardIofN.csv` for a shard)
     /// and its JSON twin into `dir`; returns the CSV's path.
-    pub fn write(&mut self, sweep: &Sweep, dir: &Path) -> Result<std::path::PathBuf> {
+    pub fn write(&mut self, sweep: &Sweep, dir: &Path) -> Result<PathBuf> {
         std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
-        let (i, n) = self.shard;
-        let name = if n > 1 {
-            format!("summary_shard{i}of{n}.csv")
-        } else {
-            "summary.csv".into()
-        };
-        let csv = dir.join(name);
-        write_summary(&csv, sweep, &self.rows)?;
+        let csv = summary_path(dir, self.shard);
+        self.write_to(sweep, &csv)?;
+        Ok(csv)
+    }
+
+    fn write_to(&mut self, sweep: &Sweep, csv: &Path) -> Result<()> {
+        write_summary(csv, sweep, &self.rows)?;
         self.summary_csv = Some(csv.display().to_string());
         let json = csv.with_extension("json");
         let text = serde_json::to_string_pretty(self).unwrap_or_default();
-        std::fs::write(&json, text).map_err(|e| Error::io(&json, e))?;
-        Ok(csv)
+        crate::atomic::write(&json, text).map_err(|e| Error::io(&json, e))
     }
 }

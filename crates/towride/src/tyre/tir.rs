@@ -41,6 +41,8 @@ pub struct TirFile {
     /// The file read.
     pub path: PathBuf,
     sections: HashMap<String, Section>,
+    /// The last line: where a missing section is reported (the file ends without it).
+    end_line: usize,
 }
 
 impl TirFile {
@@ -87,10 +89,26 @@ impl TirFile {
         let mut sections: HashMap<String, Section> = HashMap::new();
         let mut current: Option<String> = None;
         let mut brace_depth = 0usize;
+        // The line of the `{` still open, so an unclosed one is reported, not swallowing
+        // the rest of the file.
+        let mut brace_line = 0usize;
+        // Editors on Windows start files with a byte-order mark.
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+        let unclosed = |from: usize| {
+            err(
+                from,
+                1,
+                String::new(),
+                "`{` is never closed (a table header must end with `}`)".into(),
+            )
+        };
         for (idx, raw) in text.lines().enumerate() {
             let line_no = idx + 1;
             let indent = raw.len() - raw.trim_start().len();
             let line = raw.trim();
+            if brace_depth > 0 && (line.starts_with('[') || line.contains('=')) {
+                return Err(unclosed(brace_line));
+            }
             if brace_depth > 0 {
                 brace_depth += line.matches('{').count();
                 brace_depth = brace_depth.saturating_sub(line.matches('}').count());
@@ -100,6 +118,7 @@ impl TirFile {
                 continue;
             }
             if line.starts_with('{') {
+                brace_line = line_no;
                 brace_depth = line
                     .matches('{')
                     .count()
@@ -115,7 +134,7 @@ impl TirFile {
                         err(
                             line_no,
                             indent + 1,
-                            String::new(),
+                            rest.trim().to_string(),
                             "section header without `]`".into(),
                         )
                     })?
@@ -147,10 +166,15 @@ impl TirFile {
                 {
                     continue;
                 }
+                // The field: the section and what stands on the line (a key cut short).
+                let field = match &current {
+                    Some(sec) => format!("{sec}.{line}"),
+                    None => line.to_string(),
+                };
                 return Err(err(
                     line_no,
                     indent + 1,
-                    String::new(),
+                    field,
                     format!("expected `KEY = value`, `[SECTION]` or a comment, found `{line}`"),
                 ));
             };
@@ -202,9 +226,13 @@ impl TirFile {
                 },
             );
         }
+        if brace_depth > 0 {
+            return Err(unclosed(brace_line));
+        }
         Ok(TirFile {
             path: path.to_path_buf(),
             sections,
+            end_line: text.lines().count().max(1),
         })
     }
 
@@ -218,12 +246,13 @@ impl TirFile {
         self.sections.contains_key(section)
     }
 
-    /// An error about `section.key`, located at the key, else at the section header.
+    /// An error about `section.key`, located at the key, else at the section header, else
+    /// (no such section) at the file's last line.
     pub fn error(&self, section: &str, key: &str, message: impl Into<String>) -> InputError {
         let (line, column) = match (self.entry(section, key), self.sections.get(section)) {
             (Some(e), _) => (Some(e.line), Some(e.column)),
             (None, Some(s)) => (Some(s.line), Some(1)),
-            (None, None) => (None, None),
+            (None, None) => (Some(self.end_line), None),
         };
         InputError {
             file: self.path.clone(),
@@ -254,7 +283,9 @@ impl TirFile {
         if !v.is_finite() {
             return Err(self.error(section, key, format!("must be finite, got {v}")));
         }
-        Ok(v)
+        crate::input::bounds::for_key(key)
+            .check(v)
+            .map_err(|e| self.error(section, key, e.message))
     }
 
     /// An optional number with a default.
@@ -300,7 +331,14 @@ impl TirFile {
     pub fn string(&self, section: &str, key: &str) -> Result<String, InputError> {
         match self.entry(section, key) {
             Some(e) => Ok(e.value.clone()),
-            None => Err(self.error(section, key, format!("missing key {key} in [{section}]"))),
+            None => {
+                let msg = if self.has_section(section) {
+                    format!("missing key {key} in [{section}]")
+                } else {
+                    format!("missing section [{section}] (needed for {key})")
+                };
+                Err(self.error(section, key, msg))
+            }
         }
     }
 }

@@ -189,6 +189,26 @@ pub fn read_table(file: &Path, time_column: &str, columns: &[&str]) -> Result<Ta
                 ),
             ));
         }
+        // More fields than the header in a comma-separated file: decimal commas
+        // (`0,5`) split every number in two and would shift the columns silently.
+        if sep == ','
+            && cs[names.len().min(cs.len())..]
+                .iter()
+                .any(|c| !c.0.is_empty())
+        {
+            return Err(err(
+                file,
+                Some(ln),
+                Some(cs[names.len()].1),
+                &names[0].0,
+                format!(
+                    "row has {} fields, the header has {}: decimal commas in a \
+                     comma-separated file? (write `0.5`, or separate the columns with `;`)",
+                    cs.len(),
+                    names.len()
+                ),
+            ));
+        }
         // A units row right under the header (common in logger exports).
         let is_unit =
             |c: &usize| time_factor(&cs[*c].0).is_some() || Unit::parse(&cs[*c].0).is_some();
@@ -206,6 +226,10 @@ pub fn read_table(file: &Path, time_column: &str, columns: &[&str]) -> Result<Ta
                 continue;
             }
             match parse_number(s, decimal_comma_allowed) {
+                Some(v) if !crate::input::bounds::any_number().accepts(v) => {
+                    let m = crate::input::bounds::any_number().message(v);
+                    return Err(err(file, Some(ln), Some(col), wanted[k], m));
+                }
                 Some(v) => {
                     decimal_comma |= decimal_comma_allowed && s.contains(',');
                     values.push(Some(v));

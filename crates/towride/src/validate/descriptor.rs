@@ -217,7 +217,6 @@ impl Descriptor {
     /// Checks an already read descriptor.
     pub fn from_source(src: &Source) -> Result<Descriptor, InputError> {
         let f: File = src.parse()?;
-        let dir = src.path.parent().unwrap_or(Path::new("."));
         let nonempty = |field: &str, v: &str| {
             if v.trim().is_empty() {
                 Err(src.error(&path![field], "must not be empty"))
@@ -332,11 +331,12 @@ impl Descriptor {
         Ok(Descriptor {
             path: src.path.clone(),
             synthetic: f.synthetic,
-            scene: dir.join(&f.scene),
+            // Read later, by the validation (a descriptor is also read for its data alone).
+            scene: src.path.parent().unwrap_or(Path::new(".")).join(&f.scene),
             obstacle: f.obstacle,
             nominal_speed_mps: speed / 3.6,
             load_case: f.load_case,
-            data: dir.join(&f.data),
+            data: src.existing_file(&path!["data"], &f.data)?,
             time_column: f.time_column,
             filter: AcqFilter {
                 order: f.acquisition.order as usize,

@@ -146,6 +146,12 @@ pub fn validate_run(
 ) -> Result<RunValidation, ValidateError> {
     let wall = Instant::now();
     let desc = Descriptor::from_file(descriptor)?;
+    if !desc.scene.is_file() {
+        // Named with the descriptor's line, not as an unreadable file out of context.
+        let src = crate::input::Source::read(descriptor)?;
+        let message = format!("no file {}", desc.scene.display());
+        return Err(src.error(&crate::path!["scene"], message).into());
+    }
     let mut meas = read_measurement(&desc)?;
     let foil = speed_from_foils(&desc.trigger.foils)
         .map_err(|e| ValidateError::Signal(format!("{}: {e}", desc.path.display())))?;

@@ -17,7 +17,7 @@ use std::path::Path;
 use super::axle::{Axle, AxleSlot, AxleTemplate};
 use super::build::Builder;
 use super::design::{Corner, CornerRates, Preloaded};
-use super::geom::{frame, unit, V};
+use super::geom::{frame, norm, unit, V};
 use super::props::{
     joints, point, stop, BushingLaws, BushingProps, DamperProps, JointsProps, Mass, MassProps,
     WheelProps,
@@ -123,6 +123,34 @@ fn read(src: &Source, tyre: &Tyre) -> Result<Props, InputError> {
         return Err(src.error(
             &path!["hardpoints", "wheel_centre_m", 1],
             "give the left side (y > 0); the right side is mirrored",
+        ));
+    }
+    // Pairs of hardpoints that set an axis: coincident ones are the hardpoints' fault,
+    // not the axis's (which no file names).
+    for (k, a, other, b, what) in [
+        ("lower_arm_rear_m", &pts.ar, "lower_arm_front_m", &pts.af, "the lower arm's pivot axis"),
+        ("strut_top_m", &pts.t, "strut_lower_m", &pts.l, "the strut axis"),
+        ("tie_rod_outer_m", &pts.r, "tie_rod_inner_m", &pts.s, "the tie rod"),
+    ] {
+        if norm(&sub(a, b)) < 1e-6 {
+            return Err(src.error(
+                &path!["hardpoints", k],
+                format!("coincides with `{other}`; the two set {what}"),
+            ));
+        }
+    }
+    // The strut's frame takes x across it, the tie rod's universal joint pins across it.
+    let along = |a: &V, b: &V, e: &V| norm(&cross(&unit(&sub(a, b)), e)) < 1e-6;
+    if along(&pts.t, &pts.l, &[1.0, 0.0, 0.0]) {
+        return Err(src.error(
+            &path!["hardpoints", "strut_top_m"],
+            "the strut (strut_lower_m to strut_top_m) must not lie along x",
+        ));
+    }
+    if along(&pts.r, &pts.s, &[0.0, 0.0, 1.0]) {
+        return Err(src.error(
+            &path!["hardpoints", "tie_rod_outer_m"],
+            "the tie rod (tie_rod_inner_m to tie_rod_outer_m) must not be vertical",
         ));
     }
     let pivot = unit(&sub(&pts.af, &pts.ar));

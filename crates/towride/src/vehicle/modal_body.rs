@@ -27,6 +27,9 @@ pub fn load(
     selection: Option<(&[Seg], &SelectionIn)>,
     loader: &crate::input::Loader,
 ) -> Result<ModalData, InputError> {
+    if !fe.is_file() {
+        return Err(src.error(fe_at, format!("no file {}", fe.display())));
+    }
     let mesh = Mesh::read(fe, variant, loader)?;
     let rule = match selection {
         Some((p, s)) => {

@@ -1,0 +1,64 @@
+//! Files written whole or not at all: the text goes to a temporary name beside the
+//! target (`NAME.part`) and is renamed over it once complete, so a killed run never
+//! leaves an `outputs.csv` or a `summary.json` that looks finished but is cut short (a
+//! rename within one folder is atomic on the file systems we run on).
+
+use std::fs::File;
+use std::io::{self, BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+/// A file being written under its temporary name; [`Atomic::commit`] puts it in place.
+/// Dropped uncommitted, the temporary file is removed.
+pub struct Atomic {
+    target: PathBuf,
+    part: PathBuf,
+    w: Option<BufWriter<File>>,
+}
+
+impl Atomic {
+    /// Starts writing `path` (as `path.part`).
+    pub fn create(path: &Path) -> io::Result<Atomic> {
+        let mut name = path.file_name().unwrap_or_default().to_os_string();
+        name.push(".part");
+        let part = path.with_file_name(name);
+        let f = File::create(&part)?;
+        Ok(Atomic {
+            target: path.to_path_buf(),
+            part,
+            w: Some(BufWriter::new(f)),
+        })
+    }
+
+    /// Flushes, syncs and renames the file to its target name.
+    pub fn commit(mut self) -> io::Result<()> {
+        let w = self.w.take().expect("written once");
+        let f = w.into_inner().map_err(|e| e.into_error())?;
+        f.sync_all()?;
+        drop(f);
+        std::fs::rename(&self.part, &self.target)
+    }
+}
+
+impl Write for Atomic {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        self.w.as_mut().expect("not committed").write(buf)
+    }
+    fn flush(&mut self) -> io::Result<()> {
+        self.w.as_mut().expect("not committed").flush()
+    }
+}
+
+impl Drop for Atomic {
+    fn drop(&mut self) {
+        if self.w.take().is_some() {
+            let _ = std::fs::remove_file(&self.part);
+        }
+    }
+}
+
+/// Writes `bytes` to `path` whole or not at all.
+pub fn write(path: &Path, bytes: impl AsRef<[u8]>) -> io::Result<()> {
+    let mut a = Atomic::create(path)?;
+    a.write_all(bytes.as_ref())?;
+    a.commit()
+}

@@ -1,0 +1,308 @@
+//! Issue 20: no hang, no panic, no silent acceptance, nothing lost on interruption. Each
+//! test is a case that hung, panicked (exit 101) or was accepted before.
+
+use std::io::Read;
+use std::path::PathBuf;
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+use crate::towride;
+
+fn tmp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("towride_rel_{name}_{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn stderr(o: &std::process::Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Refused at once (exit 2, no panic) with a message containing every one of `says`.
+fn refused(args: &[&str], says: &[&str]) {
+    let t = Instant::now();
+    let out = towride(args);
+    let e = stderr(&out);
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {e}");
+    assert!(
+        t.elapsed() < Duration::from_secs(20),
+        "{args:?} took {:?}",
+        t.elapsed()
+    );
+    assert!(!e.contains("panicked"), "{e}");
+    for s in says {
+        assert!(e.contains(s), "{args:?}: `{s}` not in: {e}");
+    }
+}
+
+#[test]
+fn absurd_command_line_values_are_refused_before_any_work() {
+    let scene = repo!("scenes/default.toml");
+    // These hung: an SVD of a non-finite matrix, a run to t = 1e300 s.
+    refused(
+        &["doctor", scene, "--step", "0"],
+        &["--step", "must not be 0"],
+    );
+    refused(&["doctor", scene, "--step", "nan"], &["--step", "finite"]);
+    refused(
+        &["linear", scene, "--at", "1e300"],
+        &["--at", "accepted range"],
+    );
+}
+
+#[test]
+fn huge_durations_and_sample_rates_are_refused_naming_the_field() {
+    let scene = repo!("scenes/default.toml");
+    for (set, field) in [
+        ("default.toml:run.duration_s=1e300", "run.duration_s"),
+        (
+            "default.toml:run.sample_rate_hz=1e300",
+            "run.sample_rate_hz",
+        ),
+        ("default.toml:run.speed_km_h=1e300", "run.speed_km_h"),
+    ] {
+        refused(
+            &["run", scene, "--out", "/nonexistent/never", "--set", set],
+            &["default.toml:", field, "accepted range"],
+        );
+    }
+    // Within each bound, but 3e6 samples of the scene's channels: over the memory limit.
+    refused(
+        &[
+            "run",
+            scene,
+            "--out",
+            "/nonexistent/never",
+            "--set",
+            "default.toml:run.duration_s=3000",
+        ],
+        &["default.toml", "run.duration_s", "GiB"],
+    );
+}
+
+#[test]
+fn a_plan_with_a_vanishing_speed_is_refused_at_its_line() {
+    let d = tmp("plan_speed");
+    let scene = std::fs::canonicalize(repo!("scenes/default.toml")).unwrap();
+    let plan = d.join("plan.toml");
+    std::fs::write(
+        &plan,
+        format!(
+            "[plan]\nname = \"slow\"\nspeeds_km_h = [50.0, 1e-300]\nload_cases = [\"empty\"]\ntravel_m = 1.0\nafter_s = 0.1\n\n[[obstacle]]\nname = \"ramp\"\nscene = {:?}\n",
+            scene.to_str().unwrap()
+        ),
+    )
+    .unwrap();
+    refused(
+        &["run", plan.to_str().unwrap(), "--out", d.to_str().unwrap()],
+        &["plan.toml:3:", "speeds_km_h[1]"],
+    );
+}
+
+#[test]
+fn a_closed_or_full_stdout_ends_quietly_without_a_panic() {
+    // The reader is gone before the first line: exit 141 (SIGPIPE's code), nothing said.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_towride"))
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+        .args(["modes", "flex/hitch_crossbeam.toml"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let mut e = String::new();
+    child.stderr.take().unwrap().read_to_string(&mut e).unwrap();
+    let status = child.wait().unwrap();
+    assert_eq!(status.code(), Some(141), "{e}");
+    assert!(e.is_empty(), "{e}");
+    // A full disk: one line on stderr, exit 2, and the run's files are complete.
+    let d = tmp("full");
+    let out = Command::new(env!("CARGO_BIN_EXE_towride"))
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+        .args(["run", "scenes/examples/pendulum.toml", "--out"])
+        .arg(&d)
+        .stdout(std::fs::File::create("/dev/full").unwrap())
+        .output()
+        .unwrap();
+    let e = stderr(&out);
+    assert_eq!(out.status.code(), Some(2), "{e}");
+    assert_eq!(e.lines().count(), 1, "{e}");
+    assert!(e.contains("cannot write to standard output"), "{e}");
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(s["status"], "completed");
+}
+
+#[test]
+fn a_plan_run_prints_one_json_document_and_writes_a_plan_table() {
+    let d = tmp("plan_json");
+    let scene = std::fs::canonicalize(repo!("scenes/default.toml")).unwrap();
+    let plan = d.join("plan.toml");
+    std::fs::write(
+        &plan,
+        format!(
+            "[plan]\nname = \"two\"\nspeeds_km_h = [30.0, 50.0]\nload_cases = [\"empty\"]\ntravel_m = 1.0\nafter_s = 0.05\n\n[[obstacle]]\nname = \"ramp\"\nscene = {:?}\n",
+            scene.to_str().unwrap()
+        ),
+    )
+    .unwrap();
+    let out = towride(&[
+        "run",
+        plan.to_str().unwrap(),
+        "--out",
+        d.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    // One document: serde_json refuses trailing documents.
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(j["schema_version"], 1);
+    assert_eq!(j["status"], "completed");
+    let cases = j["cases"].as_array().unwrap();
+    assert_eq!(cases.len(), 2);
+    assert_eq!(cases[1]["summary"]["status"], "completed");
+    let table = std::fs::read_to_string(d.join("plan_summary.csv")).unwrap();
+    assert_eq!(table.lines().count(), 3, "{table}");
+    assert!(
+        table.contains("ramp_50kmh_empty,ramp,50,empty,completed"),
+        "{table}"
+    );
+}
+
+#[test]
+fn sweep_merge_refuses_missing_shards_and_speaks_json() {
+    let d = tmp("merge");
+    let ds = d.to_str().unwrap();
+    let f = repo!("scenes/examples/pendulum_sweep.toml");
+    for s in ["0/2", "1/2"] {
+        let o = towride(&["sweep", f, "--out", ds, "--shard", s]);
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    let (s0, s1) = (
+        d.join("summary_shard0of2.csv"),
+        d.join("summary_shard1of2.csv"),
+    );
+    let merged = d.join("merged.csv");
+    // Half the cases: refused (it said "3 cases merged" with exit 0).
+    refused(
+        &[
+            "sweep",
+            "merge",
+            s0.to_str().unwrap(),
+            "--out",
+            merged.to_str().unwrap(),
+        ],
+        &["3 of the sweep's 6 cases are missing", "1, 3, 5"],
+    );
+    assert!(!merged.exists());
+    let o = towride(&[
+        "sweep",
+        "merge",
+        s0.to_str().unwrap(),
+        s1.to_str().unwrap(),
+        "--out",
+        merged.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(j["schema_version"], 1);
+    assert_eq!(
+        (j["cases"].as_u64(), j["cases_total"].as_u64()),
+        (Some(6), Some(6))
+    );
+}
+
+/// Sends SIGINT to `child` once `ready` holds (or after `wait`).
+fn interrupt_when(child: &std::process::Child, ready: impl Fn() -> bool, wait: Duration) {
+    let t = Instant::now();
+    while !ready() && t.elapsed() < wait {
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    let ok = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(ok.success());
+}
+
+#[test]
+fn ctrl_c_stops_a_run_keeping_its_rows_with_status_interrupted() {
+    let d = tmp("sigint");
+    // An hour of pendulum at 1 kHz: minutes of work, stopped after a second.
+    let child = Command::new(env!("CARGO_BIN_EXE_towride"))
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+        .args([
+            "run",
+            "scenes/examples/pendulum.toml",
+            "--set",
+            "pendulum.toml:run.end_time_s=3000",
+            "--out",
+        ])
+        .arg(&d)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    interrupt_when(&child, || false, Duration::from_millis(1500));
+    let out = child.wait_with_output().unwrap();
+    let e = stderr(&out);
+    assert_eq!(out.status.code(), Some(130), "{e}");
+    assert!(e.contains("interrupted at t ="), "{e}");
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(s["status"], "interrupted");
+    let t = s["interrupted_at_s"].as_f64().unwrap();
+    assert!(t > 0.0 && t < 3000.0, "{t}");
+    // Every row up to the stop: 1 kHz from t = 0, the last at the time reported.
+    let csv = std::fs::read_to_string(d.join("outputs.csv")).unwrap();
+    let rows: Vec<&str> = csv.lines().skip(1).collect();
+    assert_eq!(rows.len(), (t * 1000.0).round() as usize + 1);
+    let last: f64 = rows
+        .last()
+        .unwrap()
+        .split(',')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!((last - t).abs() < 1e-9, "{last} vs {t}");
+    // Nothing left under a temporary name.
+    for f in std::fs::read_dir(&d).unwrap() {
+        let n = f.unwrap().file_name();
+        assert!(!n.to_string_lossy().ends_with(".part"), "{n:?}");
+    }
+}
+
+/// The command-line part of the fuzz harness: hostile numbers for numeric options are
+/// refused by the argument parser, naming the option (they hung or ran absurd work).
+#[test]
+fn fuzz_numeric_options_are_refused_naming_the_option() {
+    let scene = repo!("scenes/default.toml");
+    let flex = repo!("flex/hitch_crossbeam.toml");
+    let sweep = repo!("scenes/examples/pendulum_sweep.toml");
+    let options: [(&[&str], &str); 7] = [
+        (&["doctor", scene], "--step"),
+        (&["linear", scene], "--at"),
+        (&["modes", flex], "--cutoff"),
+        (&["modes", flex], "--share"),
+        (&["sweep", sweep], "--jobs"),
+        (&["stress", scene], "--jobs"),
+        (
+            &["validate", "synth", "--obstacle", "bump_25mm"],
+            "--speed-kmh",
+        ),
+    ];
+    let mut n = 0;
+    for (args, opt) in options {
+        for v in ["nan", "inf", "-1", "1e300", "abc", "1,5"] {
+            let arg = format!("{opt}={v}");
+            let mut a: Vec<&str> = args.to_vec();
+            a.push(&arg);
+            refused(&a, &[opt]);
+            n += 1;
+        }
+    }
+    println!("fuzz (command line): {n} option values refused");
+}
