@@ -32,6 +32,7 @@ mod tyre_static;
 mod tyre_tir;
 mod validate_csv;
 mod validate_filter_rating;
+mod validate_init;
 mod validate_logger;
 mod validate_passage;
 mod validate_recovery;

@@ -11,6 +11,7 @@
 //! [`compare`]) — once with these corrections and once without (nominal speed, event
 //! timing only), so the effect of the corrections is visible. [`spectrum`] gives each
 //! channel's body-bounce and wheel-hop frequencies, [`folder`] the trends over a folder.
+//! [`init`] drafts a descriptor from a recording and a scene (`validate init`).
 //!
 //! The vehicle simulation enters only through the [`Simulator`] trait; the command line
 //! takes its simulator from [`default_simulator`], the one place to swap in the vehicle
@@ -22,6 +23,7 @@ pub mod csv_reader;
 pub mod descriptor;
 pub mod filter;
 pub mod folder;
+pub mod init;
 pub mod measurement;
 pub(crate) mod metrics;
 pub mod passage;
