@@ -288,7 +288,7 @@ fn map_channel(name: &str, sensors: &[(String, [bool; 3])]) -> Result<String, St
     let has = |x: &str| w.iter().any(|v| v == x);
     let axis = ["x", "y", "z"]
         .into_iter()
-        .position(|a| has(a))
+        .position(&has)
         .unwrap_or(2);
     let mut need: Vec<&str> = Vec::new();
     for k in [

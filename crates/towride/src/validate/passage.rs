@@ -222,7 +222,7 @@ pub fn onset(
         .unwrap_or(first);
     let n0 = median(noise).max(1e-300);
     let snr = env[peak] / n0;
-    if !(snr >= snr_min) {
+    if snr.is_nan() || snr < snr_min {
         return Err(format!(
             "the largest event ({:.3} m/s^2 at {:.3} s) stands only {snr:.1} times above the noise ({n0:.3} m/s^2); {snr_min} needed",
             env[peak], t[peak]

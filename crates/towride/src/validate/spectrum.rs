@@ -28,7 +28,7 @@ pub struct Dominant {
 /// Amplitude spectrum of `y` sampled every `dt` [s]: (bin width [Hz], magnitudes).
 pub fn amplitude(y: &[f64], dt: f64) -> (f64, Vec<f64>) {
     let n = y.len();
-    if n < 4 || !(dt > 0.0) {
+    if n < 4 || dt.is_nan() || dt <= 0.0 {
         return (f64::NAN, Vec::new());
     }
     let mean = y.iter().sum::<f64>() / n as f64;
@@ -57,7 +57,7 @@ pub fn peak_in(y: &[f64], dt: f64, band: [f64; 2]) -> Option<f64> {
 }
 
 fn peak_of(df: f64, mag: &[f64], band: [f64; 2]) -> Option<f64> {
-    if mag.len() < 3 || !(df > 0.0) {
+    if mag.len() < 3 || df.is_nan() || df <= 0.0 {
         return None;
     }
     let lo = ((band[0] / df).ceil() as usize).max(1);
