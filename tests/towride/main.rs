@@ -40,6 +40,7 @@ mod validate_vehicle;
 mod vehicle_assembly;
 mod vehicle_errors;
 mod vehicle_scene;
+mod vehicle_simple;
 mod vehicle_statics;
 mod vehicle_twist_beam;
 mod vehicle_variants;
