@@ -286,10 +286,7 @@ fn words(name: &str) -> Vec<String> {
 fn map_channel(name: &str, sensors: &[(String, [bool; 3])]) -> Result<String, String> {
     let w = words(name);
     let has = |x: &str| w.iter().any(|v| v == x);
-    let axis = ["x", "y", "z"]
-        .into_iter()
-        .position(&has)
-        .unwrap_or(2);
+    let axis = ["x", "y", "z"].into_iter().position(&has).unwrap_or(2);
     let mut need: Vec<&str> = Vec::new();
     for k in [
         "body", "wheel", "drawbar", "hitch", "trailer", "front", "rear", "left", "right",
