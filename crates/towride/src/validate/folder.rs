@@ -163,7 +163,7 @@ pub fn summary_json(res: &FolderResult) -> Value {
 }
 
 /// Writes `dir/summary.csv` (one row per run and channel, failures last with their
-/// error) and `dir/summary.json`.
+/// error), `dir/summary.json` and the trends (`trends.csv`, `trends.html`, [`super::trends`]).
 pub fn write_summary(res: &FolderResult, dir: &Path) -> Result<(PathBuf, PathBuf), ValidateError> {
     let e = |x: &dyn std::fmt::Display| ValidateError::Io {
         path: dir.to_path_buf(),
@@ -242,5 +242,6 @@ pub fn write_summary(res: &FolderResult, dir: &Path) -> Result<(PathBuf, PathBuf
     let json_path = dir.join("summary.json");
     let text = serde_json::to_string_pretty(&summary_json(res)).map_err(|x| e(&x))?;
     std::fs::write(&json_path, text).map_err(|x| e(&x))?;
+    super::trends::write(res, dir)?;
     Ok((csv_path, json_path))
 }

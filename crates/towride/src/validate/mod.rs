@@ -10,7 +10,8 @@
 //! cross-correlation ([`align`]), and scores every channel ([`metrics`], [`rating`],
 //! [`compare`]) — once with these corrections and once without (nominal speed, event
 //! timing only), so the effect of the corrections is visible. [`spectrum`] gives each
-//! channel's body-bounce and wheel-hop frequencies, [`folder`] the trends over a folder.
+//! channel's body-bounce and wheel-hop frequencies, [`folder`] the summary of a folder
+//! and [`trends`] its trends (peaks against speed, frequencies measured and simulated).
 //! [`init`] drafts a descriptor from a recording and a scene (`validate init`).
 //!
 //! The vehicle simulation enters only through the [`Simulator`] trait; the command line
@@ -37,6 +38,7 @@ pub mod spectrum;
 pub mod speed;
 pub mod synth;
 pub mod timebase;
+pub mod trends;
 pub(crate) mod trigger;
 pub mod units;
 pub(crate) mod vehicle_sim;
