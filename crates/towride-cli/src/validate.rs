@@ -173,6 +173,27 @@ pub fn run(a: &ValidateArgs) -> CliResult {
                 ),
                 None => println!("{}: rating {u:.3} uncorrected", r.name),
             }
+            let low = |x: &dyn std::fmt::Debug| format!("{x:?}").to_lowercase();
+            let mut more = format!(
+                "  speed from the {}, {} Hz ({} time base)",
+                low(&r.speed.source),
+                r.sample_rate_hz,
+                low(&r.time_base.kind)
+            );
+            if let Some(p) = &r.passage {
+                more.push_str(&format!(
+                    "; passage found in the signals at {:.4} s",
+                    r.obstacle_time_s
+                ));
+                if let (Some(w), Some(m)) = (p.implied_wheelbase_m, r.wheelbase_m) {
+                    more.push_str(&format!(", implied wheelbase {w:.3} m (model {m:.3} m)"));
+                }
+            }
+            let clipped: usize = r.channels.iter().map(|c| c.clipped_samples).sum();
+            if clipped > 0 {
+                more.push_str(&format!("; {clipped} clipped samples left out"));
+            }
+            println!("{more}");
         }
         println!(
             "{} run(s) validated, {} failed, {:.2} s; wrote {} and {}{}",

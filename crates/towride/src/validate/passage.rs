@@ -1,7 +1,7 @@
 //! The obstacle passage found in the signals, without a trigger.
 //!
 //! Each axle's unsprung vertical accelerations are combined into one envelope: every
-//! channel less its 0.2 s centred moving mean (gravity, offsets and the body's slow
+//! channel less its mean over the 0.05 s before (gravity, offsets and the body's slow
 //! motion go), squared, averaged over the channels, smoothed over 5 ms and rooted. The
 //! front axle's passage is the largest peak of its envelope; it is visible when that
 //! peak stands at least [`SNR_MIN`] times above the envelope's median (the noise), else
@@ -25,7 +25,7 @@ use super::filter::interp;
 /// The front axle's envelope peak must stand this many times above its median.
 pub const SNR_MIN: f64 = 8.0;
 /// Window of the moving mean taken off every channel [s].
-const DETREND_S: f64 = 0.2;
+const DETREND_S: f64 = 0.05;
 /// Smoothing of the squared signal [s].
 const SMOOTH_S: f64 = 0.005;
 /// Dips below the threshold shorter than this are bridged [s].
@@ -161,13 +161,31 @@ fn moving_mean(y: &[f64], w: usize) -> Vec<f64> {
         .collect()
 }
 
+/// Mean of `y` over the `w` samples before each one (fewer at the start): a trailing
+/// mean, so a large event does not raise the level before it (a centred mean would
+/// leak half its window ahead of the event and move the onset early by up to that).
+fn trailing_mean(y: &[f64], w: usize) -> Vec<f64> {
+    let mut prefix = vec![0.0; y.len() + 1];
+    for k in 0..y.len() {
+        prefix[k + 1] = prefix[k] + y[k];
+    }
+    (0..y.len())
+        .map(|k| {
+            let a = k.saturating_sub(w);
+            let b = (k.max(1)).min(y.len());
+            let a = a.min(b - 1);
+            (prefix[b] - prefix[a]) / (b - a) as f64
+        })
+        .collect()
+}
+
 /// The combined envelope of `channels` sampled every `dt` [s].
 pub fn envelope(channels: &[&[f64]], dt: f64) -> Vec<f64> {
     let n = channels.iter().map(|c| c.len()).min().unwrap_or(0);
     let mut p = vec![0.0; n];
     let wd = ((DETREND_S / dt).round() as usize).max(3);
     for c in channels {
-        let m = moving_mean(&c[..n], wd);
+        let m = trailing_mean(&c[..n], wd);
         for k in 0..n {
             p[k] += (c[k] - m[k]).powi(2);
         }
