@@ -97,10 +97,15 @@ pub fn overlays(run: &RunValidation, dir: &Path) -> Result<Vec<PathBuf>, Validat
 /// The run's figures as lines of text for the page header.
 fn header(run: &RunValidation) -> Vec<(String, RGBColor)> {
     let mut lines = Vec::new();
-    let title = format!(
-        "{}: {} with trailer {}",
-        run.name, run.obstacle, run.load_case
-    );
+    // An empty load case is the scene's own (a vehicle without a trailer has none).
+    let title = if run.load_case.is_empty() {
+        format!("{}: {}", run.name, run.obstacle)
+    } else {
+        format!(
+            "{}: {} with trailer {}",
+            run.name, run.obstacle, run.load_case
+        )
+    };
     lines.push((title, BLACK));
     if run.synthetic {
         lines.push((
