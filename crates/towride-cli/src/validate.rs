@@ -1,5 +1,6 @@
 //! `towride validate RUN.toml|FOLDER`: compares recorded runs with the simulation;
-//! `towride validate synth`: writes synthetic runs (one, or the 72-run plan).
+//! `towride validate synth`: writes synthetic runs (one, or the 72-run plan);
+//! `towride validate init DATA --scene SCENE`: drafts a descriptor from a recording.
 
 use crate::CliResult;
 use std::path::{Path, PathBuf};
@@ -9,7 +10,9 @@ use clap::{Args, Subcommand};
 use towride::validate::descriptor::{AcqFilter, Unit};
 use towride::validate::folder::{find_descriptors, summary_json};
 use towride::validate::synth::{make_synthetic, SensorModel, SynthRun, TriggerLayout};
-use towride::validate::{default_simulator, plan, report, validate_folder, write_summary, Options};
+use towride::validate::{
+    default_simulator, init, plan, report, validate_folder, write_summary, Options,
+};
 
 #[derive(Args, Debug)]
 #[command(args_conflicts_with_subcommands = true)]
@@ -39,6 +42,30 @@ pub struct ValidateArgs {
 enum ValidateCommand {
     /// Write synthetic runs (CSV + descriptor, labelled synthetic) made by the simulator.
     Synth(SynthArgs),
+    /// Sniff a recording (separator, header, units, time base, channels) and draft a
+    /// commented descriptor mapping its columns onto the scene's sensors.
+    Init(InitArgs),
+}
+
+#[derive(Args, Debug)]
+struct InitArgs {
+    /// The recording (CSV or any delimited text export).
+    data: PathBuf,
+    /// The scene the run is simulated with.
+    #[arg(long)]
+    scene: PathBuf,
+    /// Where to write the descriptor (default: beside DATA, same stem, .toml).
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Sample rate [Hz] when the file has no time column and no comment declaring it.
+    #[arg(long)]
+    rate_hz: Option<f64>,
+    /// Overwrite an existing descriptor.
+    #[arg(long)]
+    force: bool,
+    /// Print what was found as JSON.
+    #[arg(long)]
+    json: bool,
 }
 
 #[derive(Args, Debug)]
@@ -92,8 +119,10 @@ struct SynthArgs {
 }
 
 pub fn run(a: &ValidateArgs) -> CliResult {
-    if let Some(ValidateCommand::Synth(s)) = &a.cmd {
-        return synth(s);
+    match &a.cmd {
+        Some(ValidateCommand::Synth(s)) => return synth(s),
+        Some(ValidateCommand::Init(i)) => return init(i),
+        None => {}
     }
     let path = a
         .path
@@ -147,6 +176,27 @@ pub fn run(a: &ValidateArgs) -> CliResult {
                 ),
                 None => println!("{}: rating {u:.3} uncorrected", r.name),
             }
+            let low = |x: &dyn std::fmt::Debug| format!("{x:?}").to_lowercase();
+            let mut more = format!(
+                "  speed from the {}, {} Hz ({} time base)",
+                low(&r.speed.source),
+                r.sample_rate_hz,
+                low(&r.time_base.kind)
+            );
+            if let Some(p) = &r.passage {
+                more.push_str(&format!(
+                    "; passage found in the signals at {:.4} s",
+                    r.obstacle_time_s
+                ));
+                if let (Some(w), Some(m)) = (p.implied_wheelbase_m, r.wheelbase_m) {
+                    more.push_str(&format!(", implied wheelbase {w:.3} m (model {m:.3} m)"));
+                }
+            }
+            let clipped: usize = r.channels.iter().map(|c| c.clipped_samples).sum();
+            if clipped > 0 {
+                more.push_str(&format!("; {clipped} clipped samples left out"));
+            }
+            println!("{more}");
         }
         println!(
             "{} run(s) validated, {} failed, {:.2} s; wrote {} and {}{}",
@@ -163,6 +213,43 @@ pub fn run(a: &ValidateArgs) -> CliResult {
         );
     }
     Ok(if res.failures.is_empty() { 0 } else { 1 })
+}
+
+fn init(a: &InitArgs) -> CliResult {
+    let out = a
+        .out
+        .clone()
+        .unwrap_or_else(|| a.data.with_extension("toml"));
+    if out.exists() && !a.force {
+        return Err(format!("{} exists; give --force to overwrite it", out.display()).into());
+    }
+    let mut s = init::sniff(&a.data, a.rate_hz)?;
+    init::map_columns(&mut s, &init::scene_sensors(&a.scene)?);
+    std::fs::write(&out, init::draft(&s, &a.scene, &out))
+        .map_err(|e| format!("{}: cannot write: {e}", out.display()))?;
+    if a.json {
+        let doc = serde_json::json!({
+            "schema_version": towride::validate::folder::SCHEMA_VERSION,
+            "descriptor": out.display().to_string(),
+            "sniff": s,
+        });
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&doc).map_err(|e| e.to_string())?
+        );
+    } else {
+        let mapped = s.columns.iter().filter(|c| c.simulated.is_some()).count();
+        println!(
+            "{}: {} rows at {} Hz ({:?} time base), {mapped} of {} columns mapped; wrote {}",
+            a.data.display(),
+            s.rows,
+            s.time_base.rate_hz,
+            s.time_base.kind,
+            s.columns.len(),
+            out.display()
+        );
+    }
+    Ok(0)
 }
 
 fn synth(a: &SynthArgs) -> CliResult {

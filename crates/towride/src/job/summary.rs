@@ -133,6 +133,9 @@ pub struct SceneInfo {
     pub hitch_variant: Option<u32>,
     /// Design statics of the vehicle.
     pub design: Design,
+    /// Values a compact (`simple`) vehicle file left to its defaults file or derived from
+    /// its numbers (empty for an assembly file).
+    pub assumed: Vec<crate::vehicle::simple::Assumed>,
     /// What the run did not compute, and why.
     pub skipped: Skipped,
 }
@@ -312,6 +315,7 @@ impl RunSummary {
                     .map(|t| t.load_case.clone()),
                 hitch_variant: s.vehicle.handles.hitch.as_ref().map(|h| h.variant),
                 design: s.vehicle.design.clone(),
+                assumed: s.vehicle.assumed.clone(),
                 skipped: skipped(sys, st),
             }),
             lift_off: lift_off(samples),

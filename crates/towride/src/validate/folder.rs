@@ -89,10 +89,16 @@ fn figures(c: &Comparison, f: &ChannelFigures) -> Value {
         "scores": f.rating,
         "shift_s": c.shift_s,
         "speed_mps": c.speed_mps,
+        "clipped_samples": f.clipped_samples,
+        "simulated_clipped_samples": f.simulated_clipped_samples,
     })
 }
 
-/// One run as JSON: per channel the corrected and uncorrected figures.
+/// Layout version of the `validate --json` document and `summary.json`.
+pub const SCHEMA_VERSION: u32 = 1;
+
+/// One run as JSON: the run's speed, time base, passage and per channel the clipping,
+/// the dominant frequencies and the corrected and uncorrected figures.
 pub fn run_json(r: &RunValidation) -> Value {
     let channels: Vec<Value> = r
         .uncorrected
@@ -104,6 +110,13 @@ pub fn run_json(r: &RunValidation) -> Value {
             if let Some(c) = &r.corrected {
                 v["corrected"] = figures(c, &c.channels[i]);
             }
+            if let Some(x) = r.channels.get(i) {
+                v["range_g"] = json!(x.range_g);
+                v["clipped_samples"] = json!(x.clipped_samples);
+                v["simulated_clipped_samples"] = json!(x.simulated_clipped_samples);
+                v["measured_hz"] = json!(x.measured_hz);
+                v["simulated_hz"] = json!(x.simulated_hz);
+            }
             v
         })
         .collect();
@@ -114,14 +127,24 @@ pub fn run_json(r: &RunValidation) -> Value {
         "obstacle": r.obstacle,
         "load_case": r.load_case,
         "nominal_speed_mps": r.nominal_speed_mps,
-        "speed_mps": r.foil_speed.speed_mps,
-        "foil_fit_residual_s": r.foil_speed.residual_rms_s,
+        "speed_mps": r.speed.speed_mps,
+        "speed_kmh": r.speed.speed_mps * 3.6,
+        "speed_source": r.speed.source,
+        "speed": r.speed,
+        "foil_fit_residual_s": r.speed.foils.map(|f| f.residual_rms_s),
+        "obstacle_time_s": r.obstacle_time_s,
+        "rear_axle_time_s": r.rear_axle_time_s,
+        "implied_wheelbase_m": r.implied_wheelbase_m,
+        "wheelbase_m": r.wheelbase_m,
+        "passage": r.passage,
+        "sample_rate_hz": r.sample_rate_hz,
+        "time_base": r.time_base.kind,
+        "time_base_detail": r.time_base,
         "shift_s": r.corrected.as_ref().map(|c| c.shift_s),
         "shift_at_bound": r.corrected.as_ref().map(|c| c.shift_at_bound),
         "shift_correlation": r.corrected.as_ref().and_then(|c| c.shift_correlation),
         "mean_rating_corrected": r.corrected.as_ref().map(|c| c.mean_rating),
         "mean_rating_uncorrected": r.uncorrected.mean_rating,
-        "sample_rate_hz": r.sample_rate_hz,
         "notes": r.notes,
         "wall_s": r.wall_s,
         "channels": channels,
@@ -131,6 +154,7 @@ pub fn run_json(r: &RunValidation) -> Value {
 /// The whole batch as JSON.
 pub fn summary_json(res: &FolderResult) -> Value {
     json!({
+        "schema_version": SCHEMA_VERSION,
         "simulator": res.simulator,
         "runs": res.runs.iter().map(run_json).collect::<Vec<_>>(),
         "failures": res.failures.iter().map(|(f, e)| json!({"descriptor": f.display().to_string(), "error": e})).collect::<Vec<_>>(),
@@ -139,7 +163,7 @@ pub fn summary_json(res: &FolderResult) -> Value {
 }
 
 /// Writes `dir/summary.csv` (one row per run and channel, failures last with their
-/// error) and `dir/summary.json`.
+/// error), `dir/summary.json` and the trends (`trends.csv`, `trends.html`, [`super::trends`]).
 pub fn write_summary(res: &FolderResult, dir: &Path) -> Result<(PathBuf, PathBuf), ValidateError> {
     let e = |x: &dyn std::fmt::Display| ValidateError::Io {
         path: dir.to_path_buf(),
@@ -218,5 +242,6 @@ pub fn write_summary(res: &FolderResult, dir: &Path) -> Result<(PathBuf, PathBuf
     let json_path = dir.join("summary.json");
     let text = serde_json::to_string_pretty(&summary_json(res)).map_err(|x| e(&x))?;
     std::fs::write(&json_path, text).map_err(|x| e(&x))?;
+    super::trends::write(res, dir)?;
     Ok((csv_path, json_path))
 }

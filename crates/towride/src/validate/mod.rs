@@ -1,30 +1,46 @@
 //! Validation against recorded accelerometer data.
 //!
 //! A measured run is a CSV of time plus channels and a TOML descriptor ([`descriptor`]).
-//! [`validate_run`] reads both, derives the true speed from the foil pulses
-//! ([`trigger`]), asks a [`Simulator`] for the run at that speed, passes the simulation
-//! through the acquisition chain ([`filter`]), aligns it in time from the trigger and
-//! obstacle events refined by a bounded cross-correlation ([`align`]), and scores every
-//! channel ([`metrics`], [`rating`]) — once with these corrections and once without
-//! (nominal speed, event timing only), so the effect of the corrections is visible.
+//! [`validate_run`] reads both ([`csv_reader`], [`timebase`], [`measurement`]: any
+//! logger's layout, units, time bases, clipped samples), takes the true speed from the
+//! foil pulses ([`trigger`]), a speed channel or the descriptor ([`speed`]), finds the
+//! obstacle passage in the signals when there is no trigger ([`passage`]), asks a
+//! [`Simulator`] for the run at that speed, passes the simulation through the
+//! acquisition chain ([`filter`]), aligns it in time from the events refined by a bounded
+//! cross-correlation ([`align`]), and scores every channel ([`metrics`], [`rating`],
+//! [`compare`]) — once with these corrections and once without (nominal speed, event
+//! timing only), so the effect of the corrections is visible. [`spectrum`] gives each
+//! channel's body-bounce and wheel-hop frequencies, [`folder`] the summary of a folder
+//! and [`trends`] its trends (peaks against speed, frequencies measured and simulated).
+//! [`init`] drafts a descriptor from a recording and a scene (`validate init`).
 //!
 //! The vehicle simulation enters only through the [`Simulator`] trait; the command line
 //! takes its simulator from [`default_simulator`], the one place to swap in the vehicle
 //! model. [`synth`] and [`plan`] make clearly labelled synthetic runs from any simulator.
 
 pub(crate) mod align;
+pub mod compare;
 pub mod csv_reader;
 pub mod descriptor;
 pub mod filter;
 pub mod folder;
+pub mod init;
+pub mod measurement;
 pub(crate) mod metrics;
+pub mod passage;
 pub mod pipeline;
 pub mod plan;
 pub mod rating;
 mod repair;
 pub mod report;
+pub mod scene_info;
+pub mod spectrum;
+pub mod speed;
 pub mod synth;
+pub mod timebase;
+pub mod trends;
 pub(crate) mod trigger;
+pub mod units;
 pub(crate) mod vehicle_sim;
 
 use std::collections::BTreeMap;
@@ -94,6 +110,13 @@ pub trait Simulator {
     /// A short name for reports and synthetic-data labels.
     fn name(&self) -> String {
         "unnamed simulator".into()
+    }
+
+    /// Distances behind the front axle of the rear axle and of a trailer's axle [m], when
+    /// the simulator knows the vehicle of `scene` (the passage search expects the axles
+    /// there).
+    fn axles(&self, _scene: &Path) -> (Option<f64>, Option<f64>) {
+        (None, None)
     }
 }
 

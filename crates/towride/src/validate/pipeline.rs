@@ -1,21 +1,24 @@
-//! One measured run against the simulation: corrected (speed from the foils, time shift
-//! from the cross-correlation) and uncorrected (nominal speed, event timing only).
+//! One measured run against the simulation: corrected (measured speed, the passage as
+//! found, time shift from the cross-correlation) and uncorrected (nominal speed, event
+//! timing only).
 
-use super::ValidateError;
-use std::collections::BTreeMap;
 use std::path::Path;
 use std::time::Instant;
 
 use serde::Serialize;
 
-use super::align::best_shift;
-use super::csv_reader::{read_measurement, Measurement};
+use super::compare::{compare, Recorded, Sensor};
 use super::descriptor::Descriptor;
 use super::filter::{acquire, Acquired};
-use super::metrics::{gain_ratio, peak, pearson, rms_diff};
-use super::rating::{iso_rating, Rating};
-use super::trigger::{obstacle_time, speed_from_foils, FoilSpeed};
-use super::Simulator;
+use super::measurement::{condition, read_measurement, Measurement};
+use super::passage::{self, axle_sets, Passage, Track};
+use super::spectrum::{self, Dominant};
+use super::speed::{channel_stats, SpeedInfo, SpeedSource};
+use super::timebase::TimeBase;
+use super::trigger::{obstacle_time, speed_from_foils};
+use super::{Simulator, ValidateError};
+
+pub use super::compare::{ChannelFigures, Comparison};
 
 /// Settings of the comparison.
 #[derive(Clone, Copy, Debug)]
@@ -45,61 +48,22 @@ impl Default for Options {
     }
 }
 
-/// Figures of one channel in one comparison (SI units).
+/// What a run says per channel beyond the comparisons: clipping and spectra.
 #[derive(Clone, Debug, Serialize)]
-pub struct ChannelFigures {
+pub struct ChannelRecord {
     /// Simulated channel name.
     pub channel: String,
-    /// Measured value of largest magnitude [m/s^2].
-    pub peak_measured_mps2: f64,
-    /// When it occurs (recording's clock) [s].
-    pub t_peak_measured_s: f64,
-    /// Simulated value of largest magnitude [m/s^2].
-    pub peak_simulated_mps2: f64,
-    /// When it occurs (recording's clock) [s].
-    pub t_peak_simulated_s: f64,
-    /// RMS of measured minus simulated [m/s^2].
-    pub rms_diff_mps2: f64,
-    /// Pearson correlation of the two curves [-].
-    pub correlation: f64,
-    /// Least-squares amplitude ratio measured / simulated (a gain-error estimate).
-    pub gain_ratio: f64,
-    /// ISO/TS 18571-style rating of the simulated curve against the measured one.
-    pub rating: Rating,
-    /// Interval the channel was rated on (recording's clock) [s].
-    pub interval_s: [f64; 2],
-}
-
-/// One comparison of a run (corrected or uncorrected).
-#[derive(Clone, Debug, Serialize)]
-pub struct Comparison {
-    /// "corrected" or "uncorrected".
-    pub label: &'static str,
-    /// Speed simulated [m/s].
-    pub speed_mps: f64,
-    /// Time shift found by the cross-correlation [s] (0 when uncorrected): the events are
-    /// stamped this much later than the data show them (a trigger delay).
-    pub shift_s: f64,
-    /// The shift is at the search bound (the true shift may be larger).
-    pub shift_at_bound: bool,
-    /// Mean correlation of the channels at the shift found (`None` when uncorrected):
-    /// how well the shapes agree once aligned.
-    pub shift_correlation: Option<f64>,
-    /// When the front wheels reach the obstacle, on the recording's clock [s].
-    pub obstacle_time_s: f64,
-    /// Mean overall rating over the channels.
-    pub mean_rating: f64,
-    /// Figures per channel.
-    pub channels: Vec<ChannelFigures>,
-    /// The compared curves on the evaluation window (for plots).
-    #[serde(skip)]
-    pub time_s: Vec<f64>,
-    /// Measured curves by channel name [m/s^2].
-    #[serde(skip)]
-    pub measured: BTreeMap<String, Vec<f64>>,
-    /// Simulated curves on the same samples [m/s^2].
-    #[serde(skip)]
-    pub simulated: BTreeMap<String, Vec<f64>>,
+    /// The sensor's range [g], if given.
+    pub range_g: Option<f64>,
+    /// Clipped samples in the whole recording.
+    pub clipped_samples: usize,
+    /// Simulated samples at which a sensor of that range would clip (primary
+    /// comparison's window).
+    pub simulated_clipped_samples: usize,
+    /// Dominant frequencies of the measured curve (primary comparison's window).
+    pub measured_hz: Dominant,
+    /// Dominant frequencies of the simulated curve.
+    pub simulated_hz: Dominant,
 }
 
 /// A validated run.
@@ -113,16 +77,30 @@ pub struct RunValidation {
     pub synthetic: bool,
     /// Name of the obstacle driven over.
     pub obstacle: String,
-    /// Trailer load case.
+    /// Trailer load case (empty: the scene's).
     pub load_case: String,
-    /// Nominal (speedometer) speed [m/s].
+    /// Nominal (speedometer) speed [m/s]: the descriptor's, else the measured one.
     pub nominal_speed_mps: f64,
-    /// Speed from the foils and the fit residual.
-    pub foil_speed: FoilSpeed,
+    /// The speed and where it comes from.
+    pub speed: SpeedInfo,
     /// Sample rate of the recording [Hz].
     pub sample_rate_hz: f64,
-    /// Repairs made while reading the CSV.
+    /// How the recording's sample times were found.
+    pub time_base: TimeBase,
+    /// The passage as found in the signals, when searched for.
+    pub passage: Option<Passage>,
+    /// When the front wheels reach the obstacle (primary comparison), recording's clock [s].
+    pub obstacle_time_s: f64,
+    /// When the rear wheels reach it, from the signals [s].
+    pub rear_axle_time_s: Option<f64>,
+    /// The distance between the front and rear axles' passages [m].
+    pub implied_wheelbase_m: Option<f64>,
+    /// The model's wheelbase [m], when known.
+    pub wheelbase_m: Option<f64>,
+    /// Repairs and inferences made while reading and processing.
     pub notes: Vec<String>,
+    /// Per channel: clipping and dominant frequencies.
+    pub channels: Vec<ChannelRecord>,
     /// Comparison with speed and time shift corrected; `None` with `--no-correct`.
     pub corrected: Option<Comparison>,
     /// Comparison at the nominal speed with event timing only.
@@ -152,12 +130,75 @@ pub fn validate_run(
         let message = format!("no file {}", desc.scene.display());
         return Err(src.error(&crate::path!["scene"], message).into());
     }
+    let at =
+        |e: &dyn std::fmt::Display| ValidateError::Signal(format!("{}: {e}", desc.path.display()));
     let mut meas = read_measurement(&desc)?;
-    let foil = speed_from_foils(&desc.trigger.foils)
-        .map_err(|e| ValidateError::Signal(format!("{}: {e}", desc.path.display())))?;
-    let run_sim = |v: f64| -> Result<Acquired, ValidateError> {
+    if desc.filter_measurement {
+        condition(&mut meas, desc.filter).map_err(|e| at(&e))?;
+    }
+    let names: Vec<String> = desc.channels.iter().map(|c| c.simulated.clone()).collect();
+    let sets = axle_sets(&desc.passage, &names);
+    let model_axles = sim.axles(&desc.scene);
+    let wheelbase = desc.passage.wheelbase_m.or(model_axles.0);
+    let trailer_axle = desc.passage.trailer_axle_m.or(model_axles.1);
+    let foils = match &desc.trigger {
+        Some(t) => Some(speed_from_foils(&t.foils).map_err(|e| at(&e))?),
+        None => None,
+    };
+    let mut notes = std::mem::take(&mut meas.notes);
+    // A first speed for the passage search: foils, the channel's, the nominal one.
+    let track = match &meas.speed_mps {
+        Some(v) => Track::from_speed(&meas.time_s, v),
+        None => Track::constant(
+            foils
+                .map(|f| f.speed_mps)
+                .or(desc.nominal_speed_mps)
+                .unwrap_or(f64::NAN),
+        ),
+    };
+    let passage = if sets.front.is_empty() {
+        if desc.trigger.is_none() {
+            return Err(at(&format!(
+                "no trigger and no front-axle unsprung channel to find the passage in (name them in [passage] front; channels: {names:?})"
+            )));
+        }
+        None
+    } else {
+        match passage::detect(
+            &meas.time_s,
+            &meas.channels,
+            &sets,
+            &track,
+            (wheelbase, trailer_axle),
+            desc.passage.search_s,
+            &mut notes,
+        ) {
+            Ok(p) => Some(p),
+            Err(e) if desc.trigger.is_none() => return Err(at(&e)),
+            Err(e) => {
+                notes.push(format!(
+                    "passage not found in the signals (the photocell is used): {e}"
+                ));
+                None
+            }
+        }
+    };
+    let speed = speed_info(
+        &desc,
+        &meas,
+        foils,
+        passage.as_ref(),
+        &track,
+        trailer_axle.or(wheelbase),
+    );
+    let nominal = desc.nominal_speed_mps.unwrap_or(speed.speed_mps);
+    if desc.nominal_speed_mps.is_none() {
+        notes.push("no nominal speed in the descriptor: the uncorrected comparison uses the measured speed".into());
+    }
+    let load = desc.load_case.clone().unwrap_or_default();
+    let run_sim = |v: f64| -> Result<(Acquired, Option<f64>), ValidateError> {
         let s = sim
-            .simulate(&desc.scene, v, &desc.load_case)
+            .simulate(&desc.scene, v, &load)
             .map_err(|e| ValidateError::Simulation(Box::new(e)))?;
         for c in &desc.channels {
             if !s.channels.contains_key(&c.simulated) {
@@ -169,19 +210,53 @@ pub fn validate_run(
                 )));
             }
         }
-        acquire(&s, desc.filter)
-            .map_err(|e| ValidateError::Signal(format!("{}: {e}", desc.path.display())))
+        let a = acquire(&s, desc.filter).map_err(|e| at(&e))?;
+        // The detector's lag in the simulation: its onset less the true passage.
+        let lag = passage.as_ref().and_then(|_| {
+            let n = a.channels.values().next().map_or(0, |v| v.len());
+            let t: Vec<f64> = (0..n).map(|k| a.t0_s + k as f64 * a.dt_s).collect();
+            let w = [a.obstacle_time_s - 0.3, a.obstacle_time_s + 0.5];
+            passage::front_onset(&t, &a.channels, &sets.front, Some(w))
+                .ok()
+                .map(|o| o.time_s - a.obstacle_time_s)
+        });
+        Ok((a, lag))
     };
-    let mut plain = run_sim(desc.nominal_speed_mps)?;
+    let (mut plain, _) = run_sim(nominal)?;
     let mut fitted = if opts.correct {
-        Some(run_sim(foil.speed_mps)?)
+        Some(run_sim(speed.speed_mps)?)
     } else {
         None
     };
+    // The obstacle on the recording's clock: the photocell, else the detected onset
+    // (corrected: less the detector's lag in the simulation).
+    let (t_obs, t_obs_nominal) = match (&desc.trigger, &passage) {
+        (Some(tr), _) => (
+            obstacle_time(tr, speed.speed_mps),
+            obstacle_time(tr, nominal),
+        ),
+        (None, Some(p)) => {
+            let lag = fitted.as_ref().and_then(|f| f.1);
+            if fitted.is_some() && lag.is_none() {
+                notes.push(
+                    "the front axle's onset was not found in the simulation: no lag correction"
+                        .into(),
+                );
+            }
+            (p.front_onset_s - lag.unwrap_or(0.0), p.front_onset_s)
+        }
+        (None, None) => unreachable!("no trigger means a passage or an error"),
+    };
     for c in desc.channels.iter().filter(|c| c.zero_before_obstacle) {
-        let t_end = obstacle_time(&desc.trigger, foil.speed_mps) - ZERO_MARGIN_S;
-        zero(&meas.time_s, meas.channels.get_mut(&c.simulated), t_end);
-        for a in [Some(&mut plain), fitted.as_mut()].into_iter().flatten() {
+        zero(
+            &meas.time_s,
+            meas.channels.get_mut(&c.simulated),
+            t_obs - ZERO_MARGIN_S,
+        );
+        for a in [Some(&mut plain), fitted.as_mut().map(|f| &mut f.0)]
+            .into_iter()
+            .flatten()
+        {
             let n = a.channels.get(&c.simulated).map_or(0, |v| v.len());
             let t: Vec<f64> = (0..n).map(|k| a.t0_s + k as f64 * a.dt_s).collect();
             let t_end = a.obstacle_time_s - ZERO_MARGIN_S;
@@ -190,13 +265,11 @@ pub fn validate_run(
     }
     // One evaluation window for both comparisons: from just before the obstacle to the
     // end of the recording, inside both simulations' spans (with room for the shift).
-    let t_obs = obstacle_time(&desc.trigger, foil.speed_mps);
-    let t_obs_nominal = obstacle_time(&desc.trigger, desc.nominal_speed_mps);
     let mut lo = (t_obs.min(t_obs_nominal) - opts.pre_s).max(meas.time_s[0]);
     let mut hi = *meas.time_s.last().unwrap_or(&lo);
     for (acq, t_ev, margin) in [
         (Some(&plain), t_obs_nominal, 0.0),
-        (fitted.as_ref(), t_obs, opts.max_shift_s),
+        (fitted.as_ref().map(|f| &f.0), t_obs, opts.max_shift_s),
     ] {
         if let Some(a) = acq {
             let (s0, s1) = a.span();
@@ -209,139 +282,139 @@ pub fn validate_run(
         .filter(|&k| meas.time_s[k] >= lo && meas.time_s[k] <= hi)
         .collect();
     if idx.len() < 20 {
-        return Err(ValidateError::Signal(format!(
-            "{}: the recording and the simulation overlap on only {} samples ({lo:.3} .. {hi:.3} s)",
-            desc.path.display(),
+        return Err(at(&format!(
+            "the recording and the simulation overlap on only {} samples ({lo:.3} .. {hi:.3} s)",
             idx.len()
         )));
     }
-    let names: Vec<String> = desc.channels.iter().map(|c| c.simulated.clone()).collect();
+    let sensors: Vec<Sensor> = desc
+        .channels
+        .iter()
+        .map(|c| Sensor {
+            name: &c.simulated,
+            axis: c.axis,
+            range_g: c.range_g,
+            clipped: meas.clipped.get(&c.simulated).map(|m| m.as_slice()),
+        })
+        .collect();
+    let rec = Recorded {
+        time_s: &meas.time_s,
+        channels: &meas.channels,
+        rate_hz: meas.rate_hz,
+        idx: &idx,
+    };
     let uncorrected = compare(
         "uncorrected",
-        &meas,
-        &idx,
-        &names,
+        &rec,
+        &sensors,
         &plain,
-        desc.nominal_speed_mps,
+        nominal,
         t_obs_nominal,
         None,
         opts,
     );
-    let corrected = fitted.as_ref().map(|acq| {
+    let corrected = fitted.as_ref().map(|(acq, _)| {
         compare(
             "corrected",
-            &meas,
-            &idx,
-            &names,
+            &rec,
+            &sensors,
             acq,
-            foil.speed_mps,
+            speed.speed_mps,
             t_obs,
             Some(opts.max_shift_s),
             opts,
         )
+    });
+    let primary = corrected.as_ref().unwrap_or(&uncorrected);
+    let dt = 1.0 / meas.rate_hz;
+    let channels = desc
+        .channels
+        .iter()
+        .zip(&primary.channels)
+        .map(|(c, f)| ChannelRecord {
+            channel: c.simulated.clone(),
+            range_g: c.range_g,
+            clipped_samples: meas.clipped_samples(&c.simulated),
+            simulated_clipped_samples: f.simulated_clipped_samples,
+            measured_hz: spectrum::dominant(&primary.measured[&c.simulated], dt),
+            simulated_hz: spectrum::dominant(&primary.simulated[&c.simulated], dt),
+        })
+        .collect();
+    let rear = passage.as_ref().and_then(|p| {
+        p.rear_onset_s
+            .map(|r| primary.obstacle_time_s + r - p.front_onset_s)
     });
     Ok(RunValidation {
         name: desc.name(),
         descriptor: desc.path.display().to_string(),
         synthetic: desc.synthetic,
         obstacle: desc.obstacle.clone(),
-        load_case: desc.load_case.clone(),
-        nominal_speed_mps: desc.nominal_speed_mps,
-        foil_speed: foil,
-        sample_rate_hz: meas.rate_hz,
-        notes: meas.notes.clone(),
+        load_case: load.clone(),
+        nominal_speed_mps: nominal,
+        sample_rate_hz: meas.time_base.rate_hz,
+        time_base: meas.time_base.clone(),
+        obstacle_time_s: primary.obstacle_time_s,
+        rear_axle_time_s: rear,
+        implied_wheelbase_m: passage.as_ref().and_then(|p| p.implied_wheelbase_m),
+        wheelbase_m: wheelbase,
+        passage,
+        speed,
+        notes,
+        channels,
         corrected,
         uncorrected,
         wall_s: wall.elapsed().as_secs_f64(),
     })
 }
 
-/// Compares on the samples `idx`; with `search = Some(bound)` the time shift is found
-/// by the cross-correlation first.
-#[allow(clippy::too_many_arguments)]
-fn compare(
-    label: &'static str,
+/// The speed from the foils, the channel (mean over the passage) or the descriptor.
+fn speed_info(
+    desc: &Descriptor,
     meas: &Measurement,
-    idx: &[usize],
-    names: &[String],
-    acq: &Acquired,
-    speed_mps: f64,
-    t_obs: f64,
-    search: Option<f64>,
-    opts: &Options,
-) -> Comparison {
-    let t: Vec<f64> = idx.iter().map(|&k| meas.time_s[k]).collect();
-    let measured: BTreeMap<String, Vec<f64>> = names
-        .iter()
-        .map(|n| {
-            (
-                n.clone(),
-                idx.iter().map(|&k| meas.channels[n][k]).collect(),
-            )
-        })
-        .collect();
-    let offset = t_obs - acq.obstacle_time_s;
-    let sim_at = |c: usize, ti: f64, shift: f64| acq.at(&names[c], ti - offset + shift);
-    let dt = 1.0 / meas.rate_hz;
-    let (shift, at_bound, correlation) = match search {
-        Some(bound) => {
-            let m: Vec<&[f64]> = names.iter().map(|n| measured[n].as_slice()).collect();
-            let a = best_shift(&t, &m, &sim_at, dt, bound);
-            (a.shift_s, a.at_bound, Some(a.correlation))
-        }
-        None => (0.0, false, None),
+    foils: Option<super::trigger::FoilSpeed>,
+    passage: Option<&Passage>,
+    track: &Track,
+    last_axle: Option<f64>,
+) -> SpeedInfo {
+    let mut info = SpeedInfo {
+        speed_mps: f64::NAN,
+        source: SpeedSource::Descriptor,
+        foils,
+        channel_mean_mps: None,
+        channel_range_mps: None,
+        channel_drift_pct: None,
+        window_s: None,
     };
-    let simulated: BTreeMap<String, Vec<f64>> = names
-        .iter()
-        .enumerate()
-        .map(|(c, n)| {
-            (
-                n.clone(),
-                t.iter().map(|&ti| sim_at(c, ti, shift)).collect(),
-            )
-        })
-        .collect();
-    let channels: Vec<ChannelFigures> = names
-        .iter()
-        .map(|n| {
-            let (a, b) = active(
-                &measured[n],
-                &simulated[n],
-                opts.active_threshold,
-                (opts.active_pad_s / dt) as usize,
-            );
-            let (m, s, t) = (&measured[n][a..b], &simulated[n][a..b], &t[a..b]);
-            let (pm, tpm) = peak(t, m);
-            let (ps, tps) = peak(t, s);
-            ChannelFigures {
-                channel: n.clone(),
-                peak_measured_mps2: pm,
-                t_peak_measured_s: tpm,
-                peak_simulated_mps2: ps,
-                t_peak_simulated_s: tps,
-                rms_diff_mps2: rms_diff(m, s),
-                correlation: pearson(m, s),
-                gain_ratio: gain_ratio(m, s),
-                rating: iso_rating(m, s, dt),
-                interval_s: [t[0], t[t.len() - 1]],
+    if let Some(v) = &meas.speed_mps {
+        // The passage: from just before the front axle's onset to just after the last
+        // axle's (found, or where the geometry puts it).
+        let t = &meas.time_s;
+        let (lo, hi) = match passage {
+            Some(p) => {
+                let last = p
+                    .trailer_onset_s
+                    .or(p.rear_onset_s)
+                    .or_else(|| {
+                        last_axle.map(|d| track.time_at(track.position(p.front_onset_s) + d))
+                    })
+                    .unwrap_or(p.front_onset_s);
+                (p.front_onset_s - 0.25, last + 0.25)
             }
-        })
-        .collect();
-    let mean_rating =
-        channels.iter().map(|c| c.rating.overall).sum::<f64>() / channels.len().max(1) as f64;
-    Comparison {
-        label,
-        speed_mps,
-        shift_s: shift,
-        shift_at_bound: at_bound,
-        shift_correlation: correlation,
-        obstacle_time_s: t_obs - shift,
-        mean_rating,
-        channels,
-        time_s: t,
-        measured,
-        simulated,
+            None => (t[0], t[t.len() - 1]),
+        };
+        let (mean, range, drift) = channel_stats(t, v, lo, hi);
+        info.channel_mean_mps = Some(mean);
+        info.channel_range_mps = Some(range);
+        info.channel_drift_pct = Some(drift);
+        info.window_s = Some([lo, hi]);
     }
+    (info.speed_mps, info.source) = match (foils, info.channel_mean_mps, desc.nominal_speed_mps) {
+        (Some(f), _, _) => (f.speed_mps, SpeedSource::Foils),
+        (None, Some(m), _) => (m, SpeedSource::Channel),
+        (None, None, Some(n)) => (n, SpeedSource::Descriptor),
+        (None, None, None) => (f64::NAN, SpeedSource::Descriptor),
+    };
+    info
 }
 
 /// The zeroing mean is taken up to this long before the obstacle [s].
@@ -354,24 +427,5 @@ fn zero(t: &[f64], y: Option<&mut Vec<f64>>, t_end: f64) {
     if n >= 10 {
         let mean = y[..n].iter().sum::<f64>() / n as f64;
         y.iter_mut().for_each(|v| *v -= mean);
-    }
-}
-
-/// Index range where |m| or |s| exceeds `share` of its own largest magnitude, widened by
-/// `pad` samples each side.
-fn active(m: &[f64], s: &[f64], share: f64, pad: usize) -> (usize, usize) {
-    let n = m.len();
-    let mut range: Option<(usize, usize)> = None;
-    for y in [m, s] {
-        let top = y.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
-        let first = y.iter().position(|v| v.abs() >= share * top && top > 0.0);
-        let last = y.iter().rposition(|v| v.abs() >= share * top && top > 0.0);
-        if let (Some(f), Some(l)) = (first, last) {
-            range = Some(range.map_or((f, l), |(a, b)| (a.min(f), b.max(l))));
-        }
-    }
-    match range {
-        Some((a, b)) if b + 1 - a >= 10 => (a.saturating_sub(pad), (b + 1 + pad).min(n)),
-        _ => (0, n),
     }
 }

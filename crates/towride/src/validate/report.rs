@@ -99,10 +99,15 @@ pub fn overlays(
 /// The run's figures as lines of text for the page header.
 fn header(run: &RunValidation) -> Vec<(String, Rgb)> {
     let mut lines = Vec::new();
-    let title = format!(
-        "{}: {} with trailer {}",
-        run.name, run.obstacle, run.load_case
-    );
+    // An empty load case is the scene's own (a vehicle without a trailer has none).
+    let title = if run.load_case.is_empty() {
+        format!("{}: {}", run.name, run.obstacle)
+    } else {
+        format!(
+            "{}: {} with trailer {}",
+            run.name, run.obstacle, run.load_case
+        )
+    };
     lines.push((title, BLACK));
     if run.synthetic {
         lines.push((
@@ -110,16 +115,22 @@ fn header(run: &RunValidation) -> Vec<(String, Rgb)> {
             RED,
         ));
     }
-    let v = run.foil_speed.speed_mps;
-    lines.push((
-        format!(
-            "speed: nominal {:.2} km/h, from the foils {:.2} km/h ({:+.2} % nominal vs true)",
-            run.nominal_speed_mps * 3.6,
-            v * 3.6,
-            (run.nominal_speed_mps / v - 1.0) * 100.0
-        ),
-        BLACK,
-    ));
+    let v = run.speed.speed_mps;
+    let from = match run.speed.source {
+        super::speed::SpeedSource::Foils => "the foils",
+        super::speed::SpeedSource::Channel => "the speed channel",
+        super::speed::SpeedSource::Descriptor => "the descriptor",
+    };
+    let mut s = format!(
+        "speed: nominal {:.2} km/h, from {from} {:.2} km/h ({:+.2} % nominal vs true)",
+        run.nominal_speed_mps * 3.6,
+        v * 3.6,
+        (run.nominal_speed_mps / v - 1.0) * 100.0
+    );
+    if let (Some(w), Some(l)) = (run.implied_wheelbase_m, run.wheelbase_m) {
+        let _ = write!(s, "; implied wheelbase {w:.3} m (model {l:.3} m)");
+    }
+    lines.push((s, BLACK));
     let u = run.uncorrected.mean_rating;
     let mut s = format!("mean rating uncorrected {u:.3} ({})", grade(u));
     if let Some(c) = &run.corrected {

@@ -39,7 +39,7 @@ impl Simulator for VehicleSimulator {
         let changes = Changes {
             speed_km_h: Some(speed_mps * 3.6),
             duration_s: Some((ahead + TRAVEL_M) / speed_mps + RING_DOWN_S),
-            load_case: Some(load_case.to_string()),
+            load_case: (!load_case.is_empty()).then(|| load_case.to_string()),
             obstacle_ahead_m: Some(ahead),
             ..Default::default()
         };
@@ -63,5 +63,31 @@ impl Simulator for VehicleSimulator {
 
     fn name(&self) -> String {
         "towride vehicle model".into()
+    }
+
+    fn axles(&self, scene: &Path) -> (Option<f64>, Option<f64>) {
+        let Ok(s) = crate::scene::load(scene) else {
+            return (None, None);
+        };
+        let m = &s.vehicle.model;
+        // Mean x of a pair of wheels at the design position (world).
+        let x = |pair: [&str; 2]| -> Option<f64> {
+            let xs: Vec<f64> = s
+                .vehicle
+                .handles
+                .wheels
+                .iter()
+                .filter(|w| pair.contains(&w.name.as_str()))
+                .map(|w| m.bodies[w.body.index()].position[0])
+                .collect();
+            (xs.len() == 2).then(|| 0.5 * (xs[0] + xs[1]))
+        };
+        let Some(front) = x(["fl", "fr"]) else {
+            return (None, None);
+        };
+        (
+            x(["rl", "rr"]).map(|r| front - r),
+            x(["tl", "tr"]).map(|t| front - t),
+        )
     }
 }

@@ -354,6 +354,7 @@ pub fn load(path: &Path, opts: &Options, loader: &Loader) -> Result<Vehicle, Inp
             trailer: trailer_design,
             total_mass_kg: total,
         },
+        assumed: Vec::new(),
     })
 }
 

@@ -31,6 +31,7 @@ pub(crate) mod hitch;
 pub(crate) mod modal_body;
 pub(crate) mod props;
 pub(crate) mod sensors;
+pub mod simple;
 pub(crate) mod strut;
 pub(crate) mod swing;
 pub(crate) mod trailer;
@@ -58,7 +59,6 @@ axle_templates! {
     twist_beam::TwistBeam,
 }
 
-pub use assembly::load;
 pub use build::Link;
 pub use design::CornerDesign;
 pub use geom::Placement;
@@ -105,6 +105,23 @@ pub struct Vehicle {
     pub handles: Handles,
     /// What the design statics found.
     pub design: Design,
+    /// Values a compact (`simple`) vehicle file left to the defaults or derived from its
+    /// numbers; empty for an assembly file, which gives everything.
+    pub assumed: Vec<simple::Assumed>,
+}
+
+/// Reads a vehicle file, an assembly file ([`assembly`]) or a compact `simple` file
+/// ([`simple`]), and builds the vehicle, every file read through `loader`.
+pub fn load(
+    path: &std::path::Path,
+    opts: &Options,
+    loader: &crate::input::Loader,
+) -> Result<Vehicle, crate::input::InputError> {
+    if simple::is_simple(path) {
+        simple::load(path, opts, loader)
+    } else {
+        assembly::load(path, opts, loader)
+    }
 }
 
 /// Named parts a scene needs.

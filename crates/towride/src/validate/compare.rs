@@ -1,0 +1,216 @@
+//! One comparison of a measured run with a simulation on the measurement's samples:
+//! the time shift (optional), then per channel the figures and the rating, clipped
+//! samples left out.
+
+use std::collections::BTreeMap;
+
+use serde::Serialize;
+
+use super::align::best_shift;
+use super::filter::Acquired;
+use super::metrics::{gain_ratio, peak, pearson, rms_diff};
+use super::pipeline::Options;
+use super::rating::{iso_rating, Rating};
+use super::G_MPS2;
+
+/// Figures of one channel in one comparison (SI units).
+#[derive(Clone, Debug, Serialize)]
+pub struct ChannelFigures {
+    /// Simulated channel name.
+    pub channel: String,
+    /// Measured value of largest magnitude [m/s^2].
+    pub peak_measured_mps2: f64,
+    /// When it occurs (recording's clock) [s].
+    pub t_peak_measured_s: f64,
+    /// Simulated value of largest magnitude [m/s^2].
+    pub peak_simulated_mps2: f64,
+    /// When it occurs (recording's clock) [s].
+    pub t_peak_simulated_s: f64,
+    /// RMS of measured minus simulated [m/s^2].
+    pub rms_diff_mps2: f64,
+    /// Pearson correlation of the two curves [-].
+    pub correlation: f64,
+    /// Least-squares amplitude ratio measured / simulated (a gain-error estimate).
+    pub gain_ratio: f64,
+    /// ISO/TS 18571-style rating of the simulated curve against the measured one.
+    pub rating: Rating,
+    /// Interval the channel was rated on (recording's clock) [s].
+    pub interval_s: [f64; 2],
+    /// Clipped measured samples inside the interval, left out of every figure.
+    pub clipped_samples: usize,
+    /// Simulated samples in the evaluation window at which a sensor of the channel's
+    /// range would clip (gravity included on z).
+    pub simulated_clipped_samples: usize,
+}
+
+/// One comparison of a run (corrected or uncorrected).
+#[derive(Clone, Debug, Serialize)]
+pub struct Comparison {
+    /// "corrected" or "uncorrected".
+    pub label: &'static str,
+    /// Speed simulated [m/s].
+    pub speed_mps: f64,
+    /// Time shift found by the cross-correlation [s] (0 when uncorrected): the events are
+    /// stamped this much later than the data show them (a trigger delay).
+    pub shift_s: f64,
+    /// The shift is at the search bound (the true shift may be larger).
+    pub shift_at_bound: bool,
+    /// Mean correlation of the channels at the shift found (`None` when uncorrected):
+    /// how well the shapes agree once aligned.
+    pub shift_correlation: Option<f64>,
+    /// When the front wheels reach the obstacle, on the recording's clock [s].
+    pub obstacle_time_s: f64,
+    /// Mean overall rating over the channels.
+    pub mean_rating: f64,
+    /// Figures per channel.
+    pub channels: Vec<ChannelFigures>,
+    /// The compared curves on the evaluation window (for plots).
+    #[serde(skip)]
+    pub time_s: Vec<f64>,
+    /// Measured curves by channel name [m/s^2].
+    #[serde(skip)]
+    pub measured: BTreeMap<String, Vec<f64>>,
+    /// Simulated curves on the same samples [m/s^2].
+    #[serde(skip)]
+    pub simulated: BTreeMap<String, Vec<f64>>,
+}
+
+/// A channel's sensor: its axis and range [g], for the clipping flags.
+pub(super) struct Sensor<'a> {
+    pub name: &'a str,
+    pub axis: char,
+    pub range_g: Option<f64>,
+    /// The recording's clipped samples (whole record), if the channel has a range.
+    pub clipped: Option<&'a [bool]>,
+}
+
+/// The measured side of a comparison: samples `idx` of the recording.
+pub(super) struct Recorded<'a> {
+    pub time_s: &'a [f64],
+    pub channels: &'a BTreeMap<String, Vec<f64>>,
+    pub rate_hz: f64,
+    pub idx: &'a [usize],
+}
+
+/// Compares on the samples `rec.idx`; with `search = Some(bound)` the time shift is
+/// found by the cross-correlation first.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn compare(
+    label: &'static str,
+    rec: &Recorded,
+    sensors: &[Sensor],
+    acq: &Acquired,
+    speed_mps: f64,
+    t_obs: f64,
+    search: Option<f64>,
+    opts: &Options,
+) -> Comparison {
+    let idx = rec.idx;
+    let t: Vec<f64> = idx.iter().map(|&k| rec.time_s[k]).collect();
+    let measured: BTreeMap<String, Vec<f64>> = sensors
+        .iter()
+        .map(|s| {
+            let c = &rec.channels[s.name];
+            (s.name.to_string(), idx.iter().map(|&k| c[k]).collect())
+        })
+        .collect();
+    let offset = t_obs - acq.obstacle_time_s;
+    let sim_at = |c: usize, ti: f64, shift: f64| acq.at(sensors[c].name, ti - offset + shift);
+    let dt = 1.0 / rec.rate_hz;
+    let (shift, at_bound, correlation) = match search {
+        Some(bound) => {
+            let m: Vec<&[f64]> = sensors
+                .iter()
+                .map(|s| measured[s.name].as_slice())
+                .collect();
+            let a = best_shift(&t, &m, &sim_at, dt, bound);
+            (a.shift_s, a.at_bound, Some(a.correlation))
+        }
+        None => (0.0, false, None),
+    };
+    let simulated: BTreeMap<String, Vec<f64>> = sensors
+        .iter()
+        .enumerate()
+        .map(|(c, s)| {
+            (
+                s.name.to_string(),
+                t.iter().map(|&ti| sim_at(c, ti, shift)).collect(),
+            )
+        })
+        .collect();
+    let channels: Vec<ChannelFigures> = sensors
+        .iter()
+        .map(|s| {
+            let n = s.name;
+            let (a, b) = active(
+                &measured[n],
+                &simulated[n],
+                opts.active_threshold,
+                (opts.active_pad_s / dt) as usize,
+            );
+            // Clipped samples are left out of both curves alike.
+            let keep: Vec<usize> = (a..b)
+                .filter(|&k| !s.clipped.is_some_and(|c| c[idx[k]]))
+                .collect();
+            let pick = |y: &[f64]| -> Vec<f64> { keep.iter().map(|&k| y[k]).collect() };
+            let (m, sm, tt) = (pick(&measured[n]), pick(&simulated[n]), pick(&t));
+            let (pm, tpm) = peak(&tt, &m);
+            let (ps, tps) = peak(&tt, &sm);
+            let sim_clipped = s.range_g.map_or(0, |r| {
+                let g0 = if s.axis == 'z' { 1.0 } else { 0.0 };
+                simulated[n]
+                    .iter()
+                    .filter(|v| (*v / G_MPS2 + g0).abs() >= super::measurement::CLIP_SHARE * r)
+                    .count()
+            });
+            ChannelFigures {
+                channel: n.to_string(),
+                peak_measured_mps2: pm,
+                t_peak_measured_s: tpm,
+                peak_simulated_mps2: ps,
+                t_peak_simulated_s: tps,
+                rms_diff_mps2: rms_diff(&m, &sm),
+                correlation: pearson(&m, &sm),
+                gain_ratio: gain_ratio(&m, &sm),
+                rating: iso_rating(&m, &sm, dt),
+                interval_s: [t[a], t[b - 1]],
+                clipped_samples: (b - a) - keep.len(),
+                simulated_clipped_samples: sim_clipped,
+            }
+        })
+        .collect();
+    let mean_rating =
+        channels.iter().map(|c| c.rating.overall).sum::<f64>() / channels.len().max(1) as f64;
+    Comparison {
+        label,
+        speed_mps,
+        shift_s: shift,
+        shift_at_bound: at_bound,
+        shift_correlation: correlation,
+        obstacle_time_s: t_obs - shift,
+        mean_rating,
+        channels,
+        time_s: t,
+        measured,
+        simulated,
+    }
+}
+
+/// Index range where |m| or |s| exceeds `share` of its own largest magnitude, widened by
+/// `pad` samples each side.
+fn active(m: &[f64], s: &[f64], share: f64, pad: usize) -> (usize, usize) {
+    let n = m.len();
+    let mut range: Option<(usize, usize)> = None;
+    for y in [m, s] {
+        let top = y.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
+        let first = y.iter().position(|v| v.abs() >= share * top && top > 0.0);
+        let last = y.iter().rposition(|v| v.abs() >= share * top && top > 0.0);
+        if let (Some(f), Some(l)) = (first, last) {
+            range = Some(range.map_or((f, l), |(a, b)| (a.min(f), b.max(l))));
+        }
+    }
+    match range {
+        Some((a, b)) if b + 1 - a >= 10 => (a.saturating_sub(pad), (b + 1 + pad).min(n)),
+        _ => (0, n),
+    }
+}

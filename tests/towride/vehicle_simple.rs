@@ -1,0 +1,81 @@
+//! The compact `simple` vehicle: the light van with rear air springs
+//! (vehicles/van_air/van.toml). Its linearised body-bounce and wheel-hop frequencies
+//! against the quarter-car formulas on the file's own numbers, and its runs over the
+//! 50 mm bump.
+
+use std::f64::consts::PI;
+use std::path::Path;
+
+use towride::model;
+use towride::prelude::*;
+
+const SCENE: &str = repo!("scenes/van_air/bump_50mm.toml");
+const G: f64 = 9.81; // the defaults file's gravity
+const TYRE_N_M: f64 = 3.2e5;
+
+/// Sprung mass per corner [kg]: half the axle load less the corner's unsprung mass.
+fn sprung(axle_kg: f64, unsprung_kg: f64) -> f64 {
+    axle_kg / 2.0 - unsprung_kg
+}
+
+/// Quarter-car references from the van file: (front ride, rear ride, front hop, rear hop)
+/// [Hz]. Front: the ride frequency is the file's 1.25 Hz, its wheel rate follows from the
+/// ride rate in series with the tyre. Rear: the levelled air spring's rate
+/// n (p_g + p_a) A^2 / V0 with p_g = load / A and the defaults' n = 1.3.
+fn references() -> [f64; 4] {
+    let (ms_f, ms_r) = (sprung(1250.0, 55.0), sprung(1000.0, 75.0));
+    let ride_f = ms_f * (2.0 * PI * 1.25).powi(2);
+    let k_f = ride_f * TYRE_N_M / (TYRE_N_M - ride_f);
+    let (a, v0) = (0.0177, 0.0045);
+    let p = ms_r * G / a + 101_325.0;
+    let k_r = 1.3 * p * a * a / v0;
+    let ride_r = k_r * TYRE_N_M / (k_r + TYRE_N_M);
+    let hz = |k: f64, m: f64| (k / m).sqrt() / (2.0 * PI);
+    [
+        1.25,
+        hz(ride_r, ms_r),
+        hz(k_f + TYRE_N_M, 55.0),
+        hz(k_r + TYRE_N_M, 75.0),
+    ]
+}
+
+#[test]
+fn van_bounce_and_wheel_hop_match_the_quarter_car() {
+    let job = Job::from_file(Path::new(SCENE), &Loader::new()).unwrap();
+    let st = model::statics::equilibrium(&job.system, 0.0, &job.solver).unwrap();
+    let lin = model::linear::linearise(&job.system, 0.0, &st.y).unwrap();
+    let near = |f: f64, tol: f64| {
+        lin.modes
+            .iter()
+            .map(|m| m.undamped_hz)
+            .filter(|h| (h / f - 1.0).abs() < tol)
+            .count()
+    };
+    let [ride_f, ride_r, hop_f, hop_r] = references();
+    eprintln!("van references: ride {ride_f:.3} / {ride_r:.3} Hz, hop {hop_f:.2} / {hop_r:.2} Hz");
+    // Bounce and pitch couple the axles a little: 3 %; each hop is a left/right pair.
+    assert!(
+        near(ride_f, 0.03) >= 1,
+        "front ride {ride_f}: {:?}",
+        lin.modes
+    );
+    assert!(near(ride_r, 0.03) >= 1, "rear ride {ride_r}");
+    assert!(near(hop_f, 0.02) >= 2, "front hop {hop_f}");
+    assert!(near(hop_r, 0.02) >= 2, "rear hop {hop_r}");
+}
+
+#[test]
+fn van_runs_over_the_50mm_bump_and_lists_what_it_assumed() {
+    let job = Job::from_file(Path::new(SCENE), &Loader::new()).unwrap();
+    let res = job.run(&Silent).unwrap();
+    assert!(res.failure().is_none(), "{:?}", res.failure());
+    let summary = serde_json::to_value(&res.summary).unwrap();
+    let assumed = summary["scene"]["assumed"].as_array().unwrap();
+    assert!(
+        assumed
+            .iter()
+            .any(|a| a["field"] == "front.spring.wheel_rate_n_m"),
+        "{assumed:?}"
+    );
+    assert!(assumed.len() > 10, "{}", assumed.len());
+}
