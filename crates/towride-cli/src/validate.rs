@@ -180,7 +180,7 @@ pub fn run(a: &ValidateArgs) -> CliResult {
             let mut more = format!(
                 "  speed from the {}, {} Hz ({} time base)",
                 low(&r.speed.source),
-                r.sample_rate_hz,
+                hz(r.sample_rate_hz),
                 low(&r.time_base.kind)
             );
             if let Some(p) = &r.passage {
@@ -243,7 +243,7 @@ fn init(a: &InitArgs) -> CliResult {
             "{}: {} rows at {} Hz ({:?} time base), {mapped} of {} columns mapped; wrote {}",
             a.data.display(),
             s.rows,
-            s.time_base.rate_hz,
+            hz(s.time_base.rate_hz),
             s.time_base.kind,
             s.columns.len(),
             out.display()
@@ -321,4 +321,11 @@ fn synth(a: &SynthArgs) -> CliResult {
         );
     }
     Ok(0)
+}
+
+/// A sample rate for the terminal: at most three decimals, no trailing zeros (a rate
+/// rebuilt from a time column reads 500, not 499.99999999999994).
+fn hz(rate: f64) -> String {
+    let s = format!("{rate:.3}");
+    s.trim_end_matches('0').trim_end_matches('.').to_string()
 }

@@ -138,12 +138,24 @@ fn scatter(pts: &[Point]) -> String {
         "<line x1=\"{m}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"black\"/><line x1=\"{m}\" y1=\"{}\" x2=\"{m}\" y2=\"{}\" stroke=\"black\"/>",
         h - m, w - 0.5 * m, h - m, h - m, 0.5 * m
     );
-    for k in 0..=4 {
-        let (xv, yv) = (x0 + (x1 - x0) * k as f64 / 4.0, y1 * k as f64 / 4.0);
+    // Round ticks with distinct labels (the figures' rules: no repeated values, no `.0`).
+    use crate::report::ticks;
+    let (xt, xstep) = ticks::linear(x0, x1, 5);
+    for (xv, label) in xt.iter().zip(ticks::labels(&xt, xstep)) {
         let _ = write!(
             s,
-            "<text x=\"{:.1}\" y=\"{}\" text-anchor=\"middle\">{xv:.0}</text><text x=\"{}\" y=\"{:.1}\" text-anchor=\"end\">{yv:.1}</text>",
-            px(xv), h - m + 14.0, m - 4.0, py(yv) + 4.0
+            "<text x=\"{:.1}\" y=\"{}\" text-anchor=\"middle\">{label}</text>",
+            px(*xv),
+            h - m + 14.0
+        );
+    }
+    let (yt, ystep) = ticks::linear(0.0, y1, 4);
+    for (yv, label) in yt.iter().zip(ticks::labels(&yt, ystep)) {
+        let _ = write!(
+            s,
+            "<text x=\"{}\" y=\"{:.1}\" text-anchor=\"end\">{label}</text>",
+            m - 4.0,
+            py(*yv) + 4.0
         );
     }
     let _ = write!(
@@ -151,7 +163,7 @@ fn scatter(pts: &[Point]) -> String {
         "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">measured speed [km/h]</text><text x=\"12\" y=\"{}\" transform=\"rotate(-90 12 {})\" text-anchor=\"middle\">peak |a| [m/s^2]</text>",
         0.5 * w, h - 8.0, 0.5 * h, 0.5 * h
     );
-    for (k, colour) in [(0, "#1f77b4"), (1, "#d62728")] {
+    for (k, colour) in [(0, "#0072B2"), (1, "#D55E00")] {
         let y: Vec<f64> = pts.iter().map(|p| p.peak_mps2[k]).collect();
         if let Some((a, b)) = line(&xs, &y) {
             let _ = write!(
@@ -217,5 +229,29 @@ mod tests {
         let (a, b) = super::line(&[10.0, 20.0, 40.0], &[3.0, 5.0, 9.0]).unwrap();
         assert!((a - 1.0).abs() < 1e-12 && (b - 0.2).abs() < 1e-12);
         assert!(super::line(&[5.0, 5.0], &[1.0, 2.0]).is_none());
+    }
+
+    #[test]
+    fn scatter_tick_labels_are_distinct() {
+        // Two runs 0.6 km/h apart: the old labels read "48, 48, 49, 49, 50".
+        let p = |speed_kmh: f64, peak: f64| super::Point {
+            run: format!("r{speed_kmh}"),
+            speed_kmh,
+            peak_mps2: [peak, 0.9 * peak],
+            body_hz: [None; 2],
+            wheel_hz: [None; 2],
+        };
+        let svg = super::scatter(&[p(48.55, 11.2), p(49.15, 11.9)]);
+        let labels: Vec<&str> = svg
+            .split("text-anchor=\"middle\">")
+            .skip(1)
+            .map(|t| t.split('<').next().unwrap())
+            .filter(|t| t.chars().all(|c| c.is_ascii_digit() || c == '.'))
+            .collect();
+        assert!(labels.len() >= 3, "{labels:?}");
+        let mut sorted = labels.clone();
+        sorted.dedup();
+        assert_eq!(sorted, labels, "repeated x tick labels");
+        assert!(labels.iter().all(|l| !l.ends_with(".0")), "{labels:?}");
     }
 }
