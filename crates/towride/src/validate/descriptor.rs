@@ -257,7 +257,8 @@ impl Descriptor {
         };
         nonempty("scene", &f.scene)?;
         nonempty("data", &f.data)?;
-        let scene = dir.join(&f.scene);
+        // Read later, by the validation (a descriptor is also read for its data alone).
+        let scene = src.path.parent().unwrap_or(Path::new(".")).join(&f.scene);
         let obstacle = match &f.obstacle {
             Some(o) => {
                 nonempty("obstacle", o)?;
