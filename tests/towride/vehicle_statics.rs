@@ -15,7 +15,8 @@ use towride::scene::channels;
 use towride::vehicle::{self, Options, Vehicle};
 use towride_solver::SolverOptions;
 
-fn at_rest(file: &str, case: Option<&str>) -> (Vehicle, System, Vec<f64>, Vec<f64>) {
+/// A vehicle file at rest on a flat road: the vehicle, its system and the equilibrium.
+pub(crate) fn at_rest(file: &str, case: Option<&str>) -> (Vehicle, System, Vec<f64>, Vec<f64>) {
     let mut v = vehicle::load(
         Path::new(file),
         &Options {
@@ -34,7 +35,7 @@ fn at_rest(file: &str, case: Option<&str>) -> (Vehicle, System, Vec<f64>, Vec<f6
 }
 
 /// Normal force of every tyre [N], by wheel name.
-fn tyre_loads(sys: &System, y: &[f64]) -> Vec<(String, f64)> {
+pub(crate) fn tyre_loads(sys: &System, y: &[f64]) -> Vec<(String, f64)> {
     let (_, ov, ol, _) = sys.offsets();
     let (q, vel) = (&y[..ov], &y[ov..ol]);
     let road = sys.model.road.as_ref().unwrap();

@@ -257,6 +257,7 @@ impl Descriptor {
         };
         nonempty("scene", &f.scene)?;
         nonempty("data", &f.data)?;
+        // Read later, by the validation (a descriptor is also read for its data alone).
         let scene = src.path.parent().unwrap_or(Path::new(".")).join(&f.scene);
         let obstacle = match &f.obstacle {
             Some(o) => {
