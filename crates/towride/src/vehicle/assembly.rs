@@ -335,27 +335,41 @@ pub fn load(path: &Path, opts: &Options, loader: &Loader) -> Result<Vehicle, Inp
         .collect();
     handles.body_place = b.mb.body_places().to_vec();
     handles.sensors = sensors::add(&mut b, &handles, &src, &path!["sensor"], &f.sensor)?;
-    wheel::set_speed(b.model_mut(), &wheels, opts.speed);
+    let design = Design {
+        car_mass_kg: car_mass,
+        car_cm_m: car_cm,
+        car_corners,
+        trailer: trailer_design,
+        total_mass_kg: 0.0,
+    };
+    Ok(finish(b, handles, wheels, opts.speed, design, Vec::new()))
+}
+
+/// Finishes a vehicle for both template sets: sets the wheels spinning at `speed`, builds
+/// the model and sums the total mass (bodies and the tyres' own masses) into `design`.
+pub(crate) fn finish(
+    mut b: Builder,
+    mut handles: Handles,
+    wheels: Vec<wheel::WheelHandle>,
+    speed: f64,
+    mut design: Design,
+    assumed: Vec<super::simple::Assumed>,
+) -> Vehicle {
+    wheel::set_speed(b.model_mut(), &wheels, speed);
     handles.wheels = wheels;
     let model = b.mb.finish();
-    let total: f64 = model.bodies.iter().map(|x| x.mass).sum::<f64>()
+    design.total_mass_kg = model.bodies.iter().map(|x| x.mass).sum::<f64>()
         + handles
             .wheels
             .iter()
             .map(|w| wheel::tyre_own_mass(&model.tyres[w.tyre.index()].tyre))
             .sum::<f64>();
-    Ok(Vehicle {
+    Vehicle {
         model,
         handles,
-        design: Design {
-            car_mass_kg: car_mass,
-            car_cm_m: car_cm,
-            car_corners,
-            trailer: trailer_design,
-            total_mass_kg: total,
-        },
-        assumed: Vec::new(),
-    })
+        design,
+        assumed,
+    }
 }
 
 /// Point masses of the bodies built so far and of the tyres' belts, vehicle coordinates.

@@ -845,27 +845,21 @@ pub fn load(path: &Path, opts: &Options, loader: &Loader) -> Result<Vehicle, Inp
         &f.sensor,
     )?);
     handles.sensors = sensors;
-    wheel::set_speed(b.model_mut(), &wheels, opts.speed);
-    handles.wheels = wheels;
-    let model = b.mb.finish();
-    let total_mass: f64 = model.bodies.iter().map(|x| x.mass).sum::<f64>()
-        + handles
-            .wheels
-            .iter()
-            .map(|w| wheel::tyre_own_mass(&model.tyres[w.tyre.index()].tyre))
-            .sum::<f64>();
-    Ok(Vehicle {
-        model,
+    let design = Design {
+        car_mass_kg: car_mass,
+        car_cm_m: car_cm,
+        car_corners,
+        trailer: trailer_design,
+        total_mass_kg: 0.0,
+    };
+    Ok(super::assembly::finish(
+        b,
         handles,
-        design: Design {
-            car_mass_kg: car_mass,
-            car_cm_m: car_cm,
-            car_corners,
-            trailer: trailer_design,
-            total_mass_kg: total_mass,
-        },
-        assumed: ctx.assumed.into_inner(),
-    })
+        wheels,
+        opts.speed,
+        design,
+        ctx.assumed.into_inner(),
+    ))
 }
 
 /// The corner geometry every simple vehicle shares, listed once.
