@@ -257,7 +257,7 @@ impl Descriptor {
         };
         nonempty("scene", &f.scene)?;
         nonempty("data", &f.data)?;
-        let scene = dir.join(&f.scene);
+        let scene = src.path.parent().unwrap_or(Path::new(".")).join(&f.scene);
         let obstacle = match &f.obstacle {
             Some(o) => {
                 nonempty("obstacle", o)?;
