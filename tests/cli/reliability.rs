@@ -306,3 +306,96 @@ fn fuzz_numeric_options_are_refused_naming_the_option() {
     }
     println!("fuzz (command line): {n} option values refused");
 }
+
+/// The summary table without its wall times (the one column that differs run to run).
+fn summary_table(csv: &std::path::Path) -> Vec<Vec<String>> {
+    let text = std::fs::read_to_string(csv).unwrap();
+    let mut lines = text.lines();
+    let head: Vec<String> = lines.next().unwrap().split(',').map(String::from).collect();
+    let wall = head.iter().position(|c| c == "wall_time [s]").unwrap();
+    let mut rows = vec![head];
+    for l in lines {
+        // The length column is a quoted array: split outside quotes only.
+        let mut cells = vec![String::new()];
+        let mut quoted = false;
+        for ch in l.chars() {
+            match ch {
+                '"' => quoted = !quoted,
+                ',' if !quoted => cells.push(String::new()),
+                _ => cells.last_mut().unwrap().push(ch),
+            }
+        }
+        cells[wall].clear();
+        rows.push(cells);
+    }
+    rows
+}
+
+#[test]
+fn ctrl_c_stops_a_sweep_and_resume_finishes_it_with_the_same_summary() {
+    // The pendulum sweep with 40 s runs: about half a second a case, so the signal
+    // lands mid-sweep (after two cases are in the journal).
+    let d = tmp("sweep_sigint");
+    let ex = std::path::Path::new(repo!("scenes/examples"));
+    let mech = std::fs::read_to_string(ex.join("pendulum.toml")).unwrap();
+    assert!(mech.contains("end_time_s = 2.5"));
+    std::fs::write(
+        d.join("pendulum.toml"),
+        mech.replacen("end_time_s = 2.5", "end_time_s = 40.0", 1),
+    )
+    .unwrap();
+    std::fs::copy(ex.join("pendulum_sweep.toml"), d.join("sweep.toml")).unwrap();
+    let sweep = d.join("sweep.toml");
+    let (whole, parts) = (d.join("whole"), d.join("parts"));
+    let sweep_args = |out: &std::path::Path| -> Vec<String> {
+        ["sweep", sweep.to_str().unwrap(), "--jobs", "1", "--out"]
+            .iter()
+            .map(|s| s.to_string())
+            .chain([out.to_str().unwrap().to_string()])
+            .collect()
+    };
+    let o = Command::new(env!("CARGO_BIN_EXE_towride"))
+        .args(sweep_args(&whole))
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+
+    let child = Command::new(env!("CARGO_BIN_EXE_towride"))
+        .args(sweep_args(&parts))
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let journal = parts.join("summary.csv.journal");
+    let finished = || std::fs::read_to_string(&journal).is_ok_and(|j| j.lines().count() >= 2);
+    interrupt_when(&child, finished, Duration::from_secs(20));
+    let out = child.wait_with_output().unwrap();
+    let e = stderr(&out);
+    assert_eq!(out.status.code(), Some(130), "{e}");
+    assert!(e.contains("--resume"), "{e}");
+    // The journal is folded into a whole summary: the finished cases completed, the
+    // others marked interrupted, none missing.
+    assert!(!journal.exists());
+    let cut = summary_table(&parts.join("summary.csv"));
+    let status = cut[0].iter().position(|c| c == "status").unwrap();
+    let done = cut[1..].iter().filter(|r| r[status] == "completed").count();
+    let stopped = cut[1..]
+        .iter()
+        .filter(|r| r[status] == "interrupted")
+        .count();
+    assert!(done >= 2 && stopped >= 1 && done + stopped == 6, "{cut:?}");
+
+    let mut args = sweep_args(&parts);
+    args.push("--resume".into());
+    let o = Command::new(env!("CARGO_BIN_EXE_towride"))
+        .args(&args)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let said = String::from_utf8_lossy(&o.stdout);
+    assert!(said.contains(&format!("{done} kept from before")), "{said}");
+    assert_eq!(
+        summary_table(&parts.join("summary.csv")),
+        summary_table(&whole.join("summary.csv"))
+    );
+}

@@ -120,15 +120,18 @@ fn an_absurd_contact_blend_in_a_tir_file_is_refused() {
 fn decimal_commas_in_a_comma_separated_csv_are_refused_at_their_line() {
     let d = tmp("comma");
     let f = d.join("run.csv");
-    std::fs::write(
-        &f,
-        "time [s],a [m/s^2],b [m/s^2]\n0.000,1.0,2.0\n0,002,1,5,2,5\n",
-    )
-    .unwrap();
+    // Enough good rows that nothing but the decimal commas is wrong (with two rows the
+    // reader refused the file for its length, not for the commas).
+    let mut text = String::from("time [s],a [m/s^2],b [m/s^2]\n");
+    for k in 0..12 {
+        text += &format!("0.{k:03},1.0,2.0\n");
+    }
+    text += "0,012,1,5,2,5\n";
+    std::fs::write(&f, text).unwrap();
     let e = towride::validate::csv_reader::read_table(&f, "time", &["a", "b"])
         .err()
         .unwrap();
-    assert_eq!(e.line, Some(3), "{e}");
+    assert_eq!(e.line, Some(14), "{e}");
     assert!(e.to_string().contains("decimal commas"), "{e}");
     assert!(!e.field.is_empty(), "{e}");
 }
@@ -255,9 +258,25 @@ fn coincident_hardpoints_are_blamed_on_the_hardpoints() {
             "front_mcpherson.toml:hardpoints.tie_rod_outer_m=[-0.150, 0.330, 0.290]",
             "hardpoints.tie_rod_outer_m",
         ),
+        // These were blamed on `spring 'spring_rl': point_j_m` (in hitch.toml!), on
+        // `spring 'damper_rl': point_j_m` and on the spring's stiffness.
+        (
+            "rear_twist_beam.toml:hardpoints.spring_upper_m=[-2.360, 0.560, 0.230]",
+            "hardpoints.spring_upper_m",
+        ),
+        (
+            "rear_twist_beam.toml:hardpoints.damper_upper_m=[-2.480, 0.600, 0.230]",
+            "hardpoints.damper_upper_m",
+        ),
+        (
+            "rear_twist_beam.toml:hardpoints.wheel_centre_m=[-2.020, 0.600, 0.300]",
+            "hardpoints.wheel_centre_m",
+        ),
     ] {
         let e = scene_error(set);
-        assert!(e.file.ends_with("front_mcpherson.toml"), "{e}");
+        let file = set.split(':').next().unwrap();
+        assert!(e.file.ends_with(file), "{e}");
+        assert!(e.line.is_some(), "{e}");
         assert_eq!(e.field, field, "{e}");
         assert!(e.to_string().contains("coincides"), "{e}");
     }

@@ -13,7 +13,7 @@ use serde::Deserialize;
 use super::axle::{Axle, AxleSlot, AxleTemplate};
 use super::build::Builder;
 use super::design::{Corner, Preloaded};
-use super::geom::{length_rate, mirror, turning, V};
+use super::geom::{distance, length_rate, mirror, turning, V};
 use super::props::{
     at, joints, point, stop, BushingProps, DamperProps, JointsProps, MassProps, TorsionProps,
     WheelProps,
@@ -113,6 +113,20 @@ fn build(b: &mut Builder, file: &std::path::Path, slot: &AxleSlot) -> Result<Axl
             return Err(src.error(
                 &path!["hardpoints", k, 1],
                 "give the left side (y > 0); the right side is mirrored",
+            ));
+        }
+    }
+    // Coincident ends are the hardpoints' fault, not the element's line that the
+    // builder would otherwise blame (named in no file).
+    for (k, a, other, b, what) in [
+        ("wheel_centre_m", w, "pivot_m", pivot, "the trailing arm"),
+        ("spring_upper_m", su, "spring_lower_m", sl, "the spring's line"),
+        ("damper_upper_m", du, "damper_lower_m", dl, "the damper's line"),
+    ] {
+        if distance(&a, &b) < 1e-6 {
+            return Err(src.error(
+                &path!["hardpoints", k],
+                format!("coincides with `{other}`; the two set {what}"),
             ));
         }
     }
