@@ -42,7 +42,7 @@ use super::{
     axle, body, driveline, hitch, trailer, wheel, Design, Handles, Options, TrailerDesign, Vehicle,
 };
 use crate::input::{InputError, Loader, Seg, Source};
-use crate::model::builder::{BodyHandle, ModelBuilder};
+use crate::model::builder::{BodyHandle, MarkerHandle, ModelBuilder};
 use crate::model::math::sub;
 use crate::model::Model;
 use crate::path;
@@ -278,21 +278,7 @@ pub fn load(path: &Path, opts: &Options, loader: &Loader) -> Result<Vehicle, Inp
     let control = driveline::build(&dl, car_ref, opts.speed, &wheels, loader)?;
     b.mb.speed_control(control);
 
-    let mut handles = Handles {
-        car_body,
-        car_ref,
-        wheels: Vec::new(),
-        hitch: hitch.clone(),
-        ball: None,
-        trailer_body: None,
-        trailer_ref: None,
-        ride,
-        sensors: Vec::new(),
-        bodies: Default::default(),
-        car_place,
-        trailer_place: None,
-        body_place: Vec::new(),
-    };
+    let mut handles = Handles::car(car_body, car_ref, ride, car_place, hitch.clone());
     let mut trailer_design = None;
     if let Some(t) = &f.trailer {
         let tp = path!["trailer"];
@@ -326,14 +312,7 @@ pub fn load(path: &Path, opts: &Options, loader: &Loader) -> Result<Vehicle, Inp
             pitch_rad: pitch,
         });
     }
-    handles.bodies = b
-        .model()
-        .bodies
-        .iter()
-        .enumerate()
-        .map(|(k, x)| (x.name.clone(), BodyHandle(k)))
-        .collect();
-    handles.body_place = b.mb.body_places().to_vec();
+    handles.index_bodies(&b);
     handles.sensors = sensors::add(&mut b, &handles, &src, &path!["sensor"], &f.sensor)?;
     let design = Design {
         car_mass_kg: car_mass,
@@ -343,6 +322,46 @@ pub fn load(path: &Path, opts: &Options, loader: &Loader) -> Result<Vehicle, Inp
         total_mass_kg: 0.0,
     };
     Ok(finish(b, handles, wheels, opts.speed, design, Vec::new()))
+}
+
+impl Handles {
+    /// The car's handles before wheels, trailer and sensors are added.
+    pub(crate) fn car(
+        car_body: BodyHandle,
+        car_ref: MarkerHandle,
+        ride: Vec<(String, MarkerHandle)>,
+        car_place: Placement,
+        hitch: Option<super::HitchHandle>,
+    ) -> Handles {
+        Handles {
+            car_body,
+            car_ref,
+            wheels: Vec::new(),
+            hitch,
+            ball: None,
+            trailer_body: None,
+            trailer_ref: None,
+            ride,
+            sensors: Vec::new(),
+            bodies: Default::default(),
+            car_place,
+            trailer_place: None,
+            body_place: Vec::new(),
+        }
+    }
+
+    /// Names every body built so far and records where each was placed (the sensors and
+    /// the scene's outputs address bodies by name).
+    pub(crate) fn index_bodies(&mut self, b: &Builder) {
+        self.bodies = b
+            .model()
+            .bodies
+            .iter()
+            .enumerate()
+            .map(|(k, x)| (x.name.clone(), BodyHandle(k)))
+            .collect();
+        self.body_place = b.mb.body_places().to_vec();
+    }
 }
 
 /// Finishes a vehicle for both template sets: sets the wheels spinning at `speed`, builds

@@ -61,7 +61,7 @@ use super::props::Mass;
 use super::sensors::{self, SensorSpec};
 use super::{wheel, Design, Handles, Options, Vehicle};
 use crate::input::{InputError, Loader, Seg, Source};
-use crate::model::builder::{BodyHandle, ModelBuilder, Placement};
+use crate::model::builder::{ModelBuilder, Placement};
 use crate::model::desc::SpeedControl;
 use crate::model::function::TimeFunction;
 use crate::path;
@@ -793,21 +793,7 @@ pub fn load(path: &Path, opts: &Options, loader: &Loader) -> Result<Vehicle, Inp
             Ok((w, m))
         })
         .collect::<Result<Vec<_>, InputError>>()?;
-    let mut handles = Handles {
-        car_body,
-        car_ref,
-        wheels: Vec::new(),
-        hitch: None,
-        ball: None,
-        trailer_body: None,
-        trailer_ref: None,
-        ride,
-        sensors: Vec::new(),
-        bodies: Default::default(),
-        car_place,
-        trailer_place: None,
-        body_place: Vec::new(),
-    };
+    let mut handles = Handles::car(car_body, car_ref, ride, car_place, None);
     let mut trailer_design = None;
     let mut driven_mass = total;
     if let Some(t) = &f.trailer {
@@ -822,14 +808,7 @@ pub fn load(path: &Path, opts: &Options, loader: &Loader) -> Result<Vehicle, Inp
     }
     let control = driveline(&ctx, &f, car_ref, opts.speed, &wheels, driven_mass, zr)?;
     b.mb.speed_control(control);
-    handles.bodies = b
-        .model()
-        .bodies
-        .iter()
-        .enumerate()
-        .map(|(k, x)| (x.name.clone(), BodyHandle(k)))
-        .collect();
-    handles.body_place = b.mb.body_places().to_vec();
+    handles.index_bodies(&b);
     let mut sensors = sensors::add(
         &mut b,
         &handles,
