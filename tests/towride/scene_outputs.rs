@@ -318,7 +318,14 @@ fn trailer_corners_come_from_the_model_not_from_their_names() {
     };
     assert_eq!(
         names(&s),
-        ["susp_fl_travel", "susp_fr_travel", "susp_rl_travel", "susp_rr_travel", "susp_tl_travel", "susp_tr_travel"]
+        [
+            "susp_fl_travel",
+            "susp_fr_travel",
+            "susp_rl_travel",
+            "susp_rr_travel",
+            "susp_tl_travel",
+            "susp_tr_travel"
+        ]
     );
     // Trailer wheels under other names are still the trailer's corners (measured against
     // the trailer box), and a car wheel never becomes one.

@@ -4,33 +4,20 @@
 //! link tension 3 m g (released from horizontal), whatever its length.
 
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::AtomicU64;
 
-use towride::progress::{Progress, Silent};
+use towride::progress::Silent;
 use towride::report::sweep as page;
 use towride::sweep::cases::{case_dir, cases_dir};
 use towride::sweep::exec::{run_sweep_with, Options};
 use towride::sweep::Sweep;
 
+use crate::reliability::StopAfter;
+
 fn tmp(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("towride_{name}_{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
     d
-}
-
-/// Cancels the batch once `after` cases have finished.
-struct StopAfter {
-    done: AtomicU64,
-    after: u64,
-}
-
-impl Progress for StopAfter {
-    fn inc(&self, n: u64) {
-        self.done.fetch_add(n, Ordering::SeqCst);
-    }
-    fn cancelled(&self) -> bool {
-        self.done.load(Ordering::SeqCst) >= self.after
-    }
 }
 
 const KEEP: Options = Options {

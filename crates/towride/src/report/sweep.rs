@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 
 use super::figure::{render, Figure, Panel, Style, Trace, PALETTE};
-use super::html::{escape, string, COMMON_JS, ERROR_HOOK, REPORT_CSS, UPLOT_CSS, UPLOT_JS};
+use super::html::string;
 use crate::input::csv_table;
 use crate::sweep::cases::{case_dir, cases_dir};
 use crate::Error;
@@ -317,22 +317,12 @@ pub fn page(t: &Table, title: &str, png: Option<&str>) -> String {
             .replace("</", "<\\/"),
     );
     d.push('}');
-    let esc = escape(title);
-    let mut h = String::with_capacity(d.len() + UPLOT_JS.len() + 8192);
-    let _ = write!(
-        h,
-        "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
-         <meta name=\"generator\" content=\"towride {}\">\
-         <title>towride sweep: {esc}</title>\n<style>{UPLOT_CSS}\n{REPORT_CSS}</style></head>\n\
-         <body>\n<h1>Sweep: {esc}</h1>\n<div id=\"app\"><noscript>This page needs JavaScript \
-         (no network: everything is in this file).</noscript></div>\n\
-         <script type=\"application/json\" id=\"data\">{d}</script>\n{ERROR_HOOK}\n\
-         <script>{UPLOT_JS}</script>\n<script>{COMMON_JS}</script>\n<script>{}</script>\n\
-         </body></html>\n",
-        env!("CARGO_PKG_VERSION"),
+    super::html::page(
+        &format!("towride sweep: {title}"),
+        &format!("Sweep: {title}"),
+        &d,
         include_str!("assets/sweep.js"),
-    );
-    h
+    )
 }
 
 /// Writes the page and figure of summary `csv` beside it ([`page_path`]), each whole or

@@ -10,9 +10,7 @@ use std::path::{Path, PathBuf};
 use super::pipeline::{Comparison, RunValidation};
 use super::ValidateError;
 use crate::report::figure::{Rgb, MEASURED, SIMULATED};
-use crate::report::html::{
-    escape, quantised, string, COMMON_JS, ERROR_HOOK, REPORT_CSS, UPLOT_CSS, UPLOT_JS,
-};
+use crate::report::html::{quantised, string};
 use crate::report::psd::{segment_length, welch};
 
 /// Longest Welch segment [samples] (as the run report's).
@@ -139,22 +137,12 @@ pub fn page(run: &RunValidation) -> String {
     d.push_str(",\"psd\":");
     spectra(&mut d, run.primary());
     d.push('}');
-    let esc = escape(&run.name);
-    let mut h = String::with_capacity(d.len() + UPLOT_JS.len() + 8192);
-    let _ = write!(
-        h,
-        "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
-         <meta name=\"generator\" content=\"towride {}\">\
-         <title>towride validate: {esc}</title>\n<style>{UPLOT_CSS}\n{REPORT_CSS}</style></head>\n\
-         <body>\n<h1>Validation: {esc}</h1>\n<div id=\"app\"><noscript>This report needs \
-         JavaScript (no network: everything is in this file).</noscript></div>\n\
-         <script type=\"application/json\" id=\"data\">{d}</script>\n{ERROR_HOOK}\n\
-         <script>{UPLOT_JS}</script>\n<script>{COMMON_JS}</script>\n<script>{}</script>\n\
-         </body></html>\n",
-        env!("CARGO_PKG_VERSION"),
+    crate::report::html::page(
+        &format!("towride validate: {}", run.name),
+        &format!("Validation: {}", run.name),
+        &d,
         include_str!("../report/assets/validate.js"),
-    );
-    h
+    )
 }
 
 /// Writes `dir/report.html` whole or not at all; returns its path.

@@ -60,7 +60,8 @@
           width: w, height: 260,
           cursor: { drag: { x: true, y: false } },
           scales: { x: { time: false } },
-          axes: [xaxis, { label: name, size: 70, values: ticks }],
+          // The chart's title names the figure; the axis gives its unit.
+          axes: [xaxis, { label: (name.match(/\[[^\]]*\]$/) || [name])[0], size: 70, values: ticks }],
           series: [{ label: T.parameters[x], value: (u, v) => (D.numeric[x] ? fmt(v) : labels[v] ?? "") }]
             .concat([...groups.keys()].map((k, i) => ({
               label: k || name, stroke: colours[i % colours.length], width: 2, spanGaps: true,
@@ -78,8 +79,8 @@
 
   // --- table (click a heading to sort)
   app.append(el("h2", { id: "cases" }, "Cases"));
-  const head = ["case"].concat(T.parameters, ["status"], T.figures, ["report", "error"]);
-  const cells = (r) => [r.case].concat(r.values, [r.status], r.figures.map((v) => (v == null ? "" : v)), [r.link || "", r.error]);
+  const head = ["case"].concat(T.parameters, ["status", "report"], T.figures, ["error"]);
+  const cells = (r) => [r.case].concat(r.values, [r.status, r.link || ""], r.figures.map((v) => (v == null ? "" : v)), [r.error]);
   const box = el("div", { style: "overflow-x:auto" });
   app.append(box);
   let order = T.rows.slice();
@@ -117,5 +118,10 @@
     box.append(tb);
   };
   render();
-  setTimeout(() => document.body.setAttribute("data-ready", String(charts.length)), 0);
+  setTimeout(() => {
+    document.body.setAttribute("data-ready", String(charts.length));
+    // Built after load: follow a link to a section (#cases) now.
+    const target = location.hash && document.getElementById(location.hash.slice(1));
+    if (target) target.scrollIntoView();
+  }, 0);
 })();

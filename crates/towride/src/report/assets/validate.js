@@ -27,8 +27,8 @@
         f.peak_simulated_mps2, f.t_peak_simulated_s, f.rms_diff_mps2, f.correlation, f.gain_ratio, f.clipped_samples]);
     }
   }
-  app.append(table(["channel", "comparison", "rating", "corridor", "phase", "magnitude", "slope", "peak measured [m/s²]", "at [s]",
-    "peak simulated [m/s²]", "at [s]", "RMS difference [m/s²]", "correlation", "gain ratio", "clipped samples"], rows));
+  app.append(el("div", { id: "metrics-box", style: "overflow-x:auto" }, table(["channel", "comparison", "rating", "corridor", "phase", "magnitude", "slope", "peak measured [m/s²]", "at [s]",
+    "peak simulated [m/s²]", "at [s]", "RMS difference [m/s²]", "correlation", "gain ratio", "clipped samples"], rows)));
   app.append(table(["comparison", "speed [km/h]", "time shift [ms]", "mean rating"],
     D.comparisons.map((c) => [c.label, c.speed_kmh, c.shift_ms, c.mean_rating])));
 
@@ -38,11 +38,13 @@
   const n = D.comparisons[0].channels.length;
   const w = Math.max(420, Math.min(700, (document.documentElement.clientWidth - 90) / D.comparisons.length));
   const measured = D.synthetic ? "measured (synthetic)" : "measured";
+  const overlays = el("div", { id: "overlays-box" });
+  app.append(overlays);
   for (let k = 0; k < n; k++) {
     const name = D.comparisons[0].channels[k].figures.channel;
-    app.append(el("h3", {}, name));
+    overlays.append(el("h3", {}, name));
     const row = el("div", { style: "display:flex;flex-wrap:wrap;gap:0 24px" });
-    app.append(row);
+    overlays.append(row);
     for (const c of D.comparisons) {
       const ch = c.channels[k];
       const box = el("div", { class: "chart" });
