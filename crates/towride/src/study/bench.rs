@@ -450,25 +450,27 @@ impl Bench {
     }
 }
 
+/// The columns of `bench.csv`, in [`Point`]'s order.
+const COLUMNS: [&str; 13] = [
+    "method",
+    "rtol [-]",
+    "status",
+    "wall [s]",
+    "realtime_factor [-]",
+    "steps",
+    "jacobian_evals",
+    "newton_iterations",
+    "hitch_peak [N]",
+    "hitch_peak_error [-]",
+    "hitch_rms_error [-]",
+    "sensor_rms_error [-]",
+    "sensor_band_error [-]",
+];
+
 fn write_csv(path: &Path, points: &[Point]) -> Result<()> {
     let io = |e: csv::Error| Error::io(path, e.into());
     let mut w = csv::Writer::from_path(path).map_err(io)?;
-    w.write_record([
-        "method",
-        "rtol [-]",
-        "status",
-        "wall [s]",
-        "realtime_factor [-]",
-        "steps",
-        "jacobian_evals",
-        "newton_iterations",
-        "hitch_peak [N]",
-        "hitch_peak_error [-]",
-        "hitch_rms_error [-]",
-        "sensor_rms_error [-]",
-        "sensor_band_error [-]",
-    ])
-    .map_err(io)?;
+    w.write_record(COLUMNS).map_err(io)?;
     for p in points {
         w.write_record([
             p.method.to_string(),
@@ -508,21 +510,7 @@ pub fn replot(csv: &Path, png: &Path) -> Result<()> {
             .position(|c| c == name)
             .ok_or_else(|| bad(Some(1), name, "no such column (not a bench.csv?)".into()))
     };
-    let names = [
-        "method",
-        "rtol [-]",
-        "status",
-        "wall [s]",
-        "realtime_factor [-]",
-        "steps",
-        "jacobian_evals",
-        "newton_iterations",
-        "hitch_peak [N]",
-        "hitch_peak_error [-]",
-        "hitch_rms_error [-]",
-        "sensor_rms_error [-]",
-        "sensor_band_error [-]",
-    ];
+    let names = COLUMNS;
     let c: Vec<usize> = names.iter().map(|n| col(n)).collect::<Result<_>>()?;
     let mut points = Vec::new();
     for (k, rec) in r.records().enumerate() {
