@@ -317,3 +317,34 @@ fn list_names_shows_what_a_scene_can_ask_for() {
     assert!(markers.iter().any(|m| m == "wheel_fl.centre"));
     assert!(v["fixed_channels"][1]["name"] == "hitch_fx");
 }
+
+#[test]
+fn bench_replot_redraws_a_stored_table_and_names_a_bad_cell() {
+    let dir = std::env::temp_dir().join(format!("towride_replot_{}", std::process::id()));
+    let d = dir.to_str().unwrap();
+    let out = towride(&[
+        "bench",
+        "--replot",
+        repo!("docs/data/bench_default.csv"),
+        "--out",
+        d,
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(std::fs::metadata(dir.join("bench.png")).unwrap().len() > 10_000);
+    // A table cut by hand: the error names the file, the line and the column.
+    let text = std::fs::read_to_string(repo!("docs/data/bench_default.csv")).unwrap();
+    let bad = dir.join("bad.csv");
+    std::fs::write(&bad, text.replacen(",completed,0.", ",completed,x0.", 1)).unwrap();
+    let out = towride(&["bench", "--replot", bad.to_str().unwrap(), "--out", d]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("bad.csv") && err.contains("wall [s]") && err.contains('2'),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -14,6 +14,7 @@ mod validate_sim;
 mod basics;
 mod modes;
 mod reliability;
+mod slurm;
 mod sweep;
 mod tyre_rig;
 mod validate_folder;
@@ -25,4 +26,53 @@ fn towride(args: &[&str]) -> std::process::Output {
         .args(args)
         .output()
         .expect("run towride")
+}
+
+/// The DOM of a report after its scripts ran in headless Chromium (Debian package
+/// `chromium`, installed by `.ci/run`), and the `data-ready` attribute of its body (the
+/// number of charts the page drew); panics on any JavaScript error the page recorded.
+fn browser_dom(page: &std::path::Path) -> (String, Option<String>) {
+    let profile = std::env::temp_dir().join(format!(
+        "towride_cli_chromium_{}_{}",
+        std::process::id(),
+        page.display().to_string().len()
+    ));
+    let out = std::process::Command::new("chromium")
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--disable-quic",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            "--virtual-time-budget=5000",
+            "--window-size=1400,1000",
+            "--dump-dom",
+        ])
+        .arg(format!("--user-data-dir={}", profile.display()))
+        .arg(format!("file://{}", page.display()))
+        .output()
+        .expect("chromium (Debian package `chromium`) must be installed: .ci/run installs it");
+    let _ = std::fs::remove_dir_all(&profile);
+    let dom = String::from_utf8_lossy(&out.stdout).into_owned();
+    let attr = |name: &str| -> Option<String> {
+        let key = format!("{name}=\"");
+        let a = dom.find(&key)? + key.len();
+        Some(dom[a..a + dom[a..].find('"')?].to_string())
+    };
+    assert!(
+        dom.contains("<body"),
+        "no page: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(
+        attr("data-errors"),
+        None,
+        "JavaScript errors in {}",
+        page.display()
+    );
+    let ready = attr("data-ready");
+    (dom, ready)
 }

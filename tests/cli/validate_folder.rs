@@ -121,6 +121,14 @@ fn cli_folder_with_one_bad_descriptor() {
     assert!(o.join("summary.json").exists() && o.join("index.html").exists());
     let page = o.join("bump_25mm_20kmh_empty").join("report.png");
     assert!(std::fs::metadata(&page).unwrap().len() > 10_000);
+    // The interactive report: per sensor an overlay in each comparison and a spectrum
+    // (12 x 2 + 12 charts), the metrics table; linked from the index.
+    let html = o.join("bump_25mm_20kmh_empty").join("report.html");
+    let (dom, ready) = crate::browser_dom(&html);
+    assert_eq!(ready.as_deref(), Some("36"));
+    assert!(dom.contains("acc_trailer_drawbar_z") && dom.contains("gain ratio"));
+    let index = std::fs::read_to_string(o.join("index.html")).unwrap();
+    assert!(index.contains("bump_25mm_20kmh_empty/report.html"));
     assert!(o
         .join("bump_25mm_20kmh_empty")
         .join("acc_trailer_drawbar_z.png")

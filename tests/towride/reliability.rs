@@ -155,9 +155,9 @@ fn a_plan_listing_a_load_case_twice_is_refused() {
 }
 
 /// Asks to stop once `after` cases have finished (the sweep's bar counts cases).
-struct StopAfter {
-    done: AtomicU64,
-    after: u64,
+pub(crate) struct StopAfter {
+    pub(crate) done: AtomicU64,
+    pub(crate) after: u64,
 }
 
 impl Progress for StopAfter {

@@ -283,3 +283,17 @@ fn log_axis_labels_use_one_notation() {
     );
     assert_eq!(log_labels(&[1e3, 1e4, 1e5], 2), ["1k", "10k", "100k"]);
 }
+
+#[test]
+fn a_log_axis_inside_one_decade_keeps_labelled_ticks() {
+    use towride::report::ticks::{log, log_labels};
+    // The work-precision plot's wall times (0.24 to 0.46 s) hold no 1, 2 or 5 multiple.
+    for (lo, hi) in [(0.24, 0.46), (0.31, 0.39), (3.1e-5, 3.4e-5), (0.24, 0.96)] {
+        let t = log(lo, hi);
+        assert!(t.len() >= 2, "{lo}..{hi}: {t:?}");
+        assert!(t.iter().all(|x| (lo..=hi).contains(x)), "{lo}..{hi}: {t:?}");
+        let l = log_labels(&t, 2);
+        let distinct: std::collections::BTreeSet<&String> = l.iter().collect();
+        assert_eq!(distinct.len(), l.len(), "{lo}..{hi}: {l:?}");
+    }
+}

@@ -299,3 +299,41 @@ fn unknown_output_names_suggest_the_closest() {
         std::fs::remove_dir_all(&dir).ok();
     }
 }
+
+#[test]
+fn trailer_corners_come_from_the_model_not_from_their_names() {
+    let loader = Loader::new();
+    let mut s = scene::load_with(
+        Path::new(repo!("scenes/default.toml")),
+        &scene::Changes::default(),
+        &loader,
+    )
+    .unwrap();
+    let names = |s: &scene::Scene| -> Vec<String> {
+        towride::scene::outputs::quantities(&s.vehicle)
+            .into_iter()
+            .map(|q| q.name)
+            .filter(|n| n.starts_with("susp_") && n.ends_with("_travel"))
+            .collect()
+    };
+    assert_eq!(
+        names(&s),
+        [
+            "susp_fl_travel",
+            "susp_fr_travel",
+            "susp_rl_travel",
+            "susp_rr_travel",
+            "susp_tl_travel",
+            "susp_tr_travel"
+        ]
+    );
+    // Trailer wheels under other names are still the trailer's corners (measured against
+    // the trailer box), and a car wheel never becomes one.
+    for w in &mut s.vehicle.handles.wheels[4..] {
+        w.name = format!("axle2_{}", w.name);
+    }
+    let n = names(&s);
+    assert!(n.contains(&"susp_axle2_tl_travel".to_string()), "{n:?}");
+    assert!(n.contains(&"susp_axle2_tr_travel".to_string()), "{n:?}");
+    assert_eq!(n.len(), 6);
+}

@@ -12,8 +12,12 @@ use crate::CliResult;
 #[derive(Args, Debug)]
 pub struct BenchSceneArgs {
     /// The scene file.
-    #[arg(required = true)]
+    #[arg(required_unless_present = "replot")]
     pub scene: Option<PathBuf>,
+    /// Only redraw the plot of an earlier study from its table (`bench.csv`) into
+    /// `--out` (nothing is run or timed).
+    #[arg(long, value_name = "BENCH_CSV")]
+    pub replot: Option<PathBuf>,
     /// Relative tolerances of the study.
     #[arg(long, value_delimiter = ',', default_values_t = vec![1e-2, 3e-3, 1e-3, 3e-4, 1e-4], value_parser = crate::bounded::tolerance)]
     pub tol: Vec<f64>,
@@ -49,6 +53,18 @@ pub struct BenchSceneArgs {
 }
 
 pub fn run_bench(a: &BenchSceneArgs) -> CliResult {
+    if let Some(csv) = &a.replot {
+        std::fs::create_dir_all(&a.out)?;
+        let png = a.out.join("bench.png");
+        bench::replot(csv, &png)?;
+        if a.json {
+            let doc = serde_json::json!({"schema_version": 1, "table": csv, "plot": png});
+            println!("{}", serde_json::to_string_pretty(&doc)?);
+        } else {
+            println!("wrote {}", png.display());
+        }
+        return Ok(0);
+    }
     let scene = a.scene.as_ref().ok_or("a scene file is required")?;
     let settings = Settings {
         tol: a.tol.clone(),

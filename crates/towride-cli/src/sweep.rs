@@ -1,9 +1,10 @@
-//! `towride sweep SWEEP.toml [--jobs N] [--shard I/N]` and `towride sweep merge`.
+//! `towride sweep SWEEP.toml [--jobs N] [--shard I/N] [--resume] [--keep-histories]` and
+//! `towride sweep merge`.
 
 use std::path::PathBuf;
 
 use clap::{Args, Subcommand};
-use towride::sweep::exec::{merge, run_sweep_in};
+use towride::sweep::exec::{merge, run_sweep_with, Options};
 use towride::sweep::{parse_shard, Sweep};
 
 use crate::CliResult;
@@ -22,7 +23,7 @@ pub struct SweepArgs {
     /// Run only the cases with index mod N = I (0 <= I < N), for job arrays.
     #[arg(long)]
     shard: Option<String>,
-    /// Output folder for summary.csv and summary.json.
+    /// Output folder for summary.csv, summary.json, report.html, report.png (and cases/).
     #[arg(long, default_value = "out/sweep")]
     out: PathBuf,
     /// Print the summary as JSON.
@@ -32,6 +33,10 @@ pub struct SweepArgs {
     /// --out (its summary or journal) and run only the others.
     #[arg(long)]
     resume: bool,
+    /// Keep each case's outputs.csv, summary.json and report.html in
+    /// OUT/cases/<case id>/ (linked from the sweep's report.html).
+    #[arg(long)]
+    keep_histories: bool,
 }
 
 #[derive(Subcommand, Debug)]
@@ -57,10 +62,11 @@ pub fn run(a: &SweepArgs) -> CliResult {
             println!("{}", serde_json::to_string_pretty(&m)?);
         } else {
             println!(
-                "{} cases of {} merged into {}",
+                "{} cases of {} merged into {}; page {}",
                 m.cases,
                 m.sweep,
-                out.display()
+                out.display(),
+                m.report.as_deref().unwrap_or("-")
             );
         }
         return Ok(0);
@@ -76,19 +82,25 @@ pub fn run(a: &SweepArgs) -> CliResult {
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
     let pb = crate::progress(0, a.json);
     crate::interrupt::install();
-    let res = run_sweep_in(&sweep, shard, jobs, &a.out, a.resume, &pb)?;
+    let opts = Options {
+        jobs,
+        resume: a.resume,
+        keep_histories: a.keep_histories,
+    };
+    let res = run_sweep_with(&sweep, shard, &a.out, &opts, &pb)?;
     let csv_path = res.summary_csv.clone().unwrap_or_default();
     if a.json {
         println!("{}", serde_json::to_string_pretty(&res)?);
     } else {
         println!(
-            "{}: {} cases ({} failed, {} interrupted, {} kept from before) on {jobs} threads in {:.2} s; summary in {csv_path}",
+            "{}: {} cases ({} failed, {} interrupted, {} kept from before) on {jobs} threads in {:.2} s; summary in {csv_path}; page {}",
             sweep.name,
             res.cases,
             res.failed,
             res.interrupted,
             res.resumed,
             res.wall_s,
+            res.report.as_deref().unwrap_or("-"),
         );
         for r in res.rows.iter().filter(|r| r.status == "failed") {
             eprintln!(

@@ -153,6 +153,7 @@ pub fn run(a: &ValidateArgs) -> CliResult {
             report::overlays(r, &dir, report::Format::Png)?;
             let page = dir.join("report.png");
             report::page(r, &page)?;
+            towride::validate::html::write(r, &dir)?;
             pages.push((r.clone(), page));
         }
         report::index(&pages, &res.failures, &a.out.join("index.html"))?;

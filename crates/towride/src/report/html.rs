@@ -284,3 +284,25 @@ pub fn run_report(
     );
     h
 }
+
+/// A self-contained page (the sweep's, a validated run's): `title` and `heading` as
+/// text, `data` (JSON) in `<script id="data">`, uPlot, the shared script and the page's
+/// own `script`, which builds the page into `#app`.
+pub(crate) fn page(title: &str, heading: &str, data: &str, script: &str) -> String {
+    let mut h = String::with_capacity(data.len() + UPLOT_JS.len() + script.len() + 8192);
+    let _ = write!(
+        h,
+        "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
+         <meta name=\"generator\" content=\"towride {}\">\
+         <title>{}</title>\n<style>{UPLOT_CSS}\n{REPORT_CSS}</style></head>\n\
+         <body>\n<h1>{}</h1>\n<div id=\"app\"><noscript>This page needs JavaScript \
+         (no network: everything is in this file).</noscript></div>\n\
+         <script type=\"application/json\" id=\"data\">{data}</script>\n{ERROR_HOOK}\n\
+         <script>{UPLOT_JS}</script>\n<script>{COMMON_JS}</script>\n<script>{script}</script>\n\
+         </body></html>\n",
+        env!("CARGO_PKG_VERSION"),
+        escape(title),
+        escape(heading),
+    );
+    h
+}

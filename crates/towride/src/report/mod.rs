@@ -11,6 +11,7 @@ pub mod plot;
 pub mod psd;
 mod run;
 pub mod steps;
+pub mod sweep;
 pub mod ticks;
 
 pub use run::run_page;

@@ -45,18 +45,26 @@ pub fn with_step(lo: f64, hi: f64, step: f64) -> Vec<f64> {
 }
 
 /// Ticks of a log axis over `lo..hi` (positive values): decades, with 2 and 5 between
-/// them when the range spans fewer than three decades.
+/// them when the range spans fewer than three decades; a range inside a decade gets
+/// every multiple it holds, or round linear steps, never fewer than two ticks.
 pub fn log(lo: f64, hi: f64) -> Vec<f64> {
     let (a, b) = (lo.log10().floor() as i32, hi.log10().ceil() as i32);
     let mults: &[f64] = if b - a < 3 { &[1.0, 2.0, 5.0] } else { &[1.0] };
     let step = ((b - a) as usize).div_ceil(8).max(1);
     let mut v = Vec::new();
+    let inside = |x: &f64| *x >= lo * (1.0 - 1e-9) && *x <= hi * (1.0 + 1e-9);
     for e in (a..=b).step_by(step) {
-        for m in mults {
-            let x = m * 10f64.powi(e);
-            if x >= lo * (1.0 - 1e-9) && x <= hi * (1.0 + 1e-9) {
-                v.push(x);
-            }
+        v.extend(mults.iter().map(|m| m * 10f64.powi(e)).filter(inside));
+    }
+    if v.len() < 2 {
+        // A range inside a decade (wall times 0.24 to 0.46 s): every multiple, else round
+        // linear steps, so that the axis keeps at least two labelled ticks.
+        v = (a..=b)
+            .flat_map(|e| (1..10).map(move |m| m as f64 * 10f64.powi(e)))
+            .filter(inside)
+            .collect();
+        if v.len() < 2 {
+            v = linear(lo, hi, 5).0;
         }
     }
     v

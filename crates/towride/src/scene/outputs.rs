@@ -291,8 +291,10 @@ fn reference_body(v: &Vehicle, k: usize) -> Option<usize> {
         return Some(v.handles.car_body.index());
     }
     let tb = v.handles.trailer_body?;
-    // A trailer wheel: its carrier hangs on the trailer box.
-    w.name.starts_with('t').then_some(tb.index())
+    // A trailer wheel: built in the trailer's subsystem (placed where the trailer is),
+    // whatever it is called.
+    let place = v.handles.body_place.get(w.body.index())?;
+    (Some(*place) == v.handles.trailer_place).then_some(tb.index())
 }
 
 /// Initial world position of marker `k` and its world axes.

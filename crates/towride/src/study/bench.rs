@@ -450,25 +450,27 @@ impl Bench {
     }
 }
 
+/// The columns of `bench.csv`, in [`Point`]'s order.
+const COLUMNS: [&str; 13] = [
+    "method",
+    "rtol [-]",
+    "status",
+    "wall [s]",
+    "realtime_factor [-]",
+    "steps",
+    "jacobian_evals",
+    "newton_iterations",
+    "hitch_peak [N]",
+    "hitch_peak_error [-]",
+    "hitch_rms_error [-]",
+    "sensor_rms_error [-]",
+    "sensor_band_error [-]",
+];
+
 fn write_csv(path: &Path, points: &[Point]) -> Result<()> {
     let io = |e: csv::Error| Error::io(path, e.into());
     let mut w = csv::Writer::from_path(path).map_err(io)?;
-    w.write_record([
-        "method",
-        "rtol [-]",
-        "status",
-        "wall [s]",
-        "realtime_factor [-]",
-        "steps",
-        "jacobian_evals",
-        "newton_iterations",
-        "hitch_peak [N]",
-        "hitch_peak_error [-]",
-        "hitch_rms_error [-]",
-        "sensor_rms_error [-]",
-        "sensor_band_error [-]",
-    ])
-    .map_err(io)?;
+    w.write_record(COLUMNS).map_err(io)?;
     for p in points {
         w.write_record([
             p.method.to_string(),
@@ -491,6 +493,59 @@ fn write_csv(path: &Path, points: &[Point]) -> Result<()> {
 }
 
 /// Wall time against each error measure, one curve per method.
+/// Redraws the work-precision plot (`bench.png`, or SVG by extension) from a table
+/// [`Bench::write`] wrote (`bench.csv`): an earlier study's figures through today's
+/// renderer, without running or timing anything.
+pub fn replot(csv: &Path, png: &Path) -> Result<()> {
+    let bad = |line: Option<usize>, field: &str, message: String| -> Error {
+        crate::input::csv_table::error(csv, line, field, message).into()
+    };
+    let mut r = csv::Reader::from_path(csv).map_err(|e| bad(None, "", e.to_string()))?;
+    let h = r
+        .headers()
+        .map_err(|e| bad(Some(1), "", e.to_string()))?
+        .clone();
+    let col = |name: &str| {
+        h.iter()
+            .position(|c| c == name)
+            .ok_or_else(|| bad(Some(1), name, "no such column (not a bench.csv?)".into()))
+    };
+    let names = COLUMNS;
+    let c: Vec<usize> = names.iter().map(|n| col(n)).collect::<Result<_>>()?;
+    let mut points = Vec::new();
+    for (k, rec) in r.records().enumerate() {
+        let line = Some(k + 2);
+        let rec = rec.map_err(|e| bad(line, "", e.to_string()))?;
+        let get = |i: usize| rec.get(c[i]).unwrap_or("");
+        let num = |i: usize| -> Result<f64> {
+            get(i)
+                .parse()
+                .map_err(|_| bad(line, names[i], format!("'{}' is not a number", get(i))))
+        };
+        let method = [Method::Variable, Method::FixedCoefficient, Method::Radau5]
+            .into_iter()
+            .map(method_name)
+            .find(|m| *m == get(0))
+            .ok_or_else(|| bad(line, "method", format!("unknown method '{}'", get(0))))?;
+        points.push(Point {
+            method,
+            rtol: num(1)?,
+            status: get(2).to_string(),
+            wall_s: num(3)?,
+            realtime_factor: num(4)?,
+            steps: num(5)? as usize,
+            jacobian_evals: num(6)? as usize,
+            newton_iterations: num(7)? as usize,
+            hitch_peak_n: num(8)?,
+            hitch_peak_error: num(9)?,
+            hitch_rms_error: num(10)?,
+            sensor_rms_error: num(11)?,
+            sensor_band_error: num(12)?,
+        });
+    }
+    plot(png, &points)
+}
+
 fn plot(path: &Path, points: &[Point]) -> Result<()> {
     type Measure = (&'static str, fn(&Point) -> f64);
     let measures: [Measure; 4] = [

@@ -51,8 +51,8 @@ impl Progress for StopOnly<'_> {
     }
 }
 
-/// Runs `cases` on `jobs` threads with `run` (given the sweep's scene, a loader holding
-/// the case's overrides and the stop request); a failed or panicking case is recorded
+/// Runs `cases` on `jobs` threads with `run` (given the case, the sweep's scene, a
+/// loader holding the case's overrides and the stop request); a failed or panicking case is recorded
 /// and the others go on; once `progress` is cancelled no case starts (recorded
 /// `interrupted`). `progress` counts finished cases; `done` sees each finished row.
 pub fn run_cases<F>(
@@ -64,7 +64,7 @@ pub fn run_cases<F>(
     done: &(dyn Fn(&CaseRow) + Sync),
 ) -> Result<Vec<CaseRow>>
 where
-    F: Fn(&Path, &Loader, &dyn Progress) -> Result<Figures> + Sync,
+    F: Fn(&Case, &Path, &Loader, &dyn Progress) -> Result<Figures> + Sync,
 {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(jobs.max(1))
@@ -88,7 +88,7 @@ where
                 }
                 let loader = Loader::with_overrides(c.overrides.clone());
                 let out = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                    run(&sweep.scene, &loader, &StopOnly(progress))
+                    run(c, &sweep.scene, &loader, &StopOnly(progress))
                 }));
                 progress.inc(1);
                 let (status, error, figures) = match out {
@@ -129,8 +129,22 @@ where
 /// Runs one case: the file (a mechanism or a scene) read through `loader`, integrated,
 /// and its figures. A run the solver stops is a failed case.
 pub fn run_case(path: &Path, loader: &Loader, stop: &dyn Progress) -> Result<Figures> {
+    run_case_kept(path, loader, stop, None)
+}
+
+/// [`run_case`], keeping the run's files (also those of a run the solver stopped) in
+/// its case folder under `keep` ([`super::cases`]).
+fn run_case_kept(
+    path: &Path,
+    loader: &Loader,
+    stop: &dyn Progress,
+    keep: Option<(&Path, usize)>,
+) -> Result<Figures> {
     let job = Job::from_file(path, loader)?;
-    let r = job.run(stop)?;
+    let mut r = job.run(stop)?;
+    if let (Some((cases, index)), None) = (keep, r.samples.interrupted) {
+        super::cases::keep(&mut r, cases, index)?;
+    }
     r.require_completed()?;
     Ok(figures(&r))
 }
@@ -239,6 +253,8 @@ pub struct Merged {
     pub cases_total: usize,
     /// The shard files joined.
     pub inputs: Vec<String>,
+    /// The merged table's HTML page (`not written: ...` when it could not be).
+    pub report: Option<String>,
     /// The merged table.
     pub out: String,
 }
@@ -375,8 +391,13 @@ pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<Merged> {
         .map_err(|e| Error::io(out, e.into_error()))?
         .commit()
         .map_err(|e| Error::io(out, e))?;
+    let report = Some(match crate::report::sweep::write(out, &name) {
+        Ok(files) => files.html.display().to_string(),
+        Err(e) => format!("not written: {e}"),
+    });
     Ok(Merged {
         schema_version: MERGE_SCHEMA_VERSION,
+        report,
         sweep: name,
         cases: rows.len(),
         cases_total: total,
@@ -386,7 +407,7 @@ pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<Merged> {
 }
 
 /// Version of a sweep summary's layout (`summary.json`).
-pub const SCHEMA_VERSION: u32 = 2;
+pub const SCHEMA_VERSION: u32 = 3;
 
 /// A sweep (or one shard of it) run and summarised.
 #[derive(Clone, Debug, serde::Serialize)]
@@ -416,6 +437,8 @@ pub struct SweepRun {
     pub wall_s: f64,
     /// The CSV written, once written.
     pub summary_csv: Option<String>,
+    /// The sweep's HTML page, once written (`not written: ...` when it could not be).
+    pub report: Option<String>,
     /// Every case.
     pub rows: Vec<CaseRow>,
 }
@@ -427,14 +450,16 @@ pub fn run_sweep(
     jobs: usize,
     progress: &dyn Progress,
 ) -> Result<SweepRun> {
-    run_with(sweep, shard, jobs, Vec::new(), progress, &|_| {})
+    run_with(sweep, shard, jobs, Vec::new(), None, progress, &|_| {})
 }
 
+#[allow(clippy::too_many_arguments)]
 fn run_with(
     sweep: &Sweep,
     shard: (usize, usize),
     jobs: usize,
     prior: Vec<CaseRow>,
+    keep: Option<&Path>,
     progress: &dyn Progress,
     done: &(dyn Fn(&CaseRow) + Sync),
 ) -> Result<SweepRun> {
@@ -446,7 +471,10 @@ fn run_with(
         .collect();
     let wall = Instant::now();
     let resumed = prior.len();
-    let mut rows = run_cases(sweep, &cases, jobs, &run_case, progress, done)?;
+    let run = |c: &Case, path: &Path, loader: &Loader, stop: &dyn Progress| {
+        run_case_kept(path, loader, stop, keep.map(|k| (k, c.index)))
+    };
+    let mut rows = run_cases(sweep, &cases, jobs, &run, progress, done)?;
     rows.extend(prior);
     rows.sort_by_key(|r| r.index);
     let interrupted = rows.iter().filter(|r| r.status == "interrupted").count();
@@ -468,6 +496,7 @@ fn run_with(
         interrupted,
         wall_s: wall.elapsed().as_secs_f64(),
         summary_csv: None,
+        report: None,
         rows,
     })
 }
@@ -501,14 +530,52 @@ pub fn run_sweep_in(
     resume: bool,
     progress: &dyn Progress,
 ) -> Result<SweepRun> {
+    let opts = Options {
+        jobs,
+        resume,
+        keep_histories: false,
+    };
+    run_sweep_with(sweep, shard, dir, &opts, progress)
+}
+
+/// How [`run_sweep_with`] runs a sweep.
+#[derive(Clone, Copy, Debug)]
+pub struct Options {
+    /// Cases run in parallel.
+    pub jobs: usize,
+    /// Keep the cases an earlier run left (see [`run_sweep_in`]).
+    pub resume: bool,
+    /// Keep each case's files in `dir/cases/<case id>/` ([`super::cases`]); a resumed
+    /// run also runs again the completed cases whose folder is missing.
+    pub keep_histories: bool,
+}
+
+/// [`run_sweep_in`] with all options; also writes the sweep's HTML page and figure
+/// beside the summary ([`crate::report::sweep`]).
+pub fn run_sweep_with(
+    sweep: &Sweep,
+    shard: (usize, usize),
+    dir: &Path,
+    opts: &Options,
+    progress: &dyn Progress,
+) -> Result<SweepRun> {
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     let csv = summary_path(dir, shard);
     let journal = journal_path(&csv);
-    let prior = if resume {
+    let cases = super::cases::cases_dir(dir);
+    let keep = opts.keep_histories.then_some(cases.as_path());
+    if keep.is_some() {
+        std::fs::create_dir_all(&cases).map_err(|e| Error::io(&cases, e))?;
+    }
+    let mut prior = if opts.resume {
         previous_rows(sweep, shard, &csv, &journal)?
     } else {
         Vec::new()
     };
+    if let Some(k) = keep {
+        prior.retain(|r| r.status != "completed" || super::cases::is_kept(k, r.index));
+    }
+    let jobs = opts.jobs;
     // The journal holds what the summary will hold; rewritten so a resumed run's old
     // entries stay with its new ones.
     let mut j = std::fs::File::create(&journal).map_err(|e| Error::io(&journal, e))?;
@@ -522,9 +589,17 @@ pub fn run_sweep_in(
             let _ = journal_line(&mut f, r);
         }
     };
-    let mut res = run_with(sweep, shard, jobs, prior, progress, &done)?;
+    let mut res = run_with(sweep, shard, jobs, prior, keep, progress, &done)?;
     res.write_to(sweep, &csv)?;
     let _ = std::fs::remove_file(&journal);
+    res.report = Some(match crate::report::sweep::write(&csv, &sweep.name) {
+        Ok(files) => files.html.display().to_string(),
+        Err(e) => format!("not written: {e}"),
+    });
+    // The JSON twin names the page too.
+    let json = csv.with_extension("json");
+    let text = serde_json::to_string_pretty(&res).unwrap_or_default();
+    crate::atomic::write(&json, text).map_err(|e| Error::io(&json, e))?;
     Ok(res)
 }
 

@@ -19,6 +19,7 @@
 //! Cases are numbered in row-major order (the last parameter varies fastest), so shard
 //! `I/N` (cases with index mod N = I) and `merge` are reproducible on any machine.
 
+pub mod cases;
 pub mod exec;
 
 use std::path::{Path, PathBuf};

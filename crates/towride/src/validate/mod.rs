@@ -24,6 +24,7 @@ pub mod csv_reader;
 pub mod descriptor;
 pub mod filter;
 pub mod folder;
+pub mod html;
 pub mod init;
 pub mod measurement;
 pub(crate) mod metrics;

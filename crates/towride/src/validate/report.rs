@@ -97,7 +97,7 @@ pub fn overlays(
 }
 
 /// The run's figures as lines of text for the page header.
-fn header(run: &RunValidation) -> Vec<(String, Rgb)> {
+pub(crate) fn header(run: &RunValidation) -> Vec<(String, Rgb)> {
     let mut lines = Vec::new();
     // An empty load case is the scene's own (a vehicle without a trailer has none).
     let title = if run.load_case.is_empty() {
@@ -187,7 +187,7 @@ pub fn index(
     path: &Path,
 ) -> Result<(), ValidateError> {
     let dir = path.parent().unwrap_or(Path::new("."));
-    let mut h = String::from("<!doctype html><meta charset=\"utf-8\"><title>towride validate</title>\n<h1>towride validate</h1>\n<table border=1 cellpadding=4><tr><th>run</th><th>synthetic</th><th>rating uncorrected</th><th>rating corrected</th><th>shift [ms]</th></tr>\n");
+    let mut h = String::from("<!doctype html><meta charset=\"utf-8\"><title>towride validate</title>\n<h1>towride validate</h1>\n<table border=1 cellpadding=4><tr><th>run</th><th>synthetic</th><th>rating uncorrected</th><th>rating corrected</th><th>shift [ms]</th><th>interactive</th></tr>\n");
     let mut sorted: Vec<&(RunValidation, PathBuf)> = runs.iter().collect();
     sorted.sort_by(|a, b| {
         a.0.primary()
@@ -202,7 +202,19 @@ pub fn index(
                 format!("{:+.1}", c.shift_s * 1e3),
             )
         });
-        let _ = writeln!(h, "<tr><td><a href=\"{rel}\">{}</a></td><td>{}</td><td>{:.3}</td><td>{rc}</td><td>{sh}</td></tr>", r.name, r.synthetic, r.uncorrected.mean_rating);
+        // The run's HTML report beside its page, when written.
+        let html = page.with_file_name("report.html");
+        let link = if html.is_file() {
+            let rel = html
+                .strip_prefix(dir)
+                .unwrap_or(&html)
+                .display()
+                .to_string();
+            format!("<a href=\"{rel}\">report.html</a>")
+        } else {
+            String::new()
+        };
+        let _ = writeln!(h, "<tr><td><a href=\"{rel}\">{}</a></td><td>{}</td><td>{:.3}</td><td>{rc}</td><td>{sh}</td><td>{link}</td></tr>", r.name, r.synthetic, r.uncorrected.mean_rating);
     }
     h.push_str("</table>\n");
     for (f, err) in failures {
