@@ -95,3 +95,4 @@ pub fn count(s: &str) -> Result<usize, String> {
     number(s, bounds::for_key("fixed_interface_modes"), true)?;
     Ok(n)
 }
+

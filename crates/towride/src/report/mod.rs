@@ -9,6 +9,7 @@ pub mod html;
 pub mod lineplot;
 pub mod plot;
 pub mod psd;
+pub mod scene3d;
 mod run;
 pub mod steps;
 pub mod ticks;
