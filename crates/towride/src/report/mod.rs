@@ -6,6 +6,7 @@ pub mod compare;
 pub mod decimate;
 pub mod figure;
 pub mod html;
+pub mod linear;
 pub mod lineplot;
 pub mod plot;
 pub mod psd;
