@@ -95,4 +95,3 @@ pub fn count(s: &str) -> Result<usize, String> {
     number(s, bounds::for_key("fixed_interface_modes"), true)?;
     Ok(n)
 }
-

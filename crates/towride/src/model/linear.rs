@@ -64,7 +64,9 @@ pub struct Mode {
 
 /// The motions a body's kinetic energy is split into: translations along world x, y, z,
 /// rotations about world x, y, z, and the elastic (modal) part.
-const MOTIONS: [&str; 7] = ["fore-aft", "lateral", "bounce", "roll", "pitch", "yaw", "elastic"];
+const MOTIONS: [&str; 7] = [
+    "fore-aft", "lateral", "bounce", "roll", "pitch", "yaw", "elastic",
+];
 
 /// The name of motion `k` of body `name`; `wheel` when a tyre sits on the body (its
 /// vertical motion is wheel hop, its rotation about the axle spin).

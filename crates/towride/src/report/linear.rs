@@ -21,10 +21,7 @@ pub fn linear_report(sys: &System, y: &[f64], lin: &Linearisation, at: &str) -> 
         if m.name_share > 0.0 && !m.shape.is_empty() {
             view_index.push(shapes.len() as i64);
             shapes.push(ModeShape {
-                label: format!(
-                    "mode {}: {} ({:.3} Hz)",
-                    m.index, m.name, m.undamped_hz
-                ),
+                label: format!("mode {}: {} ({:.3} Hz)", m.index, m.name, m.undamped_hz),
                 frequency_hz: m.undamped_hz,
                 shape: m.shape.clone(),
             });

@@ -10,8 +10,8 @@ pub mod linear;
 pub mod lineplot;
 pub mod plot;
 pub mod psd;
-pub mod scene3d;
 mod run;
+pub mod scene3d;
 pub mod steps;
 pub mod ticks;
 
