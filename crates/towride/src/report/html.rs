@@ -94,12 +94,32 @@ pub(crate) fn quantised(out: &mut String, values: impl Iterator<Item = f64> + Cl
             out.push(',');
         }
         if v.is_finite() {
-            let _ = write!(out, "{}", (v / scale).round() as i64);
+            integer(out, (v / scale).round() as i64);
         } else {
             out.push_str("null");
         }
     }
     out.push_str("]}");
+}
+
+/// `v` in decimal: the bulk of a report's bytes, written without the formatting
+/// machinery.
+fn integer(out: &mut String, v: i64) {
+    let mut buf = [0u8; 20];
+    let mut i = buf.len();
+    let mut u = v.unsigned_abs();
+    loop {
+        i -= 1;
+        buf[i] = b'0' + (u % 10) as u8;
+        u /= 10;
+        if u == 0 {
+            break;
+        }
+    }
+    if v < 0 {
+        out.push('-');
+    }
+    out.push_str(std::str::from_utf8(&buf[i..]).unwrap_or("0"));
 }
 
 pub(crate) fn string(out: &mut String, s: &str) {

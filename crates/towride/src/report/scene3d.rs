@@ -16,8 +16,9 @@ use super::html::{quantised, string};
 use crate::model::run::Poses;
 use crate::model::System;
 
-/// Road grid spacing along x [m]: the obstacle's edges are added exactly.
-const ROAD_DX_M: f64 = 0.02;
+/// Road grid spacing along x [m]: the surface's kinks (an obstacle's edges) are added
+/// exactly, and between them the roads here are linear or gently curved.
+const ROAD_DX_M: f64 = 0.05;
 /// Road drawn beyond the vehicle's travel at each end [m].
 const ROAD_MARGIN_M: f64 = 3.0;
 /// Smallest box side drawn [m] (a body with a near-zero principal moment).
@@ -247,7 +248,7 @@ fn road(out: &mut String, sys: &System, (x0, x1): (f64, f64)) {
     } else {
         (-1.5, 1.5)
     };
-    let ny = 7;
+    let ny = 5;
     let y: Vec<f64> = (0..ny)
         .map(|k| ya + (yb - ya) * k as f64 / (ny - 1) as f64)
         .collect();

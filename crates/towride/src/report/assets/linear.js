@@ -99,5 +99,4 @@
   });
   app.append(tab);
   document.body.setAttribute("data-ready", "1");
-  if (/mode=/.test(location.hash)) host.scrollIntoView();
 })();

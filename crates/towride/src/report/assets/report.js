@@ -206,7 +206,6 @@ function runView(V, app, toCharts) {
     document.body.setAttribute("data-view-pixels", `${pa.join(",")};${pb.join(",")}`);
     const m = /view-t=([0-9.eE+-]+)/.exec(location.hash);
     player.setTime(m ? +m[1] : ft[0], !m);
-    if (m) document.getElementById("view").scrollIntoView();
   };
   return player;
 }
