@@ -149,3 +149,30 @@ fn linear_names_bounce_pitch_and_roll_of_a_box_on_springs() {
     let page = towride::report::linear::linear_report(&sys, &st.y, &lin, "equilibrium");
     assert!(page.contains("box bounce") && page.contains("THREE"));
 }
+
+#[test]
+fn the_scene_sets_the_animation_rate_and_a_negative_one_is_refused_at_its_line() {
+    let text = std::fs::read_to_string(repo!("scenes/default.toml"))
+        .unwrap()
+        .replace("\"../", &format!("\"{}/", repo!("")));
+    let dir = std::env::temp_dir().join(format!("towride-anim-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = |rate: &str| {
+        let path = dir.join(format!("scene_{}.toml", rate.len()));
+        std::fs::write(
+            &path,
+            format!("{text}\n[report]\nanimation_rate_hz = {rate}\n"),
+        )
+        .unwrap();
+        towride::job::Job::from_file(&path, &towride::input::Loader::new())
+    };
+    let job = scene("50.0").unwrap();
+    assert_eq!(job.settings.animation_rate, 50.0);
+    let err = scene("-5.0").err().unwrap().to_string();
+    let line = text.lines().count() + 3;
+    assert!(
+        err.contains("animation_rate_hz") && err.contains(&format!(":{line}")),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
