@@ -33,15 +33,29 @@ fn n6(out: &mut String, v: f64) {
     }
 }
 
-fn vec3(out: &mut String, v: [f64; 3]) {
+/// `[a,b,...]` with each item written by `f`.
+fn list<T>(
+    out: &mut String,
+    items: impl IntoIterator<Item = T>,
+    mut f: impl FnMut(&mut String, T),
+) {
     out.push('[');
-    for (k, x) in v.iter().enumerate() {
+    for (k, x) in items.into_iter().enumerate() {
         if k > 0 {
             out.push(',');
         }
-        n6(out, *x);
+        f(out, x);
     }
     out.push(']');
+}
+
+/// Numbers with 6 significant digits as a JSON array.
+fn numbers(out: &mut String, v: impl IntoIterator<Item = f64>) {
+    list(out, v, n6);
+}
+
+fn vec3(out: &mut String, v: [f64; 3]) {
+    numbers(out, v);
 }
 
 /// Side lengths of the uniform box with the body's principal moments, and the
@@ -109,42 +123,22 @@ fn geometry(out: &mut String, sys: &System, x_range: (f64, f64)) {
         n6(out, body.mass);
         out.push_str(",\"box\":");
         vec3(out, side);
-        out.push_str(",\"box_q\":[");
-        for (k, x) in axes.iter().enumerate() {
-            if k > 0 {
-                out.push(',');
-            }
-            n6(out, *x);
-        }
-        out.push_str("],\"flex\":");
+        out.push_str(",\"box_q\":");
+        numbers(out, axes);
+        out.push_str(",\"flex\":");
         match &body.modal {
             Some(md) => {
                 let sk = &md.data.skeleton;
                 let c = md.data.com_m;
-                out.push_str("{\"pts\":[");
-                for (k, p) in sk.positions_m.iter().enumerate() {
-                    if k > 0 {
-                        out.push(',');
-                    }
-                    vec3(out, [p[0] - c[0], p[1] - c[1], p[2] - c[2]]);
-                }
-                out.push_str("],\"edges\":");
+                out.push_str("{\"pts\":");
+                list(out, &sk.positions_m, |o, p| {
+                    vec3(o, [p[0] - c[0], p[1] - c[1], p[2] - c[2]])
+                });
+                out.push_str(",\"edges\":");
                 out.push_str(&serde_json::to_string(&sk.edges).unwrap_or_default());
-                out.push_str(",\"shapes\":[");
-                for (k, s) in sk.shapes.iter().enumerate() {
-                    if k > 0 {
-                        out.push(',');
-                    }
-                    out.push('[');
-                    for (n, d) in s.iter().enumerate() {
-                        if n > 0 {
-                            out.push(',');
-                        }
-                        vec3(out, *d);
-                    }
-                    out.push(']');
-                }
-                out.push_str("]}");
+                out.push_str(",\"shapes\":");
+                list(out, &sk.shapes, |o, s| list(o, s, |o, d| vec3(o, *d)));
+                out.push('}');
             }
             None => out.push_str("null"),
         }
@@ -263,35 +257,15 @@ fn road(out: &mut String, sys: &System, (x0, x1): (f64, f64)) {
     }
     x.sort_by(f64::total_cmp);
     x.dedup_by(|a, b| (*a - *b).abs() < 1e-5);
-    out.push_str(",\"road\":{\"x\":[");
-    for (k, v) in x.iter().enumerate() {
-        if k > 0 {
-            out.push(',');
-        }
-        n6(out, *v);
-    }
-    out.push_str("],\"y\":[");
-    for (k, v) in y.iter().enumerate() {
-        if k > 0 {
-            out.push(',');
-        }
-        n6(out, *v);
-    }
-    out.push_str("],\"z\":[");
-    for (k, yy) in y.iter().enumerate() {
-        if k > 0 {
-            out.push(',');
-        }
-        out.push('[');
-        for (i, xx) in x.iter().enumerate() {
-            if i > 0 {
-                out.push(',');
-            }
-            n6(out, road.height(*xx, *yy));
-        }
-        out.push(']');
-    }
-    out.push_str("]}");
+    out.push_str(",\"road\":{\"x\":");
+    numbers(out, x.iter().copied());
+    out.push_str(",\"y\":");
+    numbers(out, y.iter().copied());
+    out.push_str(",\"z\":");
+    list(out, &y, |o, yy| {
+        numbers(o, x.iter().map(|xx| road.height(*xx, *yy)))
+    });
+    out.push('}');
 }
 
 /// The x range the bodies' centres of mass cover over the poses.
@@ -343,31 +317,18 @@ pub fn modes_view(sys: &System, q: &[f64], modes: &[ModeShape]) -> String {
     geometry(&mut out, sys, x_range(sys, &[q.to_vec()]));
     out.push_str(",\"vo\":");
     out.push_str(&serde_json::to_string(&sys.vo).unwrap_or_default());
-    out.push_str(",\"q0\":[");
-    for (k, v) in q[..sys.nq].iter().enumerate() {
-        if k > 0 {
-            out.push(',');
-        }
-        n6(&mut out, *v);
-    }
-    out.push_str("],\"modes\":[");
-    for (k, m) in modes.iter().enumerate() {
-        if k > 0 {
-            out.push(',');
-        }
-        out.push_str("{\"label\":");
-        string(&mut out, &m.label);
-        out.push_str(",\"f\":");
-        n6(&mut out, m.frequency_hz);
-        out.push_str(",\"v\":[");
-        for (i, v) in m.shape.iter().enumerate() {
-            if i > 0 {
-                out.push(',');
-            }
-            n6(&mut out, *v);
-        }
-        out.push_str("]}");
-    }
-    out.push_str("]}");
+    out.push_str(",\"q0\":");
+    numbers(&mut out, q[..sys.nq].iter().copied());
+    out.push_str(",\"modes\":");
+    list(&mut out, modes, |o, m| {
+        o.push_str("{\"label\":");
+        string(o, &m.label);
+        o.push_str(",\"f\":");
+        n6(o, m.frequency_hz);
+        o.push_str(",\"v\":");
+        numbers(o, m.shape.iter().copied());
+        o.push('}');
+    });
+    out.push('}');
     out
 }
