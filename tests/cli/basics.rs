@@ -121,6 +121,8 @@ fn run_linear_and_doctor_speak_json() {
     let out = towride(&[
         "linear",
         repo!("scenes/examples/two_mass_chain.toml"),
+        "--out",
+        dir.to_str().unwrap(),
         "--json",
     ]);
     assert!(
@@ -131,6 +133,8 @@ fn run_linear_and_doctor_speak_json() {
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let f = v["result"]["modes"][0]["undamped_hz"].as_f64().unwrap();
     assert!((f - 500f64.sqrt() / (2.0 * std::f64::consts::PI)).abs() < 1e-6);
+    assert!(dir.join("linear.html").is_file());
+    assert_eq!(v["report"].as_str(), dir.join("linear.html").to_str());
 
     let out = towride(&["doctor", repo!("scenes/examples/andrews.toml"), "--json"]);
     assert!(

@@ -282,8 +282,9 @@ fn fuzz_numeric_options_are_refused_naming_the_option() {
     let scene = repo!("scenes/default.toml");
     let flex = repo!("flex/hitch_crossbeam.toml");
     let sweep = repo!("scenes/examples/pendulum_sweep.toml");
-    let options: [(&[&str], &str); 7] = [
+    let options: [(&[&str], &str); 8] = [
         (&["doctor", scene], "--step"),
+        (&["run", scene], "--animation-rate-hz"),
         (&["linear", scene], "--at"),
         (&["modes", flex], "--cutoff"),
         (&["modes", flex], "--share"),

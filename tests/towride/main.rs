@@ -28,6 +28,7 @@ mod reliability;
 mod report_compare;
 mod report_figures;
 mod report_html;
+mod report_view;
 mod road_obstacles;
 mod road_profile_mesh;
 mod scene_outputs;

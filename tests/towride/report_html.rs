@@ -56,6 +56,12 @@ fn default_run(tag: &str) -> (PathBuf, towride::job::RunResult) {
     (dir, res)
 }
 
+/// Number of bodies of the default scene's model.
+fn default_bodies() -> usize {
+    let job = Job::from_file(Path::new(repo!("scenes/default.toml")), &Loader::new()).unwrap();
+    job.system.model.bodies.len()
+}
+
 /// The JSON the page embeds.
 fn embedded(html: &str) -> serde_json::Value {
     let open = "<script type=\"application/json\" id=\"data\">";
@@ -68,11 +74,12 @@ fn embedded(html: &str) -> serde_json::Value {
 fn report_is_self_contained_and_carries_the_run() {
     let (dir, res) = default_run("page");
     let html = std::fs::read_to_string(dir.join("report.html")).unwrap();
-    // Nothing fetched: no external scripts, styles, images or links.
-    for attr in ["src=", "href=", "@import", "url("] {
+    // Nothing fetched: no external scripts, styles, images or links (three.js holds an
+    // image loader's `a.src=t`, which nothing calls).
+    for attr in ["src=\"", "href=\"", "src='", "href='", "@import", "url("] {
         assert!(!html.contains(attr), "{attr} in the page");
     }
-    assert!(html.contains("uPlot"));
+    assert!(html.contains("uPlot") && html.contains("THREE"));
     let d = embedded(&html);
     let chans = d["channels"].as_array().unwrap();
     assert_eq!(chans.len(), res.samples.channels.len());
@@ -101,6 +108,31 @@ fn report_is_self_contained_and_carries_the_run() {
         res.summary.solver.steps
     );
     assert!(d["psd"]["density"][c].as_array().unwrap().len() > 100);
+    // The 3D view: 200 Hz poses over the 3 s run, every body, a tyre per wheel, the road
+    // with the ramp (50 mm, roads/ramp_thesis.toml).
+    let v = &d["view"];
+    let times = v["frames"]["t"]["q"].as_array().unwrap();
+    assert_eq!(times.len(), 601);
+    assert_eq!(
+        v["bodies"].as_array().unwrap().len(),
+        default_bodies(),
+        "bodies drawn"
+    );
+    assert_eq!(v["tyres"].as_array().unwrap().len(), 6);
+    let rows = v["road"]["z"].as_array().unwrap();
+    let middle = &rows[rows.len() / 2];
+    let top = middle
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|z| z.as_f64().unwrap())
+        .fold(f64::NEG_INFINITY, f64::max);
+    let base = middle[0].as_f64().unwrap();
+    assert!(
+        (top - base - 0.05).abs() < 1e-6,
+        "ramp height {}",
+        top - base
+    );
     assert!(res
         .summary
         .report
@@ -116,6 +148,9 @@ fn chromium(args: &[&str], profile: &Path) -> std::process::Output {
             "--headless",
             "--no-sandbox",
             "--disable-gpu",
+            // WebGL for the 3D view in software (Chromium refuses the software fallback
+            // without it in newer releases).
+            "--enable-unsafe-swiftshader",
             "--disable-quic",
             "--no-first-run",
             "--disable-background-networking",
@@ -169,6 +204,45 @@ fn report_opens_in_chromium_without_errors_and_draws_every_chart() {
     for (k, n) in counts.iter().enumerate() {
         assert!(*n > 500, "chart {k} drew {n} coloured pixels");
     }
+    // The 3D view is drawn (WebGL works, or the test says why not) and moves: its pixels
+    // at 5 % and at 50 % of the run.
+    let view = attribute(&dom, "body", "data-view");
+    assert_eq!(
+        view.as_deref(),
+        Some("ok"),
+        "the 3D view was not drawn (WebGL in headless Chromium: --enable-unsafe-swiftshader)"
+    );
+    let px = attribute(&dom, "body", "data-view-pixels").unwrap();
+    let shots: Vec<Vec<u64>> = px
+        .split(';')
+        .map(|p| p.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    for s in &shots {
+        assert!(s[0] > 20_000, "3D view drew {} pixels: {px}", s[0]);
+    }
+    assert_ne!(
+        shots[0][1], shots[1][1],
+        "the 3D view does not change with time"
+    );
+    // Screenshots at two animation times (#view-t=...) differ in the view.
+    let at = |t: &str| {
+        let shot = dir.join(format!("view-{t}.png"));
+        let arg = format!("--screenshot={}", shot.display());
+        let u = format!("{url}#view-t={t}");
+        let out = chromium(&["--window-size=1400,1000", &arg, &u], &profile);
+        assert!(out.status.success());
+        image::open(&shot).unwrap().to_rgb8()
+    };
+    let (a, b) = (at("0.07"), at("0.5"));
+    let differ = a
+        .pixels()
+        .zip(b.pixels())
+        .filter(|(p, q)| p.0.iter().zip(q.0).any(|(x, y)| x.abs_diff(y) > 30))
+        .count();
+    assert!(
+        differ > 5000,
+        "{differ} pixels differ between t = 0.07 s and 0.5 s"
+    );
     // The screenshot as a user sees it is not blank: traces in colour.
     let shot = dir.join("shot.png");
     let arg = format!("--screenshot={}", shot.display());
@@ -199,5 +273,39 @@ fn report_opens_in_chromium_without_errors_and_draws_every_chart() {
         "JavaScript error"
     );
     assert_eq!(attribute(&dom, "body", "data-ready").as_deref(), Some("1"));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn linear_page_opens_in_chromium_and_animates_a_mode() {
+    let dir = std::env::temp_dir().join(format!("towride-linear-{}", std::process::id()));
+    let job = Job::from_file(Path::new(repo!("scenes/default.toml")), &Loader::new()).unwrap();
+    let st = towride::model::statics::equilibrium(&job.system, 0.0, &job.solver).unwrap();
+    let lin = towride::model::linear::linearise(&job.system, 0.0, &st.y).unwrap();
+    let page =
+        towride::report::linear::write(&dir, &job.system, &st.y, &lin, "equilibrium").unwrap();
+    // The car body's bounce, pitch and roll are named as such, in the 1-2 Hz ride band.
+    for motion in ["bounce", "pitch", "roll"] {
+        let name = format!("car_body {motion}");
+        let m = lin.modes.iter().find(|m| m.name == name);
+        let f = m.map(|m| m.undamped_hz).unwrap_or(f64::NAN);
+        assert!((1.0..2.5).contains(&f), "{name}: {f} Hz");
+    }
+    let url = format!("file://{}#mode=12", page.display());
+    let out = chromium(
+        &["--window-size=1400,1000", "--dump-dom", &url],
+        &dir.join("p"),
+    );
+    let dom = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(
+        attribute(&dom, "html", "data-errors"),
+        None,
+        "JavaScript error"
+    );
+    assert_eq!(attribute(&dom, "body", "data-ready").as_deref(), Some("1"));
+    assert_eq!(attribute(&dom, "body", "data-view").as_deref(), Some("ok"));
+    let px = attribute(&dom, "body", "data-view-pixels").unwrap();
+    let (a, b) = px.split_once(';').unwrap();
+    assert_ne!(a, b, "the mode shape does not move");
     std::fs::remove_dir_all(&dir).ok();
 }

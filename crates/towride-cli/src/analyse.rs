@@ -22,6 +22,9 @@ pub struct LinearArgs {
     /// Print JSON.
     #[arg(long)]
     json: bool,
+    /// Folder for the HTML page (`linear.html`: mode table and animated mode shapes).
+    #[arg(long, default_value = "out")]
+    out: PathBuf,
 }
 
 pub fn linear(a: &LinearArgs) -> CliResult {
@@ -39,6 +42,7 @@ pub fn linear(a: &LinearArgs) -> CliResult {
         return print_linear(
             a,
             &job.system,
+            &y,
             &lin,
             &format!("state of the run at t = {t} s"),
         );
@@ -59,17 +63,19 @@ pub fn linear(a: &LinearArgs) -> CliResult {
         }
     };
     let lin = model::linear::linearise(sys, t, &y)?;
-    print_linear(a, sys, &lin, &at)
+    print_linear(a, sys, &y, &lin, &at)
 }
 
 fn print_linear(
     a: &LinearArgs,
     sys: &model::System,
+    y: &[f64],
     lin: &model::linear::Linearisation,
     at: &str,
 ) -> CliResult {
+    let page = towride::report::linear::write(&a.out, sys, y, lin, at)?;
     if a.json {
-        let v = serde_json::json!({"model": sys.model.name, "linearised_at": at, "result": lin});
+        let v = serde_json::json!({"schema_version": 1, "model": sys.model.name, "linearised_at": at, "report": page.display().to_string(), "result": lin});
         println!("{}", serde_json::to_string_pretty(&v)?);
         return Ok(0);
     }
@@ -85,8 +91,8 @@ fn print_linear(
         None => println!("stiffness ratio S: undefined (fewer than two damped roots)"),
     }
     println!(
-        "{:>4} {:>14} {:>14} {:>9}  dominant bodies / elements",
-        "mode", "undamped [Hz]", "damped [Hz]", "zeta"
+        "{:>4} {:>14} {:>14} {:>9}  {:<34} dominant bodies / elements",
+        "mode", "undamped [Hz]", "damped [Hz]", "zeta", "dominant motion (kinetic share)"
     );
     for m in &lin.modes {
         let bodies: Vec<String> = m
@@ -101,16 +107,23 @@ fn print_linear(
             .take(2)
             .map(|s| format!("{} {:.0}%", s.name, 100.0 * s.share))
             .collect();
+        let name = if m.name_share > 0.0 {
+            format!("{} ({:.0}%)", m.name, 100.0 * m.name_share)
+        } else {
+            m.name.clone()
+        };
         println!(
-            "{:>4} {:>14.6} {:>14.6} {:>9.4}  {} / {}",
+            "{:>4} {:>14.6} {:>14.6} {:>9.4}  {:<34} {} / {}",
             m.index,
             m.undamped_hz,
             m.damped_hz,
             m.damping_ratio,
+            name,
             bodies.join(", "),
             elems.join(", ")
         );
     }
+    println!("mode shapes: {}", page.display());
     Ok(0)
 }
 

@@ -37,6 +37,10 @@ pub struct RunArgs {
     /// markers, joints, elements) and stop.
     #[arg(long)]
     pub(crate) list_names: bool,
+    /// Scenes: pose rate of the report's 3D view [Hz], replacing `[report]
+    /// animation_rate_hz` (default 200); 0 switches the view off.
+    #[arg(long, value_name = "HZ", value_parser = crate::bounded::hz)]
+    pub(crate) animation_rate_hz: Option<f64>,
 }
 
 pub fn run(a: &RunArgs) -> CliResult {
@@ -50,7 +54,19 @@ pub fn run(a: &RunArgs) -> CliResult {
         return list_names(a, &loader);
     }
     if !plan::is_plan(&a.file) {
-        let job = Job::from_file(&a.file, &loader)?;
+        let job = if scene::is_scene(&a.file) {
+            let changes = Changes {
+                animation_rate_hz: a.animation_rate_hz,
+                ..Changes::default()
+            };
+            Job::from_scene_file(&a.file, &changes, &loader)?
+        } else {
+            let mut job = Job::from_file(&a.file, &loader)?;
+            if let Some(r) = a.animation_rate_hz {
+                job.settings.animation_rate = r;
+            }
+            job
+        };
         crate::interrupt::install();
         let res = run_job(&job, &a.out, a.json)?;
         if a.json {
@@ -87,7 +103,10 @@ pub fn run(a: &RunArgs) -> CliResult {
             table.push(c, &out, None);
             continue;
         }
-        let job = Job::from_scene(p.scene(c, &loader)?)?;
+        let mut job = Job::from_scene(p.scene(c, &loader)?)?;
+        if let Some(r) = a.animation_rate_hz {
+            job.settings.animation_rate = r;
+        }
         let res = run_job(&job, &out, a.json)?;
         code = code.max(exit_code(&res, &out));
         table.push(c, &out, Some(&res));

@@ -29,7 +29,7 @@ pub use craig_bampton::{CraigBampton, ModeKind, ModeRow};
 pub use damping::Damping;
 pub use invariants::Invariants;
 pub use mesh::Mesh;
-pub use modal::{ModalData, ModalMode, ModalNode, NodeKind};
+pub use modal::{ModalData, ModalMode, ModalNode, NodeKind, Skeleton};
 pub use selection::{LoadPath, Rule, Selection};
 
 use crate::input::InputError;

@@ -75,6 +75,20 @@ pub struct ModalData {
     pub modes: Vec<ModalMode>,
     /// Over `modes`, in the same order.
     pub invariants: Invariants,
+    /// The whole mesh, for drawing the body deformed.
+    pub skeleton: Skeleton,
+}
+
+/// Every FE node and beam element of a modal body with the nodes' translations in each
+/// mode: what the report's 3D view draws.
+#[derive(Clone, Debug, Default)]
+pub struct Skeleton {
+    /// Undeformed node positions in the body frame [m].
+    pub positions_m: Vec<[f64; 3]>,
+    /// Beam elements as pairs of node indices.
+    pub edges: Vec<[usize; 2]>,
+    /// shapes[mode][node]: translation per unit modal coordinate [m], over `modes`.
+    pub shapes: Vec<Vec<[f64; 3]>>,
 }
 
 impl ModalData {
@@ -120,6 +134,18 @@ impl ModalData {
                 }
             })
             .collect();
+        let skeleton = Skeleton {
+            positions_m: mesh
+                .nodes
+                .iter()
+                .map(|n| [n.position[0], n.position[1], n.position[2]])
+                .collect(),
+            edges: mesh.elements.iter().map(|e| e.nodes).collect(),
+            shapes: shapes
+                .iter()
+                .map(|s| s.iter().map(|d| [d[0], d[1], d[2]]).collect())
+                .collect(),
+        };
         ModalData {
             name: mesh.name.clone(),
             variant: mesh.variant.as_ref().map(|v| v.number),
@@ -129,6 +155,7 @@ impl ModalData {
             nodes,
             modes,
             invariants,
+            skeleton,
         }
     }
 
@@ -177,6 +204,13 @@ impl ModalData {
                 .collect(),
             modes: keep.iter().map(|&k| self.modes[k].clone()).collect(),
             invariants: self.invariants.restrict(keep),
+            skeleton: Skeleton {
+                shapes: keep
+                    .iter()
+                    .filter_map(|&k| self.skeleton.shapes.get(k).cloned())
+                    .collect(),
+                ..self.skeleton.clone()
+            },
         }
     }
 

@@ -30,7 +30,7 @@ pub use summary::{
 
 use crate::error::{Error, Result};
 use crate::input::Loader;
-use crate::model::run::{simulate, Samples};
+use crate::model::run::{simulate_with_poses, Samples};
 use crate::model::spec::{self, Mechanism};
 use crate::model::start::StartReport;
 use crate::model::statics::StaticsReport;
@@ -64,7 +64,13 @@ pub struct RunSettings {
     pub t_end: f64,
     /// Output sample rate [Hz].
     pub sample_rate: f64,
+    /// Rate of the body poses recorded for the report's 3D view [Hz] (0: none; at most
+    /// `sample_rate`).
+    pub animation_rate: f64,
 }
+
+/// The animation's pose rate when a file does not set one [Hz].
+pub const DEFAULT_ANIMATION_RATE_HZ: f64 = 200.0;
 
 /// An assembled model ready to run.
 pub struct Job {
@@ -93,6 +99,9 @@ pub struct RunResult {
     pub samples: Samples,
     /// Status, solver effort, per-channel extremes and, for scenes, the vehicle figures.
     pub summary: RunSummary,
+    /// The report's 3D view (geometry and poses, JSON) when the run recorded poses, and
+    /// the wall time it took [s] (counted in the summary's `report_wall_s`).
+    pub view: Option<(String, f64)>,
 }
 
 impl Job {
@@ -128,6 +137,7 @@ impl Job {
         let settings = RunSettings {
             t_end: mech.run.end_time_s,
             sample_rate: mech.run.sample_rate_hz,
+            animation_rate: DEFAULT_ANIMATION_RATE_HZ,
         };
         let name = mech.model.name.clone();
         Job::assemble(path, name, mech.model, mech.solver, settings, start, None)
@@ -150,6 +160,7 @@ impl Job {
         let settings = RunSettings {
             t_end: s.duration,
             sample_rate: s.sample_rate,
+            animation_rate: s.animation_rate,
         };
         let model = s.model().clone();
         let mut job = Job::assemble(
@@ -232,18 +243,29 @@ impl Job {
         // the steps.
         let mut solver = self.solver.clone();
         solver.record_steps = true;
-        let samples = simulate(
+        let samples = simulate_with_poses(
             &self.system,
             0.0,
             self.settings.t_end,
             self.settings.sample_rate,
+            self.settings.animation_rate,
             &solver,
             start.state.clone(),
             progress,
         );
         progress.finish();
         let summary = RunSummary::of(self, &samples, start, start_wall_s);
-        Ok(RunResult { samples, summary })
+        let wall = Instant::now();
+        let view = samples
+            .poses
+            .as_ref()
+            .and_then(|p| crate::report::scene3d::run_view(&self.system, p))
+            .map(|v| (v, wall.elapsed().as_secs_f64()));
+        Ok(RunResult {
+            samples,
+            summary,
+            view,
+        })
     }
 }
 
@@ -349,11 +371,13 @@ impl RunResult {
             &self.samples,
             &self.summary.to_json(),
             &self.samples.stats.step_history,
+            self.view.as_ref().map(|v| v.0.as_str()),
         );
         if let Err(e) = crate::atomic::write(&html, page) {
             self.summary.report = Some(format!("not written: {e}"));
         }
-        self.summary.report_wall_s = Some(wall.elapsed().as_secs_f64());
+        self.summary.report_wall_s =
+            Some(wall.elapsed().as_secs_f64() + self.view.as_ref().map_or(0.0, |v| v.1));
         let path = dir.join("summary.json");
         let text = self.summary.to_json();
         crate::atomic::write(&path, text).map_err(|e| Error::io(&path, e))

@@ -46,6 +46,201 @@ pub struct Mode {
     pub bodies: Vec<Share>,
     /// Strain-energy share per force element, largest first (shares > 1 %).
     pub elements: Vec<Share>,
+    /// The dominant motion ("car_body bounce", "wheel hop wheel_fl", "hitch elastic"):
+    /// the body and direction with the largest share of the mode's kinetic energy
+    /// ([`motion_shares`]); "first-order states (tyres, controllers)" when the bodies
+    /// carry no kinetic energy.
+    pub name: String,
+    /// The kinetic-energy share of that motion, 0..1.
+    pub name_share: f64,
+    /// Kinetic-energy share per body and direction, largest first (shares > 1 %).
+    pub motions: Vec<Share>,
+    /// The mode shape in velocity space (`System::vo` layout: translation, rotation about
+    /// body axes, modal coordinates per body), the phase with the largest real part, real
+    /// part only; not serialised.
+    #[serde(skip)]
+    pub shape: Vec<f64>,
+}
+
+/// The motions a body's kinetic energy is split into: translations along world x, y, z,
+/// rotations about world x, y, z, and the elastic (modal) part.
+const MOTIONS: [&str; 7] = [
+    "fore-aft", "lateral", "bounce", "roll", "pitch", "yaw", "elastic",
+];
+
+/// The name of motion `k` of body `name`; `wheel` when a tyre sits on the body (its
+/// vertical motion is wheel hop, its rotation about the axle spin).
+fn motion_name(name: &str, k: usize, wheel: bool) -> String {
+    match (k, wheel) {
+        (2, true) => format!("wheel hop {name}"),
+        (4, true) => format!("{name} spin"),
+        _ => format!("{name} {}", MOTIONS[k]),
+    }
+}
+
+/// Kinetic energy of a velocity-space vector (real and imaginary parts) per body and
+/// motion ([`MOTIONS`]), from each body's mass, inertia (rotated to world axes at `q`) and
+/// unit modal mass; the coupling of a `full` modal body's frame and modes is left out of
+/// the split (it is small at the deformations of a linearisation).
+pub fn motion_energies(sys: &System, q: &[f64], xr: &[f64], xi: &[f64]) -> Vec<[f64; 7]> {
+    sys.model
+        .bodies
+        .iter()
+        .enumerate()
+        .map(|(b, body)| {
+            let o = sys.vo[b];
+            let p = &q[sys.qo[b] + 3..sys.qo[b] + 7];
+            let r = super::math::rot(&[p[0], p[1], p[2], p[3]]);
+            let mut e = [0.0; 7];
+            for x in [xr, xi] {
+                for d in 0..3 {
+                    e[d] += 0.5 * body.mass * x[o + d] * x[o + d];
+                }
+                // omega in world axes and J in world axes: J_w = R J R^T.
+                let w: Vec<f64> = (0..3)
+                    .map(|i| (0..3).map(|j| r[i][j] * x[o + 3 + j]).sum())
+                    .collect();
+                let jb = body.inertia;
+                let jw = |i: usize, j: usize| -> f64 {
+                    let mut s = 0.0;
+                    for a in 0..3 {
+                        for c in 0..3 {
+                            s += r[i][a] * jb[a][c] * r[j][c];
+                        }
+                    }
+                    s
+                };
+                for d in 0..3 {
+                    let jwd: f64 = (0..3).map(|j| jw(d, j) * w[j]).sum();
+                    e[3 + d] += 0.5 * w[d] * jwd;
+                }
+                for m in 0..sys.nm[b] {
+                    e[6] += 0.5 * x[o + 6 + m] * x[o + 6 + m];
+                }
+            }
+            e
+        })
+        .collect()
+}
+
+/// The groups of bodies a mode is named by: each wheel (a body a tyre sits on) with the
+/// light parts that move with it (the bodies connected to it by joints and force
+/// elements without passing a body heavier than twice the heaviest wheel: knuckle,
+/// arms, strut rod; both wheels of a twist beam), every other body alone. Each group:
+/// its name, its bodies (heaviest first) and whether it carries a wheel.
+pub fn naming_groups(sys: &System) -> Vec<(String, Vec<usize>, bool)> {
+    let m = &sys.model;
+    let nb = m.bodies.len();
+    let wheel: Vec<bool> = (0..nb)
+        .map(|b| m.tyres.iter().any(|t| m.markers[t.marker].body == Some(b)))
+        .collect();
+    let heaviest_wheel = (0..nb)
+        .filter(|&b| wheel[b])
+        .map(|b| m.bodies[b].mass)
+        .fold(0.0, f64::max);
+    let light = |b: usize| m.bodies[b].mass <= 2.0 * heaviest_wheel;
+    let mut parent: Vec<usize> = (0..nb).collect();
+    fn root(p: &mut [usize], mut i: usize) -> usize {
+        while p[i] != i {
+            p[i] = p[p[i]];
+            i = p[i];
+        }
+        i
+    }
+    let pairs = m
+        .joints
+        .iter()
+        .map(|j| (j.i, Some(j.j)))
+        .chain(m.forces.iter().map(|f| f.markers()));
+    for (i, j) in pairs {
+        if let (Some(a), Some(b)) = (m.markers[i].body, j.and_then(|j| m.markers[j].body)) {
+            if a != b && light(a) && light(b) {
+                let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+                parent[ra] = rb;
+            }
+        }
+    }
+    let mut groups: Vec<(String, Vec<usize>, bool)> = Vec::new();
+    let mut seen = vec![false; nb];
+    for b in 0..nb {
+        if seen[b] {
+            continue;
+        }
+        let r = root(&mut parent, b);
+        let members: Vec<usize> = (0..nb).filter(|&c| root(&mut parent, c) == r).collect();
+        let wheels: Vec<&str> = members
+            .iter()
+            .filter(|&&c| wheel[c])
+            .map(|&c| m.bodies[c].name.as_str())
+            .collect();
+        if wheels.is_empty() {
+            seen[b] = true;
+            groups.push((m.bodies[b].name.clone(), vec![b], false));
+        } else {
+            let mut members = members;
+            for &c in &members {
+                seen[c] = true;
+            }
+            members.sort_by(|&x, &y| m.bodies[y].mass.total_cmp(&m.bodies[x].mass));
+            groups.push((wheels.join("+"), members, true));
+        }
+    }
+    groups
+}
+
+/// The shares of [`motion_energies`] pooled over [`naming_groups`], with their names,
+/// largest first (all of them).
+pub fn motion_shares(sys: &System, q: &[f64], xr: &[f64], xi: &[f64]) -> Vec<Share> {
+    let e = motion_energies(sys, q, xr, xi);
+    let total: f64 = e.iter().flatten().map(|v| v.max(0.0)).sum();
+    let mut out: Vec<Share> = naming_groups(sys)
+        .iter()
+        .flat_map(|(name, members, wheel)| {
+            (0..7).map(|k| {
+                let v: f64 = members.iter().map(|&b| e[b][k].max(0.0)).sum();
+                Share {
+                    name: motion_name(name, k, *wheel),
+                    share: if total > 0.0 { v / total } else { 0.0 },
+                }
+            })
+        })
+        .collect();
+    out.sort_by(|a, b| b.share.total_cmp(&a.share));
+    out
+}
+
+/// The mode's name from its sorted motion shares: the largest, or the two largest of the
+/// same kind (left and right wheel hop, say) when the second has at least 70 % of the
+/// first's share.
+fn mode_name(motions: &[Share]) -> (String, f64) {
+    let kind = |n: &str| -> String {
+        let w: Vec<&str> = n.split(' ').collect();
+        if n.starts_with("wheel hop ") {
+            "wheel hop".into()
+        } else {
+            w.last().copied().unwrap_or("").to_string()
+        }
+    };
+    match motions {
+        [a, b, ..] if b.share >= 0.7 * a.share && kind(&a.name) == kind(&b.name) => {
+            let k = kind(&a.name);
+            let who = |n: &str| -> String {
+                if k == "wheel hop" {
+                    n.trim_start_matches("wheel hop ").to_string()
+                } else {
+                    n.trim_end_matches(&format!(" {k}")).to_string()
+                }
+            };
+            let name = if k == "wheel hop" {
+                format!("wheel hop {} and {}", who(&a.name), who(&b.name))
+            } else {
+                format!("{} and {} {k}", who(&a.name), who(&b.name))
+            };
+            (name, a.share + b.share)
+        }
+        [a, ..] => (a.name.clone(), a.share),
+        [] => (String::new(), 0.0),
+    }
 }
 
 /// The eigen-analysis of the model linearised about a state.
@@ -219,8 +414,19 @@ pub fn linearise(sys: &System, t: f64, y: &[f64]) -> Result<Linearisation, Model
                 share: quad(ke).abs(),
             })
             .collect();
+        let kinetic: f64 = bodies.iter().map(|s| s.share).sum();
         normalise(&mut bodies);
         normalise(&mut elems);
+        let mut motions = motion_shares(sys, &y[..sys.nq], &xr, &xi);
+        // A mode of the tyre and controller states alone moves no mass.
+        let moving = kinetic > 1e-12 * (dot(&xr, &xr) + dot(&xi, &xi));
+        let (name, name_share) = if moving && !motions.is_empty() {
+            mode_name(&motions)
+        } else {
+            ("first-order states (tyres, controllers)".to_string(), 0.0)
+        };
+        motions.retain(|s| s.share > 0.01);
+        let shape = real_shape(&xr, &xi);
         let mag = l.re.hypot(l.im);
         modes.push(Mode {
             index: 0,
@@ -231,6 +437,10 @@ pub fn linearise(sys: &System, t: f64, y: &[f64]) -> Result<Linearisation, Model
             damping_ratio: if mag > 0.0 { -l.re / mag } else { 0.0 },
             bodies,
             elements: elems,
+            name,
+            name_share,
+            motions,
+            shape,
         });
     }
     modes.sort_by(|a, b| a.undamped_hz.total_cmp(&b.undamped_hz));
@@ -259,6 +469,18 @@ pub fn linearise(sys: &System, t: f64, y: &[f64]) -> Result<Linearisation, Model
         modes,
         stiffness_ratio,
     })
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// Re(e^{i phi} (xr + i xi)) at the phase phi that makes it largest.
+fn real_shape(xr: &[f64], xi: &[f64]) -> Vec<f64> {
+    let (a, b, c) = (dot(xr, xr), dot(xr, xi), dot(xi, xi));
+    let phi = 0.5 * (-2.0 * b).atan2(a - c);
+    let (cp, sp) = (phi.cos(), phi.sin());
+    xr.iter().zip(xi).map(|(r, i)| r * cp - i * sp).collect()
 }
 
 fn normalise(v: &mut Vec<Share>) {

@@ -6,6 +6,7 @@ use std::time::Instant;
 use super::ic::{initial_state, AssemblyReport};
 use super::output::{channels, evaluate, ChannelInfo};
 use super::system::System;
+use towride_solver::problem::DaeProblem;
 use towride_solver::{Advance, Integrator, SolverOptions, Stats};
 
 /// The sampled result of a simulation: channels on the sample grid, solver statistics,
@@ -35,6 +36,19 @@ pub struct Samples {
     pub modal: Vec<(usize, Vec<Vec<f64>>)>,
     /// Where the wall time went.
     pub phases: Phases,
+    /// Body poses for the report's animation, when asked for.
+    pub poses: Option<Poses>,
+}
+
+/// The position unknowns of every body (centre of mass, unit quaternion, modal
+/// coordinates: `System::qo` layout) on the animation's own time grid, interpolated by
+/// the integrator's dense output like the channels.
+#[derive(Clone, Debug, Default)]
+pub struct Poses {
+    /// Times [s].
+    pub times: Vec<f64>,
+    /// q[k]: the position block of the state at times[k].
+    pub q: Vec<Vec<f64>>,
 }
 
 /// Wall time of a run's phases [s] (they add up to `Samples::wall_s` but for the
@@ -64,6 +78,24 @@ pub fn simulate(
     start: Option<(Vec<f64>, Vec<f64>)>,
     progress: &dyn crate::progress::Progress,
 ) -> Samples {
+    simulate_with_poses(sys, t0, t_end, rate, 0.0, opts, start, progress)
+}
+
+/// [`simulate`], also recording the bodies' poses every 1/`pose_rate` seconds
+/// ([`Samples::poses`]; 0: none). Pose times are at most as dense as the samples (the
+/// rate is capped at `rate`), so the integrator's first call still aims at the first
+/// sample and the steps are those of a run without poses.
+#[allow(clippy::too_many_arguments)]
+pub fn simulate_with_poses(
+    sys: &System,
+    t0: f64,
+    t_end: f64,
+    rate: f64,
+    pose_rate: f64,
+    opts: &SolverOptions,
+    start: Option<(Vec<f64>, Vec<f64>)>,
+    progress: &dyn crate::progress::Progress,
+) -> Samples {
     let wall = Instant::now();
     let chans = channels(sys);
     let mut res = Samples {
@@ -81,7 +113,17 @@ pub fn simulate(
             .map(|b| (b, Vec::new()))
             .collect(),
         phases: Phases::default(),
+        poses: None,
     };
+    let pose_rate = pose_rate.min(rate);
+    let mut poses = (pose_rate > 0.0).then(Poses::default);
+    // Pose j at t0 + j / pose_rate, up to t_end.
+    let n_poses = if pose_rate > 0.0 {
+        ((t_end - t0) * pose_rate * (1.0 + 1e-12)).floor() as usize
+    } else {
+        0
+    };
+    let pose_time = |j: usize| t0 + j as f64 / pose_rate;
     let mut lap = Instant::now();
     let mut took = || {
         let s = lap.elapsed().as_secs_f64();
@@ -109,6 +151,11 @@ pub fn simulate(
     res.times.push(t0);
     res.rows.push(evaluate(sys, t0, &y0, &yp0));
     record_modal(sys, &mut res, &y0);
+    if let Some(p) = &mut poses {
+        p.times.push(t0);
+        p.q.push(y0[..sys.nq].to_vec());
+    }
+    let mut next_pose = 1;
     res.phases.outputs_s += took();
     // BDF or Radau IIA, as `opts.method` says.
     let mut bdf = match Integrator::new(sys, t0, &y0, &yp0, opts.clone()) {
@@ -130,22 +177,40 @@ pub fn simulate(
             break;
         }
         let ts = if k == n { t_end } else { t0 + k as f64 / rate };
-        loop {
-            match bdf.advance(ts) {
-                Ok(Advance::Reached) => break,
-                Ok(Advance::Root { .. }) => continue,
-                Err(e) => {
-                    let t = e.time().unwrap_or(bdf.t());
-                    res.error = Some((e.to_string(), t));
-                    break 'samples;
-                }
+        // Poses before this sample: advancing to them takes the same steps (the
+        // integrator does not shorten steps to reach an output time).
+        let mut pose_here = false;
+        while let Some(p) = poses.as_mut().filter(|_| next_pose <= n_poses) {
+            let tp = pose_time(next_pose);
+            if tp > ts + 1e-9 / rate {
+                break;
             }
+            next_pose += 1;
+            if tp >= ts - 1e-9 / rate {
+                pose_here = true;
+                break;
+            }
+            if let Err(e) = reach(&mut bdf, tp) {
+                res.error = Some(e);
+                break 'samples;
+            }
+            bdf.interpolate(tp, &mut y, &mut yp);
+            p.times.push(tp);
+            p.q.push(y[..sys.nq].to_vec());
+        }
+        if let Err(e) = reach(&mut bdf, ts) {
+            res.error = Some(e);
+            break 'samples;
         }
         res.phases.integration_s += took();
         bdf.interpolate(ts, &mut y, &mut yp);
         res.times.push(ts);
         res.rows.push(evaluate(sys, ts, &y, &yp));
         record_modal(sys, &mut res, &y);
+        if let Some(p) = poses.as_mut().filter(|_| pose_here) {
+            p.times.push(ts);
+            p.q.push(y[..sys.nq].to_vec());
+        }
         progress.set(k as u64);
         res.phases.outputs_s += took();
     }
@@ -158,8 +223,20 @@ pub fn simulate(
             res.last = Some((t, y.clone(), yp.clone()));
         }
     }
+    res.poses = poses;
     res.wall_s = wall.elapsed().as_secs_f64();
     res
+}
+
+/// Integrates to `t` (past any root on the way); the message and time of a failure.
+fn reach<P: DaeProblem + ?Sized>(bdf: &mut Integrator<'_, P>, t: f64) -> Result<(), (String, f64)> {
+    loop {
+        match bdf.advance(t) {
+            Ok(Advance::Reached) => return Ok(()),
+            Ok(Advance::Root { .. }) => continue,
+            Err(e) => return Err((e.to_string(), e.time().unwrap_or(bdf.t()))),
+        }
+    }
 }
 
 fn record_modal(sys: &System, res: &mut Samples, y: &[f64]) {

@@ -17,6 +17,9 @@ pub(crate) const UPLOT_CSS: &str = include_str!("vendor/uplot/uPlot.min.css");
 /// DOM helpers, formats and uPlot plugins shared by the pages.
 pub(crate) const COMMON_JS: &str = include_str!("assets/common.js");
 const REPORT_JS: &str = include_str!("assets/report.js");
+/// three.js (vendored, `vendor/README.md`) and the 3D view built on it.
+pub(crate) const THREE_JS: &str = include_str!("vendor/three/three.min.js");
+pub(crate) const VIEW_JS: &str = include_str!("assets/view3d.js");
 pub(crate) const REPORT_CSS: &str = include_str!("assets/report.css");
 /// Records uncaught errors on `<html data-errors>` (the browser test reads them).
 pub(crate) const ERROR_HOOK: &str = "<script>window.onerror = (m, f, l) => { const b = document.documentElement; \
@@ -27,6 +30,15 @@ pub(crate) fn escape(s: &str) -> String {
     s.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
+}
+
+/// three.js and the 3D view's script, when the page has a view.
+pub(crate) fn view_scripts(view: bool) -> String {
+    if view {
+        format!("<script>{THREE_JS}</script>\n<script>{VIEW_JS}</script>\n")
+    } else {
+        String::new()
+    }
 }
 
 /// Longest Welch segment [samples]: 0.5 Hz resolution at 1 kHz sampling.
@@ -82,12 +94,32 @@ pub(crate) fn quantised(out: &mut String, values: impl Iterator<Item = f64> + Cl
             out.push(',');
         }
         if v.is_finite() {
-            let _ = write!(out, "{}", (v / scale).round() as i64);
+            integer(out, (v / scale).round() as i64);
         } else {
             out.push_str("null");
         }
     }
     out.push_str("]}");
+}
+
+/// `v` in decimal: the bulk of a report's bytes, written without the formatting
+/// machinery.
+fn integer(out: &mut String, v: i64) {
+    let mut buf = [0u8; 20];
+    let mut i = buf.len();
+    let mut u = v.unsigned_abs();
+    loop {
+        i -= 1;
+        buf[i] = b'0' + (u % 10) as u8;
+        u /= 10;
+        if u == 0 {
+            break;
+        }
+    }
+    if v < 0 {
+        out.push('-');
+    }
+    out.push_str(std::str::from_utf8(&buf[i..]).unwrap_or("0"));
 }
 
 pub(crate) fn string(out: &mut String, s: &str) {
@@ -201,12 +233,14 @@ fn groups(res: &Samples) -> Vec<Group> {
 }
 
 /// The report page of a run: `summary_json` is the run summary as written to
-/// `summary.json`; `steps` the solver's accepted steps (end time [s], step [s], order).
+/// `summary.json`; `steps` the solver's accepted steps (end time [s], step [s], order);
+/// `view` the 3D view's data ([`super::scene3d::run_view`]), if any.
 pub fn run_report(
     title: &str,
     res: &Samples,
     summary_json: &str,
     steps: &[(f64, f64, usize)],
+    view: Option<&str>,
 ) -> String {
     let n = res.times.len();
     let fs = if n > 1 {
@@ -266,6 +300,10 @@ pub fn run_report(
     array(&mut d, steps.iter().map(|s| s.2 as f64));
     d.push_str("},\"summary\":");
     d.push_str(&summary_json.replace("</", "<\\/"));
+    if let Some(v) = view {
+        d.push_str(",\"view\":");
+        d.push_str(v);
+    }
     d.push('}');
 
     let mut h = String::with_capacity(d.len() + UPLOT_JS.len() + 16384);
@@ -279,8 +317,9 @@ pub fn run_report(
          (no network: everything is in this file).</noscript></div>\n\
          <script type=\"application/json\" id=\"data\">{d}</script>\n\
          {ERROR_HOOK}\n\
-         <script>{UPLOT_JS}</script>\n<script>{COMMON_JS}</script>\n<script>{REPORT_JS}</script>\n</body></html>\n",
-        env!("CARGO_PKG_VERSION")
+         <script>{UPLOT_JS}</script>\n{three}<script>{COMMON_JS}</script>\n<script>{REPORT_JS}</script>\n</body></html>\n",
+        env!("CARGO_PKG_VERSION"),
+        three = view_scripts(view.is_some()),
     );
     h
 }

@@ -136,6 +136,16 @@ struct File {
     /// Outputs beyond the fixed channels ([`outputs`]).
     #[serde(default)]
     output: Vec<crate::model::spec::OutputSpec>,
+    #[serde(default)]
+    report: ReportSec,
+}
+
+/// `[report]`: what the run's HTML report shows.
+#[derive(Deserialize, Debug, Default)]
+#[serde(deny_unknown_fields)]
+struct ReportSec {
+    /// Rate of the body poses for the 3D view [Hz]; 0 switches the view off.
+    animation_rate_hz: Option<f64>,
 }
 
 /// A scene's `[[override]]`: one value of a file the scene reads.
@@ -216,6 +226,8 @@ pub struct Scene {
     pub duration: f64,
     /// Output sample rate [Hz].
     pub sample_rate: f64,
+    /// Pose rate of the report's 3D view [Hz] (`[report] animation_rate_hz`; 0: none).
+    pub animation_rate: f64,
     /// How the state at t = 0 is found.
     pub start: Start,
     /// Settling time on flat road before t = 0 [s] (equilibrium_at_speed).
@@ -267,6 +279,8 @@ pub struct Changes {
     pub hitch_variant: Option<u32>,
     /// Distance from the front tyres' contact to the road's first obstacle edge [m].
     pub obstacle_ahead_m: Option<f64>,
+    /// Replaces `[report] animation_rate_hz` (0: no 3D view).
+    pub animation_rate_hz: Option<f64>,
 }
 
 /// True when `path` is a scene file (it has a `[scene]` table).
@@ -331,6 +345,21 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
     )?;
     let sample_rate = src.positive(&path!["run", "sample_rate_hz"], f.run.sample_rate_hz)?;
     let settle = src.non_negative(&path!["run", "settle_s"], f.run.settle_s)?;
+    let animation_rate = match o.animation_rate_hz {
+        Some(r) if r.is_finite() && r >= 0.0 => r,
+        Some(r) => {
+            return Err(src.error(
+                &path!["report", "animation_rate_hz"],
+                format!("{r}: the animation rate (command line) must be 0 or positive"),
+            ))
+        }
+        None => src.non_negative(
+            &path!["report", "animation_rate_hz"],
+            f.report
+                .animation_rate_hz
+                .unwrap_or(crate::job::DEFAULT_ANIMATION_RATE_HZ),
+        )?,
+    };
     crate::input::bounds::budget::check(duration, sample_rate, 0)
         .map_err(|m| src.error(&path!["run", "sample_rate_hz"], m))?;
     // Which [solver] keys the file itself sets (the parsed options carry defaults).
@@ -453,6 +482,7 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
         speed,
         duration,
         sample_rate,
+        animation_rate,
         start: f.run.start,
         settle,
         solver,

@@ -176,6 +176,7 @@ pub fn load(path: &Path) -> Result<Plan, InputError> {
                         load_case: Some(load.clone()),
                         hitch_variant: None,
                         obstacle_ahead_m: None,
+                        animation_rate_hz: None,
                     },
                 });
             }

@@ -17,6 +17,24 @@
   app.append(el("h3", {}, "Solver"));
   app.append(table(["steps", "rejected", "Newton iterations", "residuals", "Jacobians", "LU factorisations", "steps per order 1..5"],
     [[S.steps, S.rejected_steps, S.newton_iterations, S.residual_evals, S.jacobian_evals, S.lu_factorizations, (S.order_counts || []).join(" / ")]]));
+  // --- 3D view, its time cursor shared with the charts both ways
+  let player = null, syncing = false;
+  const follow = () => ({
+    hooks: {
+      setCursor: (u) => {
+        const l = u.cursor.left;
+        if (syncing || !player || l == null || l < 0) return;
+        player.pause();
+        player.setTime(u.posToVal(l, "x"), true);
+      },
+    },
+  });
+  const toCharts = (t) => {
+    syncing = true;
+    for (const u of charts) u.setCursor({ left: u.valToPos(t, "x"), top: u.cursor.top > 0 ? u.cursor.top : 10 });
+    syncing = false;
+  };
+  if (D.view) player = runView(D.view, app, toCharts);
   // --- time histories
   app.append(el("h2", { id: "histories" }, "Time histories"));
   app.append(el("p", { class: "hint" }, "Drag to zoom, double click to reset, mouse wheel zooms time, shift + wheel pans; click a legend entry to hide or show it. The time cursor is shared by all charts."));
@@ -34,7 +52,7 @@
         stroke: s.colour, width: s.width, dash: s.dash ? [8, 4] : undefined,
         value: (u, v) => fmt(v),
       }))),
-      plugins: [wheel()],
+      plugins: [wheel(), follow()],
     };
     const data = [t].concat(g.series.map((s) => D.channels[s.ch].v));
     charts.push(new uPlot(opts, data, box));
@@ -86,7 +104,7 @@
       series: [{ label: "t [s]", value: (u, v) => fmt(v) },
         { label: "step [s]", scale: "h", stroke: "#0072b2", width: 1, value: (u, v) => fmt(v), points: { show: true, size: 3 } },
         { label: "order", scale: "o", stroke: "#d55e00", width: 1, paths: uPlot.paths.stepped({ align: 1 }), value: (u, v) => fmt(v) }],
-      plugins: [wheel()],
+      plugins: [wheel(), follow()],
     }, [D.steps.t, D.steps.h, D.steps.order], box));
   } else {
     app.append(el("p", {}, "no steps recorded"));
@@ -111,6 +129,7 @@
   // grid and text are grey).
   // uPlot draws in a microtask after construction: count after it.
   setTimeout(() => {
+  if (player) player.ready();
   const all = charts.concat(psdChart ? [psdChart] : []);
   const coloured = all.map((u) => {
     const px = u.ctx.getImageData(0, 0, u.ctx.canvas.width, u.ctx.canvas.height).data;
@@ -128,3 +147,65 @@
   if (target) target.scrollIntoView();
   }, 0);
 })();
+
+// The run's 3D view: poses interpolated linearly between the recorded frames
+// (quaternions normalised), the modal deformation magnified by the factor in the page.
+function runView(V, app, toCharts) {
+  app.append(el("h2", { id: "view" }, "Animation"));
+  app.append(el("p", { class: "hint" }, `Bodies as boxes with their inertia and rods to their hardpoints, wheels with tyres, struts for springs, dampers and bushings, the road with the obstacle, red dots at the tyre contacts. ${V.frames.t.q.length} poses. Drag to turn the view, wheel to zoom; the time cursor follows the charts (hover a chart) and moves theirs.`));
+  const host = el("div", { class: "view" });
+  app.append(host);
+  const view = View3D(V, host, { width: width(), height: 480 });
+  if (!view) return null;
+  const ft = decode(V.frames.t), Q = V.frames.q.map(decode);
+  let k = 0, w = 0;
+  const lerp = (c) => Q[c][k] * (1 - w) + Q[c][Math.min(k + 1, ft.length - 1)] * w;
+  view.pose = (b) => {
+    const o = V.bodies[b].qo;
+    const eta = [];
+    for (let j = 0; j < V.bodies[b].nm; j++) eta.push(lerp(o + 7 + j));
+    return { r: [lerp(o), lerp(o + 1), lerp(o + 2)], p: [lerp(o + 3), lerp(o + 4), lerp(o + 5), lerp(o + 6)], eta };
+  };
+  // Magnification: the largest FE-node deformation over the run drawn as 0.1 m.
+  let big = 0;
+  V.bodies.forEach((b) => {
+    if (!b.flex) return;
+    for (let f = 0; f < ft.length; f++) for (let n = 0; n < b.flex.pts.length; n++) {
+      let x = 0, y = 0, z = 0;
+      for (let j = 0; j < b.nm; j++) {
+        const e = Q[b.qo + 7 + j][f], s = b.flex.shapes[j][n];
+        x += e * s[0]; y += e * s[1]; z += e * s[2];
+      }
+      big = Math.max(big, Math.hypot(x, y, z));
+    }
+  });
+  const nice = (v) => { const p = Math.pow(10, Math.floor(Math.log10(v))); return [1, 2, 5, 10].map((m) => m * p).find((m) => m >= v); };
+  view.mag = big > 0 ? nice(0.1 / big) : 1;
+  const mag = el("input", { id: "view-mag", type: "number", min: 0, step: "any", value: view.mag, style: "width:80px" });
+  const show = (t, quiet) => {
+    let lo = 0, hi = ft.length - 1;
+    while (hi - lo > 1) { const m = (lo + hi) >> 1; if (ft[m] <= t) lo = m; else hi = m; }
+    k = lo;
+    w = ft.length > 1 ? Math.max(0, Math.min(1, (t - ft[lo]) / (ft[lo + 1] - ft[lo]))) : 0;
+    view.draw();
+    if (!quiet) toCharts(t);
+  };
+  const player = Player(ft[0], ft[ft.length - 1], show, [0.02, 0.05, 0.1, 0.25, 0.5, 1]);
+  mag.addEventListener("change", () => { view.mag = +mag.value || 0; view.draw(); });
+  player.bar.append(" deformation ×", mag, big > 0 ? ` (largest FE-node deformation ${fmt(big * 1e3)} mm)` : "");
+  host.prepend(player.bar);
+  window.towrideView = { view, player };
+  // For the browser test: the image at two times; then the time the link asks for
+  // (#view-t=0.5).
+  player.ready = () => {
+    const a = ft[0] + 0.05 * (ft[ft.length - 1] - ft[0]), b = ft[0] + 0.5 * (ft[ft.length - 1] - ft[0]);
+    player.setTime(a, true);
+    const pa = view.probe();
+    player.setTime(b, true);
+    const pb = view.probe();
+    document.body.setAttribute("data-view-pixels", `${pa.join(",")};${pb.join(",")}`);
+    const m = /view-t=([0-9.eE+-]+)/.exec(location.hash);
+    player.setTime(m ? +m[1] : ft[0], !m);
+  };
+  return player;
+}
