@@ -110,9 +110,17 @@ pub fn untagged_values(path: &Path) -> Result<Vec<Untagged>, InputError> {
     Ok(scan(path)?.1)
 }
 
-/// Keys whose numbers are format versions, indices or discretisation counts, not
-/// physical values: they need no source class.
+/// Keys whose numbers are format versions, indices, discretisation counts or mode
+/// selection settings, not physical values: they need no source class (the mesh
+/// `divisions`, a variant's `number`, everything under a flexible body's `[selection]`).
 pub fn is_setting(key: &str) -> bool {
+    let last = key.rsplit('.').next().unwrap_or(key);
+    if last == "divisions"
+        || key.starts_with("selection.")
+        || (key.starts_with("variant[") && last == "number")
+    {
+        return true;
+    }
     const SETTINGS: [&str; 7] = [
         "MDI_HEADER.FILE_VERSION",
         "MODEL.FITTYP",
