@@ -133,6 +133,89 @@ pub fn is_setting(key: &str) -> bool {
     SETTINGS.contains(&key)
 }
 
+/// The classes of one file: tagged values, untagged numbers, and how many of each class.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct FileProvenance {
+    /// The file.
+    pub file: String,
+    /// Tagged values in file order.
+    pub entries: Vec<ProvenanceEntry>,
+    /// Numeric values without a class (physical values only, see [`is_setting`]).
+    pub untagged: Vec<Untagged>,
+}
+
+/// The classes of every property file under some paths (`towride provenance`).
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct Survey {
+    /// Version of this JSON layout.
+    pub schema_version: u32,
+    /// Per file, in path order.
+    pub files: Vec<FileProvenance>,
+    /// Number of values per class over all files (measured, published, scaled, assumed).
+    pub counts: Vec<(SourceClass, usize)>,
+    /// Number of numeric values without a class over all files.
+    pub untagged: usize,
+}
+
+/// Reads the classes of the files at `paths`: a file as given, a folder recursively
+/// (its `.toml` and `.tir` files, in name order).
+pub fn survey(paths: &[std::path::PathBuf]) -> Result<Survey, InputError> {
+    fn walk(p: &Path, out: &mut Vec<std::path::PathBuf>) -> Result<(), InputError> {
+        if !p.is_dir() {
+            out.push(p.to_path_buf());
+            return Ok(());
+        }
+        let mut kids: Vec<_> = std::fs::read_dir(p)
+            .map_err(|e| InputError {
+                file: p.to_path_buf(),
+                line: None,
+                column: None,
+                field: String::new(),
+                message: format!("cannot read the folder: {e}"),
+            })?
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .collect();
+        kids.sort();
+        for k in kids {
+            let ext = k.extension().and_then(|e| e.to_str()).unwrap_or("");
+            if k.is_dir() || ext == "toml" || ext == "tir" {
+                walk(&k, out)?;
+            }
+        }
+        Ok(())
+    }
+    let mut list = Vec::new();
+    for p in paths {
+        walk(p, &mut list)?;
+    }
+    let mut files = Vec::new();
+    for f in list {
+        let (entries, untagged) = scan(&f)?;
+        files.push(FileProvenance {
+            file: f.display().to_string(),
+            entries,
+            untagged,
+        });
+    }
+    let counts = SourceClass::ALL
+        .into_iter()
+        .map(|c| {
+            let n = files
+                .iter()
+                .map(|f| f.entries.iter().filter(|e| e.class == c).count())
+                .sum();
+            (c, n)
+        })
+        .collect();
+    let untagged = files.iter().map(|f| f.untagged.len()).sum();
+    Ok(Survey {
+        schema_version: 1,
+        files,
+        counts,
+        untagged,
+    })
+}
+
 type Scan = (Vec<ProvenanceEntry>, Vec<Untagged>);
 
 fn scan(path: &Path) -> Result<Scan, InputError> {

@@ -54,10 +54,7 @@ impl Mounting {
     fn laws(&self, src: &Source) -> Result<BushingLaws, InputError> {
         let p = path!["mounting"];
         let eta = src.non_negative(&at(&p, "loss_factor"), self.loss_factor)?;
-        let f = src.positive(
-            &at(&p, "damping_reference_hz"),
-            self.damping_reference_hz,
-        )?;
+        let f = src.positive(&at(&p, "damping_reference_hz"), self.damping_reference_hz)?;
         let omega = 2.0 * std::f64::consts::PI * f;
         let series = |body: &[f64; 3], bolt: &[f64; 3], bk: &str, ok: &str| {
             let mut k = [0.0; 3];
