@@ -33,6 +33,7 @@ fn scratch(tag: &str) -> Scratch {
     for f in [
         "vehicles/fabia_trailer.toml",
         "vehicles/fabia/body.toml",
+        "vehicles/fabia/engine.toml",
         "vehicles/fabia/front_mcpherson.toml",
         "vehicles/fabia/rear_twist_beam.toml",
         "vehicles/fabia/driveline.toml",
