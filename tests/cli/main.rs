@@ -13,6 +13,7 @@ mod validate_sim;
 
 mod basics;
 mod modes;
+mod provenance;
 mod reliability;
 mod sweep;
 mod tyre_rig;
