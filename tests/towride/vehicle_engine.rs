@@ -110,26 +110,7 @@ fn the_engine_is_a_body_on_three_mounts_with_the_file_s_mass() {
 
 #[test]
 fn an_engine_on_two_mounts_is_refused_at_the_mount_table() {
-    let root = std::env::temp_dir().join(format!("towride-engine-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&root);
-    for f in [
-        "vehicles/fabia_trailer.toml",
-        "vehicles/fabia/body.toml",
-        "vehicles/fabia/engine.toml",
-        "vehicles/fabia/front_mcpherson.toml",
-        "vehicles/fabia/rear_twist_beam.toml",
-        "vehicles/fabia/driveline.toml",
-        "vehicles/fabia/hitch.toml",
-        "vehicles/trailer/box_trailer.toml",
-        "vehicles/tyres/car_185_60r14.tir",
-        "vehicles/tyres/trailer_155_80r13.tir",
-        "flex/hitch_crossbeam.toml",
-        "flex/twist_beam.toml",
-    ] {
-        let to = root.join(f);
-        std::fs::create_dir_all(to.parent().unwrap()).unwrap();
-        std::fs::copy(Path::new(repo!("")).join(f), &to).unwrap();
-    }
+    let root = crate::vehicle_errors::scratch("engine_mounts");
     let engine = root.join("vehicles/fabia/engine.toml");
     let text = std::fs::read_to_string(&engine).unwrap();
     let cut = text.find("[[mount]]\nname = \"torque_rod\"").unwrap();
@@ -146,5 +127,4 @@ fn an_engine_on_two_mounts_is_refused_at_the_mount_table() {
         s.contains("engine.toml") && s.contains("`mount`") && s.contains("at least 3"),
         "{s}"
     );
-    let _ = std::fs::remove_dir_all(&root);
 }
