@@ -13,6 +13,7 @@ mod validate_sim;
 
 mod basics;
 mod modes;
+mod provenance;
 mod reliability;
 mod slurm;
 mod sweep;

@@ -116,6 +116,62 @@ fn an_absurd_contact_blend_in_a_tir_file_is_refused() {
     assert!(e.to_string().contains("contact blend"), "{e}");
 }
 
+/// `text` with the value on 1-based `line` replaced by `value`.
+fn with_value(text: &str, line: usize, value: &str) -> String {
+    text.lines()
+        .enumerate()
+        .map(|(i, l)| match l.split_once('=') {
+            Some((k, _)) if i + 1 == line => format!("{} = {value}", k.trim()),
+            _ => l.to_string(),
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+#[test]
+fn every_tir_number_the_reader_reads_is_bounds_checked_at_its_line() {
+    // 1e-300 N/m as LONGITUDINAL_STIFFNESS passed and ended as "singular rate equations"
+    // with no file or line. A key counts as read when a non-number there is refused.
+    for file in ["trailer_155_80r13.tir", "car_185_60r14.tir"] {
+        let p = PathBuf::from(repo!("vehicles/tyres")).join(file);
+        let text = std::fs::read_to_string(&p).unwrap();
+        let t = TirFile::parse(&p, &text).unwrap();
+        TyreParams::from_tir(&t).expect("the shipped file loads");
+        let mut checked = Vec::new();
+        for (sec, key, e) in t.entries() {
+            if e.value.parse::<f64>().is_err() {
+                continue;
+            }
+            let junk = TirFile::parse(&p, &with_value(&text, e.line, "x")).unwrap();
+            if TyreParams::from_tir(&junk).is_ok() {
+                continue; // not read (e.g. LATERAL_STIFFNESS, FREQ_LAT)
+            }
+            for bad in ["1e-300", "-1e-300", "1e300"] {
+                let t = TirFile::parse(&p, &with_value(&text, e.line, bad)).unwrap();
+                let err = TyreParams::from_tir(&t)
+                    .err()
+                    .unwrap_or_else(|| panic!("{file}: {sec}.{key} = {bad} was accepted"));
+                assert_eq!(err.line, Some(e.line), "{file} {sec}.{key} = {bad}: {err}");
+                assert_eq!(err.field, format!("{sec}.{key}"), "{err}");
+                assert!(err.to_string().contains(file), "{err}");
+            }
+            checked.push(format!("{sec}.{key}"));
+        }
+        for must in [
+            "STRUCTURAL.LONGITUDINAL_STIFFNESS",
+            "VERTICAL.VERTICAL_STIFFNESS",
+            "VERTICAL.FNOMIN",
+            "STRUCTURAL.DAMP_RESIDUAL",
+            "LONGITUDINAL_COEFFICIENTS.PKX1",
+        ] {
+            assert!(
+                checked.iter().any(|c| c == must),
+                "{file}: {must} not read?"
+            );
+        }
+    }
+}
+
 #[test]
 fn decimal_commas_in_a_comma_separated_csv_are_refused_at_their_line() {
     let d = tmp("comma");

@@ -124,6 +124,7 @@ fn hitch_fe_mass(v: u32) -> (f64, [f64; 3]) {
 #[test]
 fn total_mass_is_the_sum_of_the_property_files() {
     let body = table(repo!("vehicles/fabia/body.toml"));
+    let engine = table(repo!("vehicles/fabia/engine.toml"));
     let front = table(repo!("vehicles/fabia/front_mcpherson.toml"));
     let rear = table(repo!("vehicles/fabia/rear_twist_beam.toml"));
     let trailer = table(repo!("vehicles/trailer/box_trailer.toml"));
@@ -136,6 +137,7 @@ fn total_mass_is_the_sum_of_the_property_files() {
     );
     let (hitch, _) = hitch_fe_mass(5);
     let car = mass(&body, "body")
+        + mass(&engine, "engine")
         + 2.0
             * (["knuckle", "lower_arm", "strut_rod", "tie_rod", "wheel"]
                 .iter()

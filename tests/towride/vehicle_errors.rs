@@ -8,7 +8,7 @@ use towride::input::InputError;
 use towride::vehicle::{self, Options};
 
 /// A scratch folder, removed when dropped.
-struct Scratch(PathBuf);
+pub(crate) struct Scratch(PathBuf);
 
 impl Drop for Scratch {
     fn drop(&mut self) {
@@ -24,7 +24,7 @@ impl std::ops::Deref for Scratch {
 }
 
 /// A scratch copy of the files a scene needs, in the repository's layout.
-fn scratch(tag: &str) -> Scratch {
+pub(crate) fn scratch(tag: &str) -> Scratch {
     let root = std::env::temp_dir().join(format!(
         "towride_vehicle_errors_{}_{tag}",
         std::process::id()
@@ -33,6 +33,7 @@ fn scratch(tag: &str) -> Scratch {
     for f in [
         "vehicles/fabia_trailer.toml",
         "vehicles/fabia/body.toml",
+        "vehicles/fabia/engine.toml",
         "vehicles/fabia/front_mcpherson.toml",
         "vehicles/fabia/rear_twist_beam.toml",
         "vehicles/fabia/driveline.toml",

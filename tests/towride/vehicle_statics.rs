@@ -195,10 +195,13 @@ fn half_car(v: &Vehicle) -> (f64, f64) {
     let (a, b) = (-xs, xs - xr);
     let body = &v.model.bodies[v.handles.car_body];
     let hitch = &v.model.bodies[v.handles.hitch.as_ref().unwrap().body];
-    let iyy = body.inertia[1][1]
+    let mut iyy = body.inertia[1][1]
         + body.mass * (body.position[0] - xs).powi(2)
         + hitch.inertia[1][1]
         + hitch.mass * (hitch.position[0] - xs).powi(2);
+    if let Some(e) = v.model.bodies.iter().find(|b| b.name == "engine") {
+        iyy += e.inertia[1][1] + e.mass * (e.position[0] - xs).powi(2);
+    }
     let k = nalgebra::Matrix2::new(
         kf + kr,
         kr * b - kf * a,
@@ -228,9 +231,15 @@ fn car_body_and_wheel_hop_frequencies() {
         .iter()
         .filter(|m| m.undamped_hz > 0.8 && m.undamped_hz < 3.0 && m.damping_ratio < 0.5)
         .filter(|m| {
-            m.bodies
-                .first()
-                .is_some_and(|b| b.name == "car_body" && b.share > 0.8)
+            // At 1-2 Hz the engine moves with the body on its 6-10 Hz mounts: both
+            // together are the sprung mass.
+            let sprung: f64 = m
+                .bodies
+                .iter()
+                .filter(|b| b.name == "car_body" || b.name == "engine")
+                .map(|b| b.share)
+                .sum();
+            m.bodies.first().is_some_and(|b| b.name == "car_body") && sprung > 0.8
         })
         .map(|m| m.undamped_hz)
         .collect();

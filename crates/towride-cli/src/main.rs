@@ -18,6 +18,7 @@ mod compare;
 mod interrupt;
 mod modes;
 mod out;
+mod provenance;
 mod run;
 mod scaling;
 mod scene_bench;
@@ -59,6 +60,9 @@ enum Command {
     Modes(modes::ModesArgs),
     /// Run a tyre test rig (cleat or quarter rig) from a TOML file.
     TyreRig(tyre_rig::TyreRigArgs),
+    /// Source class (measured, published, scaled, assumed) of every value of property
+    /// files; exit code 1 when a number has none.
+    Provenance(provenance::ProvenanceArgs),
     /// Stress test of a scene: the thesis's integrator settings and worse, each case
     /// classified.
     Stress(scene_stress::StressArgs),
@@ -132,6 +136,7 @@ fn run() -> i32 {
         Command::Doctor(a) => analyse::doctor(&a),
         Command::Modes(a) => modes::run(&a),
         Command::TyreRig(a) => tyre_rig::run(&a),
+        Command::Provenance(a) => provenance::run(&a),
         Command::Sweep(a) => sweep::run(&a),
         Command::Stress(a) => scene_stress::run_stress(&a),
         Command::Validate(a) => validate::run(&a),

@@ -165,12 +165,12 @@ pub fn cases() -> Vec<Case> {
         out.push(Case {
             props: vec![ov(
                 "fabia/hitch.toml",
-                "bracket_bushing.stiffness_n_m",
+                "mounting.body_stiffness_n_m",
                 format!("[{k:e}, {k:e}, {k:e}]"),
             )],
             ..base(
                 "bushing stiffness",
-                format!("bracket bushings {k:.0e} N/m"),
+                format!("bracket body side {k:.0e} N/m, bolts in series"),
                 false,
             )
         });

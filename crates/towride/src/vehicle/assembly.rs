@@ -9,6 +9,7 @@
 //!
 //! [car]
 //! body = { template = "lumped_body", file = "fabia/body.toml" }
+//! engine = { template = "engine_on_mounts", file = "fabia/engine.toml" }     # optional
 //! front = { template = "mcpherson", file = "fabia/front_mcpherson.toml", tyre = "tyres/car_185_60r14.tir" }
 //! rear = { template = "twist_beam", file = "fabia/rear_twist_beam.toml", tyre = "tyres/car_185_60r14.tir" }
 //! driveline = { template = "speed_control", file = "fabia/driveline.toml" }
@@ -39,7 +40,8 @@ use super::geom::{Placement, IDENTITY, V};
 use super::props::at;
 use super::sensors::{self, SensorSpec};
 use super::{
-    axle, body, driveline, hitch, trailer, wheel, Design, Handles, Options, TrailerDesign, Vehicle,
+    axle, body, driveline, engine, hitch, trailer, wheel, Design, Handles, Options, TrailerDesign,
+    Vehicle,
 };
 use crate::input::{InputError, Loader, Seg, Source};
 use crate::model::builder::{BodyHandle, MarkerHandle, ModelBuilder};
@@ -71,6 +73,9 @@ struct VehicleSec {
 #[serde(deny_unknown_fields)]
 struct Car {
     body: Part,
+    /// The engine on its mounts (`engine_on_mounts`); without it the body file holds
+    /// the engine's mass.
+    engine: Option<Part>,
     front: Part,
     rear: Part,
     driveline: Part,
@@ -186,6 +191,10 @@ pub fn load(path: &Path, opts: &Options, loader: &Loader) -> Result<Vehicle, Inp
         &mut b,
         &part(&src, dir, &path!["car", "body"], &c.body, "lumped_body")?,
     )?;
+    if let Some(e) = &c.engine {
+        let file = part(&src, dir, &path!["car", "engine"], e, "engine_on_mounts")?;
+        engine::build(&mut b, &file, car_body)?;
+    }
     let car_ref = b.mb.marker_by_name("car_body.cm").expect("body marker");
     let mut axles = Vec::new();
     for (slot, p, wheels, variant) in [

@@ -12,11 +12,11 @@ use serde::Deserialize;
 use super::build::{Builder, Link};
 use super::geom::{IDENTITY, V};
 use super::modal_body;
-use super::props::{joint_bushing, point, BushingProps};
-use crate::input::InputError;
+use super::props::{at, joint_bushing, point, BushingLaws, BushingProps};
+use crate::input::{InputError, Source};
 use crate::model::builder::BodyHandle;
 use crate::model::desc::JointKind;
-use crate::model::elements::JointBushing;
+use crate::model::elements::{JointBushing, LawSpec};
 use crate::model::math::add;
 use crate::path;
 
@@ -24,8 +24,70 @@ use crate::path;
 #[serde(deny_unknown_fields)]
 struct File {
     hitch: Hitch,
-    bracket_bushing: BushingProps,
+    mounting: Mounting,
     ball_coupling: BallCoupling,
+}
+
+/// How each bracket is held on the body: the bolted joint in series with the body-side
+/// compliance of the side-member end at the bolts (docs/hitch_mounts.md), per axis of
+/// the mount (x, y, z; rotations about them), and the path's damping as a loss factor.
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct Mounting {
+    /// Mount z axis (the bolt axis) and x axis, vehicle coordinates.
+    z_axis: [f64; 3],
+    x_axis: [f64; 3],
+    /// Body side (side-member end and panel at the bolts) [N/m], [N m/rad].
+    body_stiffness_n_m: [f64; 3],
+    body_stiffness_n_m_rad: [f64; 3],
+    /// The bracket's bolts together [N/m], [N m/rad].
+    bolt_stiffness_n_m: [f64; 3],
+    bolt_stiffness_n_m_rad: [f64; 3],
+    /// Loss factor of the path (material and joint damping) [-].
+    loss_factor: f64,
+    /// Frequency at which the viscous damping equals the loss factor's [Hz].
+    damping_reference_hz: f64,
+}
+
+impl Mounting {
+    /// Series stiffness per axis and the viscous damping c = eta k / omega_ref.
+    fn laws(&self, src: &Source) -> Result<BushingLaws, InputError> {
+        let p = path!["mounting"];
+        let eta = src.non_negative(&at(&p, "loss_factor"), self.loss_factor)?;
+        let f = src.positive(&at(&p, "damping_reference_hz"), self.damping_reference_hz)?;
+        let omega = 2.0 * std::f64::consts::PI * f;
+        let series = |body: &[f64; 3], bolt: &[f64; 3], bk: &str, ok: &str| {
+            let mut k = [0.0; 3];
+            for i in 0..3 {
+                let a = src.positive(&at(&at(&p, bk), i), body[i])?;
+                let b = src.positive(&at(&at(&p, ok), i), bolt[i])?;
+                k[i] = a * b / (a + b);
+            }
+            Ok::<_, InputError>(k)
+        };
+        let kt = series(
+            &self.body_stiffness_n_m,
+            &self.bolt_stiffness_n_m,
+            "body_stiffness_n_m",
+            "bolt_stiffness_n_m",
+        )?;
+        let kr = series(
+            &self.body_stiffness_n_m_rad,
+            &self.bolt_stiffness_n_m_rad,
+            "body_stiffness_n_m_rad",
+            "bolt_stiffness_n_m_rad",
+        )?;
+        let lin = |k: [f64; 3], scale: f64| k.map(|x| LawSpec::Linear(x * scale));
+        BushingProps {
+            z_axis: Some(self.z_axis),
+            x_axis: Some(self.x_axis),
+            stiffness_n_m: lin(kt, 1.0),
+            damping_n_s_m: lin(kt, eta / omega),
+            stiffness_n_m_rad: lin(kr, 1.0),
+            damping_n_m_s_rad: lin(kr, eta / omega),
+        }
+        .check(src, &p, [0.0, 1.0, 0.0])
+    }
 }
 
 #[derive(Deserialize, Debug)]
@@ -43,7 +105,7 @@ struct Hitch {
     bracket_nodes: [String; 2],
     ball_node: String,
     sensor_node: String,
-    /// How the brackets are held: "bushing" (default, `[bracket_bushing]`) or "fixed"
+    /// How the brackets are held: "bushing" (default, `[mounting]`) or "fixed"
     /// (ideal fixed joints: the thesis's over-constrained variant, for stress tests).
     #[serde(default)]
     bracket_mount: Option<String>,
@@ -135,9 +197,7 @@ pub fn build(
         &fe,
         &h.sensor_node,
     )?;
-    let bushing = f
-        .bracket_bushing
-        .check(&src, &path!["bracket_bushing"], [0.0, 1.0, 0.0])?;
+    let bushing = f.mounting.laws(&src)?;
     let ball_kind = match ball.unwrap_or(&f.ball_coupling.kind) {
         "spherical" => BallKind::Spherical,
         "bushing" => {

@@ -26,6 +26,7 @@ pub(crate) mod body;
 pub(crate) mod build;
 pub(crate) mod design;
 pub(crate) mod driveline;
+pub(crate) mod engine;
 pub(crate) mod geom;
 pub(crate) mod hitch;
 pub(crate) mod modal_body;
