@@ -19,6 +19,7 @@ mod flex_hitch;
 mod flex_input;
 mod fuzz;
 mod inputs_and_builder;
+mod job_ringing;
 mod model_mechanisms;
 mod model_modal;
 mod model_modal_full;
