@@ -75,9 +75,12 @@ impl Loader {
         }
     }
 
-    /// The same overrides with a fresh record of use (one case of a batch).
+    /// The same overrides with a fresh record of use (one case of a batch); the list of
+    /// files read stays shared, so the caller learns what the case read.
     pub fn fresh(&self) -> Loader {
-        Loader::with_overrides(self.entries.iter().map(|e| e.ov.clone()).collect())
+        let mut l = Loader::with_overrides(self.entries.iter().map(|e| e.ov.clone()).collect());
+        l.read = Arc::clone(&self.read);
+        l
     }
 
     /// The overrides in force.
@@ -93,6 +96,19 @@ impl Loader {
             .filter(|e| e.matches(path))
             .map(|e| e.as_ref())
             .collect()
+    }
+
+    /// Every file read so far through this loader or its clones, in first-read order,
+    /// each once.
+    pub fn files_read(&self) -> Vec<PathBuf> {
+        let read = self.read.lock().map(|r| r.clone()).unwrap_or_default();
+        let mut out: Vec<PathBuf> = Vec::new();
+        for p in read {
+            if !out.contains(&p) {
+                out.push(p);
+            }
+        }
+        out
     }
 
     fn note_read(&self, path: &Path) {
