@@ -14,6 +14,7 @@ mod validate_sim;
 mod basics;
 mod modes;
 mod reliability;
+mod sensitivity;
 mod sweep;
 mod tyre_rig;
 mod validate_folder;

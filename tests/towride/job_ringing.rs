@@ -47,7 +47,10 @@ fn damping_and_frequency_of_a_damped_sinusoid_are_recovered() {
         // RMS from its definition.
         let rms = (y.iter().map(|v| v * v).sum::<f64>() / y.len() as f64).sqrt();
         assert!((r.rms_n - rms).abs() < 1e-9 * rms);
-        assert!(r.peak_n.abs() > 4000.0 && r.t_peak_s > 0.5 && r.t_peak_s < 0.53, "{r:?}");
+        assert!(
+            r.peak_n.abs() > 4000.0 && r.t_peak_s > 0.5 && r.t_peak_s < 0.53,
+            "{r:?}"
+        );
     }
 }
 

@@ -32,6 +32,7 @@ mod report_html;
 mod road_obstacles;
 mod road_profile_mesh;
 mod scene_outputs;
+mod study_sensitivity;
 mod tyre_cleat;
 mod tyre_enveloping;
 mod tyre_lift_off;

@@ -37,6 +37,13 @@ pub struct RunArgs {
     /// markers, joints, elements) and stop.
     #[arg(long)]
     pub(crate) list_names: bool,
+    /// Select the modal bodies' modes from this earlier run's strain-energy shares (its
+    /// folder, holding summary.json) instead of their files' rules.
+    #[arg(long, value_name = "RUN_DIR")]
+    pub(crate) modes_from: Option<PathBuf>,
+    /// With --modes-from: the strain-energy share a mode needs [%] (default 1).
+    #[arg(long, requires = "modes_from", value_parser = crate::bounded::share_pct)]
+    pub(crate) modes_share: Option<f64>,
 }
 
 pub fn run(a: &RunArgs) -> CliResult {
@@ -45,7 +52,18 @@ pub fn run(a: &RunArgs) -> CliResult {
         .iter()
         .map(|s| Override::from_argument(s))
         .collect::<Result<Vec<_>, _>>()?;
-    let loader = Loader::with_overrides(overrides);
+    let mut loader = Loader::with_overrides(overrides);
+    if let Some(dir) = &a.modes_from {
+        let at = towride::input::InputError {
+            file: "command line".into(),
+            line: None,
+            column: None,
+            field: "--modes-from".into(),
+            message: String::new(),
+        };
+        let share = a.modes_share.map_or(0.01, |p| p / 100.0);
+        loader = loader.with_run_modes(towride::flex::feedback::from_run(dir, share, &at)?);
+    }
     if a.list_names {
         return list_names(a, &loader);
     }

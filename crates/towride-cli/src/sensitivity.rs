@@ -84,7 +84,13 @@ pub fn run(a: &SensitivityArgs) -> CliResult {
             println!("{}", serde_json::to_string_pretty(&doc)?);
         } else {
             for p in &all {
-                println!("{:<8} {:<9} {:<70} {:.4e}", p.group, p.kind, p.name, p.base_value());
+                println!(
+                    "{:<8} {:<9} {:<70} {:.4e}",
+                    p.group,
+                    p.kind,
+                    p.name,
+                    p.base_value()
+                );
             }
         }
         return Ok(0);
@@ -92,7 +98,10 @@ pub fn run(a: &SensitivityArgs) -> CliResult {
     let pb = crate::progress(0, a.json);
     crate::interrupt::install();
     let mut study = sensitivity::run(&s, &pb)?;
-    let dir = a.out.clone().unwrap_or_else(|| sensitivity::default_dir(&a.file));
+    let dir = a
+        .out
+        .clone()
+        .unwrap_or_else(|| sensitivity::default_dir(&a.file));
     sensitivity::write::write(&mut study, &dir)?;
     if a.json {
         println!("{}", serde_json::to_string_pretty(&study)?);
@@ -130,7 +139,10 @@ pub fn run(a: &SensitivityArgs) -> CliResult {
         }
     }
     if !study.inactive.is_empty() {
-        println!("not studied (the model does not depend on them): {}", study.inactive.join(", "));
+        println!(
+            "not studied (the model does not depend on them): {}",
+            study.inactive.join(", ")
+        );
     }
     for w in &study.written {
         println!("wrote {w}");

@@ -46,6 +46,9 @@ pub struct Loader {
     entries: Vec<Arc<Entry>>,
     /// Every file read, in order (for messages about overrides that matched nothing).
     read: Arc<Mutex<Vec<PathBuf>>>,
+    /// Modes selected from an earlier run's strain-energy shares, replacing the modal
+    /// bodies' own selection rules.
+    modes: Option<Arc<crate::flex::feedback::RunModes>>,
 }
 
 impl Loader {
@@ -72,6 +75,7 @@ impl Loader {
         Loader {
             entries,
             read: Arc::clone(&self.read),
+            modes: self.modes.clone(),
         }
     }
 
@@ -80,7 +84,19 @@ impl Loader {
     pub fn fresh(&self) -> Loader {
         let mut l = Loader::with_overrides(self.entries.iter().map(|e| e.ov.clone()).collect());
         l.read = Arc::clone(&self.read);
+        l.modes = self.modes.clone();
         l
+    }
+
+    /// This loader with the modes of its modal bodies selected from an earlier run.
+    pub fn with_run_modes(mut self, modes: crate::flex::feedback::RunModes) -> Loader {
+        self.modes = Some(Arc::new(modes));
+        self
+    }
+
+    /// The run-based mode selection in force, if any.
+    pub fn run_modes(&self) -> Option<&crate::flex::feedback::RunModes> {
+        self.modes.as_deref()
     }
 
     /// The overrides in force.

@@ -5,8 +5,8 @@
 //!   window, [`crate::validate::spectrum::peak_in`]) between 1 Hz and 0.45 times the
 //!   sample rate.
 //! - Damping: the log decrement of the free decay, fitted. The ringing's frequency is
-//!   the spectral peak of the half second centred on the force peak; the signal less its
-//!   running mean over one period of that frequency (which keeps that frequency and
+//!   the spectral peak of the half second centred on the force peak; the signal,
+//!   low-passed at 2.5 times that frequency, less its running mean over one period of that frequency (which keeps that frequency and
 //!   removes the slow trailer and body motion under it) is searched for its half-cycle
 //!   extremes from the largest peak on. The decay starts at the largest of the first four
 //!   extremes (the obstacle may still force the first cycle) and runs while each extreme
@@ -92,7 +92,16 @@ pub fn free_decay(t: &[f64], y: &[f64], f_hz: f64, from: usize) -> Option<(Decay
     if period < 4 || 4 * period > n {
         return None;
     }
-    // Less the centred running mean over one period.
+    // Higher modes (a flexible hitch's, hundreds of Hz) off by a low-pass at 2.5 times
+    // the ringing (fourth-order Butterworth: its delay shifts the extremes in time, not
+    // their decay), then less the centred running mean over one period.
+    let rate = 1.0 / dt;
+    let y =
+        match crate::validate::filter::Butterworth::low_pass(4, (2.5 * f_hz).min(0.4 * rate), rate)
+        {
+            Ok(lp) => lp.apply(y),
+            Err(_) => y.to_vec(),
+        };
     let half = period / 2;
     let mut prefix = vec![0.0; n + 1];
     for k in 0..n {

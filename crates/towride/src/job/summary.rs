@@ -329,9 +329,9 @@ impl RunSummary {
                     shares: b,
                 })
                 .collect(),
-            hitch_force: samples.channel("hitch_fx").and_then(|y| {
-                super::ringing::ringing("hitch_fx", &samples.times, &y)
-            }),
+            hitch_force: samples
+                .channel("hitch_fx")
+                .and_then(|y| super::ringing::ringing("hitch_fx", &samples.times, &y)),
             channels: channels(samples),
             outputs_csv: None,
             plots: None,

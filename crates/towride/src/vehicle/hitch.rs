@@ -119,6 +119,7 @@ pub fn build(
         Some(variant),
         None,
         &b.loader,
+        "hitch",
     )?;
     let brackets = modal_body::nodes(
         &src,

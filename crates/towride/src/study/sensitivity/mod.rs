@@ -160,8 +160,18 @@ impl Study {
     /// largest first.
     pub fn ranking(&self, output: usize) -> Vec<&ParamResult> {
         let key = |p: &ParamResult| match self.method {
-            Method::Oat => p.elasticity.get(output).copied().flatten().map_or(-1.0, f64::abs),
-            Method::Morris => p.mu_star_rel.get(output).copied().filter(|v| v.is_finite()).unwrap_or(-1.0),
+            Method::Oat => p
+                .elasticity
+                .get(output)
+                .copied()
+                .flatten()
+                .map_or(-1.0, f64::abs),
+            Method::Morris => p
+                .mu_star_rel
+                .get(output)
+                .copied()
+                .filter(|v| v.is_finite())
+                .unwrap_or(-1.0),
         };
         let mut v: Vec<&ParamResult> = self.params.iter().collect();
         v.sort_by(|a, b| key(b).total_cmp(&key(a)));
@@ -189,14 +199,20 @@ pub fn parameters(s: &Settings) -> Result<(Vec<Param>, Vec<String>)> {
     } else {
         s.groups.clone()
     };
-    let found: Vec<Param> = all.into_iter().filter(|p| groups.contains(&p.group)).collect();
+    let found: Vec<Param> = all
+        .into_iter()
+        .filter(|p| groups.contains(&p.group))
+        .collect();
     if found.is_empty() {
         return Err(crate::input::InputError {
             file: "command line".into(),
             line: None,
             column: None,
             field: "--group".into(),
-            message: format!("no stiffness, damping or mass value in the groups {groups:?} of {}", s.file.display()),
+            message: format!(
+                "no stiffness, damping or mass value in the groups {groups:?} of {}",
+                s.file.display()
+            ),
         }
         .into());
     }
@@ -237,7 +253,12 @@ fn pool(jobs: usize) -> Result<rayon::ThreadPool> {
 type Outcome = std::result::Result<Vec<f64>, String>;
 
 /// Runs `cases` (each a set of overrides) in parallel; failures and panics recorded.
-fn run_all(s: &Settings, specs: &[OutputSpec], cases: &[Vec<Override>], progress: &dyn Progress) -> Result<Vec<Outcome>> {
+fn run_all(
+    s: &Settings,
+    specs: &[OutputSpec],
+    cases: &[Vec<Override>],
+    progress: &dyn Progress,
+) -> Result<Vec<Outcome>> {
     let pool = pool(s.jobs)?;
     progress.begin(cases.len() as u64);
     let out = pool.install(|| {
@@ -247,12 +268,14 @@ fn run_all(s: &Settings, specs: &[OutputSpec], cases: &[Vec<Override>], progress
                 if progress.cancelled() {
                     return Err("not run: the study was interrupted".to_string());
                 }
-                let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| -> Result<Vec<f64>> {
-                    let job = Job::from_file(&s.file, &Loader::with_overrides(ov.clone()))?;
-                    let r = job.run(&StopOnly(progress))?;
-                    r.require_completed()?;
-                    outputs::evaluate(specs, &r)
-                }));
+                let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(
+                    || -> Result<Vec<f64>> {
+                        let job = Job::from_file(&s.file, &Loader::with_overrides(ov.clone()))?;
+                        let r = job.run(&StopOnly(progress))?;
+                        r.require_completed()?;
+                        outputs::evaluate(specs, &r)
+                    },
+                ));
                 progress.inc(1);
                 match r {
                     Ok(Ok(v)) => Ok(v),
@@ -301,7 +324,9 @@ pub fn run(s: &Settings, progress: &dyn Progress) -> Result<Study> {
                         x.iter()
                             .zip(&ranges)
                             .zip(&params)
-                            .map(|((xi, r), p)| format!("{}={:.3}", p.name, r[0] + xi * (r[1] - r[0])))
+                            .map(|((xi, r), p)| {
+                                format!("{}={:.3}", p.name, r[0] + xi * (r[1] - r[0]))
+                            })
                             .collect::<Vec<_>>()
                             .join(" "),
                     );
@@ -317,7 +342,12 @@ pub fn run(s: &Settings, progress: &dyn Progress) -> Result<Study> {
     let failed: Vec<FailedRun> = res
         .iter()
         .zip(&labels)
-        .filter_map(|(r, l)| r.as_ref().err().map(|e| FailedRun { changes: l.clone(), error: e.clone() }))
+        .filter_map(|(r, l)| {
+            r.as_ref().err().map(|e| FailedRun {
+                changes: l.clone(),
+                error: e.clone(),
+            })
+        })
         .collect();
     let base = match &res[0] {
         Ok(v) => v.clone(),
@@ -333,7 +363,11 @@ pub fn run(s: &Settings, progress: &dyn Progress) -> Result<Study> {
     let outputs: Vec<OutputInfo> = specs
         .iter()
         .zip(&base)
-        .map(|(o, b)| OutputInfo { name: o.name(), unit: o.unit.clone(), base: *b })
+        .map(|(o, b)| OutputInfo {
+            name: o.name(),
+            unit: o.unit.clone(),
+            base: *b,
+        })
         .collect();
     let no = outputs.len();
     let at = |i: usize, o: usize| res[i].as_ref().ok().map(|v| v[o]);
@@ -371,7 +405,10 @@ pub fn run(s: &Settings, progress: &dyn Progress) -> Result<Study> {
                         v
                     })
                     .collect();
-                for (pr, e) in results.iter_mut().zip(morris::effects(&design, &y, s.levels.max(2))) {
+                for (pr, e) in results
+                    .iter_mut()
+                    .zip(morris::effects(&design, &y, s.levels.max(2)))
+                {
                     pr.mu_star_rel.push(e.mu_star / outputs[o].base.abs());
                     pr.morris.push(e);
                 }
@@ -388,7 +425,11 @@ pub fn run(s: &Settings, progress: &dyn Progress) -> Result<Study> {
         failed,
         runs: cases.len(),
         jobs: s.jobs,
-        trajectories: if s.method == Method::Morris { s.trajectories.max(2) } else { 0 },
+        trajectories: if s.method == Method::Morris {
+            s.trajectories.max(2)
+        } else {
+            0
+        },
         levels: s.levels,
         seed: s.seed,
         runs_wall_s,
@@ -413,6 +454,9 @@ fn range_of(p: &Param, range: f64) -> [f64; 2] {
 
 /// The study's directory for a scene: `out/sensitivity/<scene stem>`.
 pub fn default_dir(file: &Path) -> PathBuf {
-    let stem = file.file_stem().map(|s| s.to_string_lossy().to_string()).unwrap_or_default();
+    let stem = file
+        .file_stem()
+        .map(|s| s.to_string_lossy().to_string())
+        .unwrap_or_default();
     PathBuf::from("out").join("sensitivity").join(stem)
 }

@@ -37,7 +37,7 @@ impl SplitMix64 {
 
 /// One trajectory: k + 1 points in [0, 1]^k; point j + 1 differs from point j in factor
 /// `order[j]` by +Delta.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Trajectory {
     /// The points, each a level value per factor.
     pub points: Vec<Vec<f64>>,

@@ -59,11 +59,18 @@ pub fn defaults(channels: &[(String, String)]) -> Option<Vec<String>> {
     if !has("hitch_fx") {
         return None;
     }
-    let mut v: Vec<String> = ["hitch_fx.peak", "hitch_fx.rms", "hitch_fx.freq"].map(String::from).to_vec();
+    let mut v: Vec<String> = ["hitch_fx.peak", "hitch_fx.rms", "hitch_fx.freq"]
+        .map(String::from)
+        .to_vec();
     if has("acc_trailer_drawbar_z") {
         v.push("acc_trailer_drawbar_z.peak".into());
     }
-    v.extend(channels.iter().filter(|c| c.0.starts_with("acc_")).map(|c| format!("{}.peak100", c.0)));
+    v.extend(
+        channels
+            .iter()
+            .filter(|c| c.0.starts_with("acc_"))
+            .map(|c| format!("{}.peak100", c.0)),
+    );
     Some(v)
 }
 
@@ -81,7 +88,12 @@ pub fn resolve(names: &[String], job: &Job) -> Result<Vec<OutputSpec>> {
         message: m,
     };
     let names = if names.is_empty() {
-        defaults(&channels).ok_or_else(|| bad("", "this model has no hitch: name the outputs, e.g. --outputs body.z.peak".into()))?
+        defaults(&channels).ok_or_else(|| {
+            bad(
+                "",
+                "this model has no hitch: name the outputs, e.g. --outputs body.z.peak".into(),
+            )
+        })?
     } else {
         names.to_vec()
     };
@@ -104,12 +116,19 @@ pub fn resolve(names: &[String], job: &Job) -> Result<Vec<OutputSpec>> {
                 .map(|c| c.1.clone())
                 .ok_or_else(|| {
                     let names: Vec<&str> = channels.iter().map(|c| c.0.as_str()).collect();
-                    bad(n, format!("no channel `{ch}` (channels: {})", names.join(", ")))
+                    bad(
+                        n,
+                        format!("no channel `{ch}` (channels: {})", names.join(", ")),
+                    )
                 })?;
             Ok(OutputSpec {
                 channel: ch.into(),
                 measure,
-                unit: if measure == Measure::Freq { "Hz".into() } else { unit },
+                unit: if measure == Measure::Freq {
+                    "Hz".into()
+                } else {
+                    unit
+                },
             })
         })
         .collect::<std::result::Result<Vec<_>, InputError>>()
@@ -120,7 +139,11 @@ pub fn resolve(names: &[String], job: &Job) -> Result<Vec<OutputSpec>> {
 pub fn evaluate(specs: &[OutputSpec], r: &RunResult) -> Result<Vec<f64>> {
     let t = &r.samples.times;
     let n = t.len();
-    let rate = if n > 1 { (n - 1) as f64 / (t[n - 1] - t[0]) } else { 0.0 };
+    let rate = if n > 1 {
+        (n - 1) as f64 / (t[n - 1] - t[0])
+    } else {
+        0.0
+    };
     specs
         .iter()
         .map(|o| {
@@ -128,8 +151,13 @@ pub fn evaluate(specs: &[OutputSpec], r: &RunResult) -> Result<Vec<f64>> {
             let peak = |y: &[f64]| y.iter().fold(0.0f64, |m, v| m.max(v.abs()));
             Ok(match o.measure {
                 Measure::Peak => peak(&y),
-                Measure::Rms => (y.iter().map(|v| v * v).sum::<f64>() / y.len().max(1) as f64).sqrt(),
-                Measure::Freq => crate::validate::spectrum::peak_in(&y, 1.0 / rate, [1.0, 0.45 * rate]).unwrap_or(f64::NAN),
+                Measure::Rms => {
+                    (y.iter().map(|v| v * v).sum::<f64>() / y.len().max(1) as f64).sqrt()
+                }
+                Measure::Freq => {
+                    crate::validate::spectrum::peak_in(&y, 1.0 / rate, [1.0, 0.45 * rate])
+                        .unwrap_or(f64::NAN)
+                }
                 Measure::Peak100 => peak(&Butterworth::low_pass(4, 100.0, rate)?.apply(&y)),
             })
         })

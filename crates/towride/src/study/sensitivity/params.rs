@@ -120,7 +120,11 @@ fn tir_kind(key: &str) -> Option<&'static str> {
         Some("stiffness")
     } else if key.ends_with("DAMPING") || key.starts_with("DAMP_") {
         Some("damping")
-    } else if key == "MASS" || key == "BELT_MASS" || inertia(key) || key.strip_prefix("BELT_").is_some_and(inertia) {
+    } else if key == "MASS"
+        || key == "BELT_MASS"
+        || inertia(key)
+        || key.strip_prefix("BELT_").is_some_and(inertia)
+    {
         Some("mass")
     } else {
         None
@@ -145,12 +149,19 @@ pub fn candidates(scene: &Path, groups: &[String]) -> Result<Vec<Param>, crate::
     }
     // Files are named relative to the deepest folder holding them all (the repository
     // for the shipped scenes): `vehicles/fabia/hitch.toml`, `flex/hitch_crossbeam.toml`.
-    let canon: Vec<PathBuf> = files.iter().map(|f| f.canonicalize().unwrap_or_else(|_| f.clone())).collect();
+    let canon: Vec<PathBuf> = files
+        .iter()
+        .map(|f| f.canonicalize().unwrap_or_else(|_| f.clone()))
+        .collect();
     let root = canon.iter().skip(1).fold(None::<PathBuf>, |acc, f| {
         let dir = f.parent().unwrap_or(Path::new("")).to_path_buf();
         Some(match acc {
             None => dir,
-            Some(a) => a.ancestors().find(|x| dir.starts_with(x)).map(Path::to_path_buf).unwrap_or_default(),
+            Some(a) => a
+                .ancestors()
+                .find(|x| dir.starts_with(x))
+                .map(Path::to_path_buf)
+                .unwrap_or_default(),
         })
     });
     let mut out = Vec::new();
@@ -172,7 +183,9 @@ pub fn candidates(scene: &Path, groups: &[String]) -> Result<Vec<Param>, crate::
             let mut found = Vec::new();
             walk(t.as_item(), "", &mut found);
             for (path, base, key) in found {
-                let Some(kind) = toml_kind(&key) else { continue };
+                let Some(kind) = toml_kind(&key) else {
+                    continue;
+                };
                 out.push(Param {
                     name: format!("{rel}:{path}"),
                     file: rel.clone(),
@@ -202,7 +215,11 @@ fn line_of(text: &str, key: &str, path: &str) -> usize {
             let name = t.trim_matches(|c| c == '[' || c == ']').trim();
             in_table = name == head || name.starts_with(&format!("{head}."));
         }
-        if in_table && (t.starts_with(&format!("{key} ")) || t.starts_with(&format!("{key}=")) || t.contains(&format!(" {key} ="))) {
+        if in_table
+            && (t.starts_with(&format!("{key} "))
+                || t.starts_with(&format!("{key}="))
+                || t.contains(&format!(" {key} =")))
+        {
             return i + 1;
         }
     }
@@ -271,9 +288,13 @@ fn tir_values(text: &str, rel: &str, group: &str, out: &mut Vec<Param>) {
             section = l.trim_matches(|c| c == '[' || c == ']').trim().to_string();
             continue;
         }
-        let Some((k, v)) = l.split_once('=') else { continue };
+        let Some((k, v)) = l.split_once('=') else {
+            continue;
+        };
         let (k, v) = (k.trim(), v.trim());
-        let (Some(kind), Ok(x)) = (tir_kind(k), v.parse::<f64>()) else { continue };
+        let (Some(kind), Ok(x)) = (tir_kind(k), v.parse::<f64>()) else {
+            continue;
+        };
         if section == "UNITS" || x == 0.0 {
             continue;
         }
@@ -308,14 +329,20 @@ fn assign_groups(files: &[PathBuf]) -> Vec<Option<String>> {
             if depth[i] == usize::MAX || f.extension().is_some_and(|e| e == "tir") {
                 continue;
             }
-            let Ok(text) = std::fs::read_to_string(f) else { continue };
-            let Ok(doc) = text.parse::<toml::Table>() else { continue };
+            let Ok(text) = std::fs::read_to_string(f) else {
+                continue;
+            };
+            let Ok(doc) = text.parse::<toml::Table>() else {
+                continue;
+            };
             let dir = f.parent().unwrap_or(Path::new("."));
             let mut refs = Vec::new();
             refs_in(&toml::Value::Table(doc), &[], &mut refs);
             for (keys, rel) in refs {
                 let full = dir.join(&rel);
-                let Some(j) = files.iter().position(|g| same(g, &full)) else { continue };
+                let Some(j) = files.iter().position(|g| same(g, &full)) else {
+                    continue;
+                };
                 if depth[j] != usize::MAX {
                     continue;
                 }
@@ -356,7 +383,9 @@ fn same(a: &Path, b: &Path) -> bool {
 /// String values that look like file names, with the keys leading to them.
 fn refs_in(v: &toml::Value, keys: &[String], out: &mut Vec<(Vec<String>, String)>) {
     match v {
-        toml::Value::String(s) if s.ends_with(".toml") || s.ends_with(".tir") || s.ends_with(".csv") => {
+        toml::Value::String(s)
+            if s.ends_with(".toml") || s.ends_with(".tir") || s.ends_with(".csv") =>
+        {
             out.push((keys.to_vec(), s.clone()));
         }
         toml::Value::Table(t) => {
@@ -388,9 +417,9 @@ pub fn named(all: &[Param], names: &[String]) -> Result<Vec<Param>, InputError> 
             field: format!("--params {n}"),
             message: m,
         };
-        let (file, path) = n
-            .rsplit_once(':')
-            .ok_or_else(|| bad("write FILE:PATH, e.g. hitch.toml:bracket_bushing.stiffness_n_m".into()))?;
+        let (file, path) = n.rsplit_once(':').ok_or_else(|| {
+            bad("write FILE:PATH, e.g. hitch.toml:bracket_bushing.stiffness_n_m".into())
+        })?;
         // A path ending in `[i]` addresses a component (array-of-table paths end in a key).
         let (path, component) = match path
             .strip_suffix(']')

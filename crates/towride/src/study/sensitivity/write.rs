@@ -23,7 +23,10 @@ pub fn write(study: &mut Study, dir: &Path) -> Result<()> {
     tornado(study, &png)?;
     let html = dir.join("sensitivity.html");
     crate::atomic::write(&html, page(study)).map_err(|e| Error::io(&html, e))?;
-    study.written = [&csv, &png, &html].iter().map(|p| p.display().to_string()).collect();
+    study.written = [&csv, &png, &html]
+        .iter()
+        .map(|p| p.display().to_string())
+        .collect();
     let json = dir.join("sensitivity.json");
     study.written.push(json.display().to_string());
     let text = serde_json::to_string_pretty(study).unwrap_or_default();
@@ -34,9 +37,17 @@ fn write_csv(s: &Study, path: &Path) -> Result<()> {
     let io = |e: csv::Error| Error::io(path, e.into());
     let file = crate::atomic::Atomic::create(path).map_err(|e| Error::io(path, e))?;
     let mut w = csv::Writer::from_writer(file);
-    let mut head: Vec<String> = ["parameter", "group", "kind", "base value", "line", "range low [-]", "range high [-]"]
-        .map(String::from)
-        .to_vec();
+    let mut head: Vec<String> = [
+        "parameter",
+        "group",
+        "kind",
+        "base value",
+        "line",
+        "range low [-]",
+        "range high [-]",
+    ]
+    .map(String::from)
+    .to_vec();
     for o in &s.outputs {
         match s.method {
             Method::Oat => head.push(format!("{} elasticity [-]", o.name)),
@@ -72,7 +83,9 @@ fn write_csv(s: &Study, path: &Path) -> Result<()> {
         }
         w.write_record(&row).map_err(io)?;
     }
-    let file = w.into_inner().map_err(|e| Error::io(path, std::io::Error::other(e.to_string())))?;
+    let file = w
+        .into_inner()
+        .map_err(|e| Error::io(path, std::io::Error::other(e.to_string())))?;
     file.commit().map_err(|e| Error::io(path, e))
 }
 
@@ -95,7 +108,12 @@ pub fn tornado(s: &Study, path: &Path) -> Result<()> {
     let Some(out) = s.outputs.first() else {
         return Ok(());
     };
-    let rank: Vec<_> = s.ranking(0).into_iter().filter(|p| bar(s, p, 0).is_some()).take(TORNADO_ROWS).collect();
+    let rank: Vec<_> = s
+        .ranking(0)
+        .into_iter()
+        .filter(|p| bar(s, p, 0).is_some())
+        .take(TORNADO_ROWS)
+        .collect();
     let n = rank.len();
     let (mut up, mut down) = (Vec::new(), Vec::new());
     let mut labels = Vec::new();
@@ -110,7 +128,11 @@ pub fn tornado(s: &Study, path: &Path) -> Result<()> {
         Method::Oat => "elasticity d ln y / d ln p at +-10 % [-]",
         Method::Morris => "Morris mu* / base output (sign of mu) [-]",
     };
-    let mut panel = Panel::new(format!("{} [{}]: base {:.4e}", out.name, out.unit, out.base), what, "");
+    let mut panel = Panel::new(
+        format!("{} [{}]: base {:.4e}", out.name, out.unit, out.base),
+        what,
+        "",
+    );
     panel.y = Axis {
         label: String::new(),
         log: false,
@@ -118,17 +140,29 @@ pub fn tornado(s: &Study, path: &Path) -> Result<()> {
         labels,
     };
     let width = (360 / n.max(8)) as u32;
-    for (pts, label, c) in [(up, "raises the output", PALETTE[1]), (down, "lowers the output", PALETTE[0])] {
+    for (pts, label, c) in [
+        (up, "raises the output", PALETTE[1]),
+        (down, "lowers the output", PALETTE[0]),
+    ] {
         if !pts.is_empty() {
-            panel.traces.push(Trace::new(label, pts, Style { colour: c, width, dot: 0.0 }));
+            panel.traces.push(Trace::new(
+                label,
+                pts,
+                Style {
+                    colour: c,
+                    width,
+                    dot: 0.0,
+                },
+            ));
         }
     }
-    // The zero line.
-    panel.traces.push(Trace::new("", vec![(0.0, 0.3), (0.0, n as f64 + 0.7)], Style::line([40, 40, 40])));
     let mut fig = Figure::new(vec![panel], 1);
     fig.panel_height = 120 + 40 * n as u32;
     fig.header.push(HeaderLine {
-        text: format!("Sensitivity of {} ({:?}, {} runs): {}", out.name, s.method, s.runs, s.file),
+        text: format!(
+            "Sensitivity of {} ({:?}, {} runs): {}",
+            out.name, s.method, s.runs, s.file
+        ),
         size: 22.0,
         colour: [40, 40, 40],
     });
@@ -168,7 +202,13 @@ pub fn page(s: &Study) -> String {
     h.push_str("<h2>Ranking of the first output</h2>\n<p><img src=\"tornado.png\" alt=\"tornado chart\" style=\"max-width:100%\"></p>\n");
     h.push_str("<h2>Outputs</h2>\n<table><tr><th>output</th><th>unit</th><th>base run</th></tr>\n");
     for o in &s.outputs {
-        let _ = writeln!(h, "<tr><td>{}</td><td>{}</td><td>{:.5e}</td></tr>", escape(&o.name), escape(&o.unit), o.base);
+        let _ = writeln!(
+            h,
+            "<tr><td>{}</td><td>{}</td><td>{:.5e}</td></tr>",
+            escape(&o.name),
+            escape(&o.unit),
+            o.base
+        );
     }
     h.push_str("</table>\n<h2>Parameters, ranked by the first output</h2>\n<table><tr><th>parameter</th><th>group</th><th>kind</th><th>base</th>");
     for o in &s.outputs {
@@ -177,7 +217,11 @@ pub fn page(s: &Study) -> String {
                 let _ = write!(h, "<th>{} elasticity</th>", escape(&o.name));
             }
             Method::Morris => {
-                let _ = write!(h, "<th>{} mu*/base</th><th>sigma/base</th>", escape(&o.name));
+                let _ = write!(
+                    h,
+                    "<th>{} mu*/base</th><th>sigma/base</th>",
+                    escape(&o.name)
+                );
             }
         }
     }
@@ -194,11 +238,24 @@ pub fn page(s: &Study) -> String {
         for (o, out) in s.outputs.iter().enumerate() {
             match s.method {
                 Method::Oat => {
-                    let _ = write!(h, "<td>{}</td>", p.elasticity.get(o).copied().flatten().map_or("-".into(), |v| format!("{v:+.4}")));
+                    let _ = write!(
+                        h,
+                        "<td>{}</td>",
+                        p.elasticity
+                            .get(o)
+                            .copied()
+                            .flatten()
+                            .map_or("-".into(), |v| format!("{v:+.4}"))
+                    );
                 }
                 Method::Morris => {
                     let e = &p.morris[o];
-                    let _ = write!(h, "<td>{:.4}</td><td>{:.4}</td>", e.mu_star / out.base.abs(), e.sigma / out.base.abs());
+                    let _ = write!(
+                        h,
+                        "<td>{:.4}</td><td>{:.4}</td>",
+                        e.mu_star / out.base.abs(),
+                        e.sigma / out.base.abs()
+                    );
                 }
             }
         }
