@@ -9,6 +9,7 @@ pub mod bounds;
 pub(crate) mod csv_table;
 pub(crate) mod loader;
 pub(crate) mod overrides;
+pub mod provenance;
 
 pub use loader::Loader;
 pub use overrides::{Origin, Override};

@@ -241,6 +241,15 @@ impl TirFile {
         self.sections.get(section).and_then(|s| s.keys.get(key))
     }
 
+    /// Every entry as (section, key, entry), in no particular order.
+    pub fn entries(&self) -> impl Iterator<Item = (&str, &str, &Entry)> {
+        self.sections.iter().flat_map(|(s, sec)| {
+            sec.keys
+                .iter()
+                .map(move |(k, e)| (s.as_str(), k.as_str(), e))
+        })
+    }
+
     /// True when the file has section `[section]`.
     pub fn has_section(&self, section: &str) -> bool {
         self.sections.contains_key(section)
