@@ -73,6 +73,8 @@ pub fn run(a: &RunArgs) -> CliResult {
         let res = run_job(&job, &a.out, a.json)?;
         if a.json {
             println!("{}", res.summary.to_json());
+        } else if job.scene.is_some() {
+            print_assumed(&a.file);
         }
         return Ok(exit_code(&res, &a.out));
     }
@@ -240,6 +242,43 @@ fn print_summary(r: &RunResult) {
         println!(
             "  {name:<24} min {:>11.4e} at {:>7.4} s   max {:>11.4e} at {:>7.4} s  [{}]",
             c.min, c.t_min, c.max, c.t_max, c.unit
+        );
+    }
+}
+
+/// The assumed values among the inputs the scene's key output is most sensitive to, from
+/// the scene's latest sensitivity study (none is run here).
+fn print_assumed(scene: &Path) {
+    use towride::study::sensitivity::{assumed::assumed_inputs, default_dir};
+    let a = assumed_inputs(scene, &default_dir(scene), 10);
+    if let Some(note) = &a.note {
+        println!("assumed inputs: {note}");
+        return;
+    }
+    let output = a.output.as_deref().unwrap_or("the first output");
+    if a.inputs.is_empty() {
+        println!(
+            "assumed inputs: none among the ten {output} is most sensitive to ({})",
+            a.study.as_deref().unwrap_or("")
+        );
+        return;
+    }
+    println!(
+        "assumed or unsourced values among the ten inputs {output} is most sensitive to ({}):",
+        a.study.as_deref().unwrap_or("")
+    );
+    for i in &a.inputs {
+        println!(
+            "  {:>2}. {:<70} {:.3} {}{}",
+            i.rank,
+            i.parameter,
+            i.sensitivity,
+            i.class,
+            if i.source.is_empty() {
+                String::new()
+            } else {
+                format!(": {}", i.source)
+            }
         );
     }
 }

@@ -39,13 +39,15 @@ pub fn load(
             let rm = loader.run_modes().map(|r| (r, r.body(body)));
             match rm {
                 Some((_, Some(b))) => Some(Rule::List { modes: b.kept() }),
-                Some((r, None)) => return Err(src.error(
-                    fe_at,
-                    format!(
+                Some((r, None)) => {
+                    return Err(src.error(
+                        fe_at,
+                        format!(
                         "modes_from: the run in {} has no strain-energy shares of body `{body}`",
                         r.run_dir.display()
                     ),
-                )),
+                    ))
+                }
                 None => None,
             }
         }

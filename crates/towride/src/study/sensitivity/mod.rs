@@ -11,6 +11,7 @@
 //!
 //! A run that fails is recorded with its parameter values and error; the others go on.
 
+pub mod assumed;
 pub mod morris;
 pub mod outputs;
 pub mod params;
