@@ -15,6 +15,7 @@ mod basics;
 mod modes;
 mod provenance;
 mod reliability;
+mod sensitivity;
 mod slurm;
 mod sweep;
 mod tyre_rig;

@@ -23,6 +23,7 @@ mod run;
 mod scaling;
 mod scene_bench;
 mod scene_stress;
+mod sensitivity;
 mod sweep;
 mod tyre_rig;
 mod validate;
@@ -68,6 +69,9 @@ enum Command {
     Stress(scene_stress::StressArgs),
     /// Parameter sweep over property-file values, in parallel; `sweep merge` joins shards.
     Sweep(sweep::SweepArgs),
+    /// Which inputs matter: OAT elasticities or Morris screening of a scene's outputs
+    /// over its stiffness, damping and mass values.
+    Sensitivity(sensitivity::SensitivityArgs),
     /// Compare the simulation with recorded runs (RUN.toml or a folder); `validate synth`
     /// writes synthetic runs.
     Validate(validate::ValidateArgs),
@@ -138,6 +142,7 @@ fn run() -> i32 {
         Command::TyreRig(a) => tyre_rig::run(&a),
         Command::Provenance(a) => provenance::run(&a),
         Command::Sweep(a) => sweep::run(&a),
+        Command::Sensitivity(a) => sensitivity::run(&a),
         Command::Stress(a) => scene_stress::run_stress(&a),
         Command::Validate(a) => validate::run(&a),
         Command::Compare(a) => compare::run(&a),

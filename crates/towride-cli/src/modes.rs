@@ -30,6 +30,16 @@ pub struct ModesArgs {
     /// Fixed-interface modes of the Craig-Bampton reduction (default: the file's).
     #[arg(long, value_parser = crate::bounded::count)]
     fixed_modes: Option<usize>,
+    /// Show beside the file's selection the one an earlier run's strain-energy shares
+    /// make (the run's folder, holding summary.json).
+    #[arg(long, value_name = "RUN_DIR")]
+    from_run: Option<PathBuf>,
+    /// With --from-run: the modal body of that run (default hitch).
+    #[arg(long, default_value = "hitch", requires = "from_run")]
+    body: String,
+    /// With --from-run: the strain-energy share a mode needs [%] (default 1).
+    #[arg(long, requires = "from_run", value_parser = crate::bounded::share_pct)]
+    run_share: Option<f64>,
     /// Print machine-readable JSON instead of tables.
     #[arg(long)]
     json: bool,
@@ -53,6 +63,33 @@ pub fn run(a: &ModesArgs) -> CliResult {
         },
     )?;
     let report = ModesReport::of(&body, &a.file);
+    if let Some(dir) = &a.from_run {
+        let at = towride::input::InputError {
+            file: "command line".into(),
+            line: None,
+            column: None,
+            field: "--from-run".into(),
+            message: String::new(),
+        };
+        let share = a.run_share.map_or(0.01, |p| p / 100.0);
+        let run = towride::flex::feedback::from_run(dir, share, &at)?;
+        let b = run.body(&a.body).ok_or_else(|| {
+            let names: Vec<&str> = run.bodies.iter().map(|b| b.body.as_str()).collect();
+            format!(
+                "{}: no modal body `{}` in that run (bodies: {})",
+                dir.display(),
+                a.body,
+                names.join(", ")
+            )
+        })?;
+        let c = towride::flex::feedback::compare(&report, &run, b);
+        if a.json {
+            println!("{}", serde_json::to_string_pretty(&c)?);
+        } else {
+            print_comparison(&c);
+        }
+        return Ok(0);
+    }
     if a.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
         return Ok(0);
@@ -156,4 +193,41 @@ fn print_text(r: &ModesReport) {
          max|I6 - I| = {:.2e}; max|I5| = {:.3e}, max|I8| = {:.3e}, max|I9| = {:.3e}",
         r.mass_kg, i.i3_max_abs, i.i4_max_abs, i.i6_identity_error, i.i5_max_abs, i.i8_max_abs, i.i9_max_abs
     );
+}
+
+fn print_comparison(c: &towride::flex::feedback::Comparison) {
+    println!(
+        "body {}: a priori ({}) against the run in {} (share >= {} %)",
+        c.body,
+        c.a_priori_rule,
+        c.run_dir,
+        100.0 * c.min_energy_share
+    );
+    println!(
+        "{:>4} {:>10} {:>8} {:>9} {:>11} {:>13} {:>6}",
+        "mode", "freq [Hz]", "a priori", "share %", "run peak %", "run integr. %", "run"
+    );
+    for m in &c.modes {
+        let (p, i) = m
+            .run_shares
+            .map_or(("not run".to_string(), "-".to_string()), |s| {
+                (
+                    format!("{:.2}", 100.0 * s[0]),
+                    format!("{:.2}", 100.0 * s[1]),
+                )
+            });
+        println!(
+            "{:>4} {:>10.2} {:>8} {:>9} {:>11} {:>13} {:>6}",
+            m.number,
+            m.frequency_hz,
+            if m.a_priori { "*" } else { "" },
+            m.a_priori_share
+                .map_or("-".to_string(), |s| format!("{:.2}", 100.0 * s)),
+            p,
+            i,
+            if m.run_based { "*" } else { "" }
+        );
+    }
+    println!("a priori: {:?}", c.a_priori_modes);
+    println!("run-based: {:?}", c.run_based_modes);
 }

@@ -41,6 +41,13 @@ pub struct RunArgs {
     /// animation_rate_hz` (default 200); 0 switches the view off.
     #[arg(long, value_name = "HZ", value_parser = crate::bounded::hz)]
     pub(crate) animation_rate_hz: Option<f64>,
+    /// Select the modal bodies' modes from this earlier run's strain-energy shares (its
+    /// folder, holding summary.json) instead of their files' rules.
+    #[arg(long, value_name = "RUN_DIR")]
+    pub(crate) modes_from: Option<PathBuf>,
+    /// With --modes-from: the strain-energy share a mode needs [%] (default 1).
+    #[arg(long, requires = "modes_from", value_parser = crate::bounded::share_pct)]
+    pub(crate) modes_share: Option<f64>,
 }
 
 pub fn run(a: &RunArgs) -> CliResult {
@@ -49,7 +56,18 @@ pub fn run(a: &RunArgs) -> CliResult {
         .iter()
         .map(|s| Override::from_argument(s))
         .collect::<Result<Vec<_>, _>>()?;
-    let loader = Loader::with_overrides(overrides);
+    let mut loader = Loader::with_overrides(overrides);
+    if let Some(dir) = &a.modes_from {
+        let at = towride::input::InputError {
+            file: "command line".into(),
+            line: None,
+            column: None,
+            field: "--modes-from".into(),
+            message: String::new(),
+        };
+        let share = a.modes_share.map_or(0.01, |p| p / 100.0);
+        loader = loader.with_run_modes(towride::flex::feedback::from_run(dir, share, &at)?);
+    }
     if a.list_names {
         return list_names(a, &loader);
     }
@@ -71,6 +89,8 @@ pub fn run(a: &RunArgs) -> CliResult {
         let res = run_job(&job, &a.out, a.json)?;
         if a.json {
             println!("{}", res.summary.to_json());
+        } else if job.scene.is_some() {
+            print_assumed(&a.file);
         }
         return Ok(exit_code(&res, &a.out));
     }
@@ -241,6 +261,43 @@ fn print_summary(r: &RunResult) {
         println!(
             "  {name:<24} min {:>11.4e} at {:>7.4} s   max {:>11.4e} at {:>7.4} s  [{}]",
             c.min, c.t_min, c.max, c.t_max, c.unit
+        );
+    }
+}
+
+/// The assumed values among the inputs the scene's key output is most sensitive to, from
+/// the scene's latest sensitivity study (none is run here).
+fn print_assumed(scene: &Path) {
+    use towride::study::sensitivity::{assumed::assumed_inputs, default_dir};
+    let a = assumed_inputs(scene, &default_dir(scene), 10);
+    if let Some(note) = &a.note {
+        println!("assumed inputs: {note}");
+        return;
+    }
+    let output = a.output.as_deref().unwrap_or("the first output");
+    if a.inputs.is_empty() {
+        println!(
+            "assumed inputs: none among the ten {output} is most sensitive to ({})",
+            a.study.as_deref().unwrap_or("")
+        );
+        return;
+    }
+    println!(
+        "assumed or unsourced values among the ten inputs {output} is most sensitive to ({}):",
+        a.study.as_deref().unwrap_or("")
+    );
+    for i in &a.inputs {
+        println!(
+            "  {:>2}. {:<70} {:.3} {}{}",
+            i.rank,
+            i.parameter,
+            i.sensitivity,
+            i.class,
+            if i.source.is_empty() {
+                String::new()
+            } else {
+                format!(": {}", i.source)
+            }
         );
     }
 }

@@ -12,6 +12,7 @@ pub(crate) mod assemble;
 pub mod beam;
 pub mod craig_bampton;
 pub(crate) mod damping;
+pub mod feedback;
 pub(crate) mod input;
 pub(crate) mod invariants;
 pub(crate) mod material;

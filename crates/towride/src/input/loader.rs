@@ -46,6 +46,9 @@ pub struct Loader {
     entries: Vec<Arc<Entry>>,
     /// Every file read, in order (for messages about overrides that matched nothing).
     read: Arc<Mutex<Vec<PathBuf>>>,
+    /// Modes selected from an earlier run's strain-energy shares, replacing the modal
+    /// bodies' own selection rules.
+    modes: Option<Arc<crate::flex::feedback::RunModes>>,
 }
 
 impl Loader {
@@ -72,12 +75,28 @@ impl Loader {
         Loader {
             entries,
             read: Arc::clone(&self.read),
+            modes: self.modes.clone(),
         }
     }
 
-    /// The same overrides with a fresh record of use (one case of a batch).
+    /// The same overrides with a fresh record of use (one case of a batch); the list of
+    /// files read stays shared, so the caller learns what the case read.
     pub fn fresh(&self) -> Loader {
-        Loader::with_overrides(self.entries.iter().map(|e| e.ov.clone()).collect())
+        let mut l = Loader::with_overrides(self.entries.iter().map(|e| e.ov.clone()).collect());
+        l.read = Arc::clone(&self.read);
+        l.modes = self.modes.clone();
+        l
+    }
+
+    /// This loader with the modes of its modal bodies selected from an earlier run.
+    pub fn with_run_modes(mut self, modes: crate::flex::feedback::RunModes) -> Loader {
+        self.modes = Some(Arc::new(modes));
+        self
+    }
+
+    /// The run-based mode selection in force, if any.
+    pub fn run_modes(&self) -> Option<&crate::flex::feedback::RunModes> {
+        self.modes.as_deref()
     }
 
     /// The overrides in force.
@@ -93,6 +112,19 @@ impl Loader {
             .filter(|e| e.matches(path))
             .map(|e| e.as_ref())
             .collect()
+    }
+
+    /// Every file read so far through this loader or its clones, in first-read order,
+    /// each once.
+    pub fn files_read(&self) -> Vec<PathBuf> {
+        let read = self.read.lock().map(|r| r.clone()).unwrap_or_default();
+        let mut out: Vec<PathBuf> = Vec::new();
+        for p in read {
+            if !out.contains(&p) {
+                out.push(p);
+            }
+        }
+        out
     }
 
     fn note_read(&self, path: &Path) {

@@ -18,6 +18,7 @@
 //! # }
 //! ```
 
+pub mod ringing;
 mod summary;
 
 use std::path::{Path, PathBuf};

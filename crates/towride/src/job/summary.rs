@@ -248,6 +248,9 @@ pub struct RunSummary {
     pub lift_off: Vec<LiftOff>,
     /// Strain-energy shares of the modal bodies.
     pub modal_energy: Vec<ModalEnergy>,
+    /// The hitch's fore-aft force (`hitch_fx`): peak, RMS, dominant frequency and the
+    /// damping of its ringing ([`super::ringing`]); `None` without a hitch.
+    pub hitch_force: Option<super::ringing::Ringing>,
     /// Per channel, by name: unit, extremes and their times.
     pub channels: BTreeMap<String, ChannelSummary>,
     /// The CSV written, once written.
@@ -326,6 +329,9 @@ impl RunSummary {
                     shares: b,
                 })
                 .collect(),
+            hitch_force: samples
+                .channel("hitch_fx")
+                .and_then(|y| super::ringing::ringing("hitch_fx", &samples.times, &y)),
             channels: channels(samples),
             outputs_csv: None,
             plots: None,

@@ -158,6 +158,9 @@ pub struct Axis {
     pub log: bool,
     /// Fixed range; `None`: the data's, padded.
     pub range: Option<(f64, f64)>,
+    /// Named ticks (value, label) instead of numbers: categories such as the rows of a
+    /// tornado chart.
+    pub labels: Vec<(f64, String)>,
 }
 
 impl Axis {
@@ -174,7 +177,7 @@ impl Axis {
         Axis {
             label: label.into(),
             log: true,
-            range: None,
+            ..Axis::default()
         }
     }
 }
@@ -405,6 +408,15 @@ fn range(axis: &Axis, vals: impl Iterator<Item = f64>) -> (f64, f64) {
 /// Ticks and labels of an axis `len` pixels long, at least `gap` pixels apart, with room
 /// for labels `along` wide (x axis) when `along` is set.
 fn axis_ticks(a: &Axis, lo: f64, hi: f64, len: f64, gap: f64, along: bool) -> Vec<(f64, String)> {
+    if !a.labels.is_empty() {
+        let (a0, a1) = (lo.min(hi), lo.max(hi));
+        return a
+            .labels
+            .iter()
+            .filter(|(v, _)| *v >= a0 && *v <= a1)
+            .cloned()
+            .collect();
+    }
     if a.log {
         let t = ticks::log(lo, hi);
         let labels = ticks::log_labels(&t, 2);

@@ -168,6 +168,10 @@ struct SceneSec {
     ball_coupling: Option<String>,
     joints_as_bushings: Option<JointBushing>,
     rear_cross_member: Option<String>,
+    /// A run folder whose strain-energy shares select the modal bodies' modes.
+    modes_from: Option<String>,
+    /// The share a mode needs there (fraction; default 0.01).
+    modes_min_energy_share: Option<f64>,
 }
 
 #[derive(Deserialize, Debug)]
@@ -324,6 +328,23 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
             .collect(),
     );
     let dir = path.parent().unwrap_or(Path::new("."));
+    // Modes from an earlier run: the command line's choice wins over the file's.
+    let loader = match (&f.scene.modes_from, loader.run_modes()) {
+        (Some(run), None) => {
+            let share = f
+                .scene
+                .modes_min_energy_share
+                .unwrap_or(crate::flex::selection::DEFAULT_MIN_ENERGY_SHARE);
+            let at = if f.scene.modes_min_energy_share.is_some() {
+                src.error(&path!["scene", "modes_min_energy_share"], "")
+            } else {
+                src.error(&path!["scene", "modes_from"], "")
+            };
+            let rm = crate::flex::feedback::from_run(&dir.join(run), share, &at)?;
+            loader.with_run_modes(rm)
+        }
+        _ => loader,
+    };
     let existing = |p: &[crate::input::Seg], rel: &str| -> Result<PathBuf, InputError> {
         let full = dir.join(rel);
         if full.is_file() {

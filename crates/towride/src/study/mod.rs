@@ -5,6 +5,7 @@
 
 pub mod bench;
 pub mod scaling;
+pub mod sensitivity;
 pub mod stress;
 
 use crate::error::{Error, Result};

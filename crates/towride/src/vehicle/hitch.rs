@@ -181,6 +181,7 @@ pub fn build(
         Some(variant),
         None,
         &b.loader,
+        "hitch",
     )?;
     let brackets = modal_body::nodes(
         &src,

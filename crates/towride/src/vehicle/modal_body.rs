@@ -17,7 +17,8 @@ use crate::model::math::add;
 
 /// The selected modes of the FE model `fe` (`variant`, None for the base sections); its
 /// file's `[selection]` unless `selection` (a table of `src` at the given path) replaces
-/// it. Errors of the FE file name that file; a model the reduction refuses is reported at
+/// it, and an earlier run's strain-energy selection for `body` (the loader's
+/// [`crate::input::Loader::run_modes`]) replaces both. Errors of the FE file name that file; a model the reduction refuses is reported at
 /// `fe_at`, the property file's field naming it.
 pub fn load(
     src: &Source,
@@ -26,12 +27,30 @@ pub fn load(
     variant: Option<u32>,
     selection: Option<(&[Seg], &SelectionIn)>,
     loader: &crate::input::Loader,
+    body: &str,
 ) -> Result<ModalData, InputError> {
     if !fe.is_file() {
         return Err(src.error(fe_at, format!("no file {}", fe.display())));
     }
     let mesh = Mesh::read(fe, variant, loader)?;
     let rule = match selection {
+        // Modes chosen from an earlier run's strain-energy shares replace any rule.
+        _ if loader.run_modes().is_some() => {
+            let rm = loader.run_modes().map(|r| (r, r.body(body)));
+            match rm {
+                Some((_, Some(b))) => Some(Rule::List { modes: b.kept() }),
+                Some((r, None)) => {
+                    return Err(src.error(
+                        fe_at,
+                        format!(
+                        "modes_from: the run in {} has no strain-energy shares of body `{body}`",
+                        r.run_dir.display()
+                    ),
+                    ))
+                }
+                None => None,
+            }
+        }
         Some((p, s)) => {
             let names: Vec<String> = mesh.interfaces.iter().map(|i| i.name.clone()).collect();
             Some(Rule::from_input(src, p, s, &names)?)

@@ -89,7 +89,15 @@ pub fn read(
     }
     let sel_at = at(p, "selection");
     let selection = c.selection.as_ref().map(|s| (sel_at.as_slice(), s));
-    let data = modal_body::load(src, &at(p, "fe_file"), &fe, None, selection, loader)?;
+    let data = modal_body::load(
+        src,
+        &at(p, "fe_file"),
+        &fe,
+        None,
+        selection,
+        loader,
+        "cross_member",
+    )?;
     let np = at(p, "interface_nodes");
     let nodes = modal_body::nodes(src, &np, &data, &fe, &c.interface_nodes)?;
     let pos = nodes.map(|n| add(&origin, &data.nodes[n].position_m));

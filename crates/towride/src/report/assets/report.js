@@ -17,6 +17,14 @@
   app.append(el("h3", {}, "Solver"));
   app.append(table(["steps", "rejected", "Newton iterations", "residuals", "Jacobians", "LU factorisations", "steps per order 1..5"],
     [[S.steps, S.rejected_steps, S.newton_iterations, S.residual_evals, S.jacobian_evals, S.lu_factorizations, (S.order_counts || []).join(" / ")]]));
+  if (S.hitch_force) {
+    const h = S.hitch_force;
+    const opt = (v, d) => (v == null ? "-" : d(v));
+    app.append(el("h3", {}, `Hitch force (${h.channel})`));
+    app.append(table(["peak [N]", "at [s]", "RMS [N]", "dominant frequency [Hz]", "damping ratio of the ringing", "decay fitted [s]"],
+      [[h.peak_n, h.t_peak_s, h.rms_n, opt(h.dominant_hz, fmt), opt(h.damping_ratio, (z) => `${fmt(100 * z)} %`),
+        opt(h.decay, (d) => `${fmt(d.from_s)}-${fmt(d.to_s)} (${d.half_cycles} half cycles)`)]]));
+  }
   // --- 3D view, its time cursor shared with the charts both ways
   let player = null, syncing = false;
   const follow = () => ({
