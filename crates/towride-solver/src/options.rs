@@ -364,6 +364,11 @@ pub struct Stats {
     pub lu_factorizations: usize,
     /// Factorisations of Radau IIA's complex iteration matrix (one per real one).
     pub complex_lu_factorizations: usize,
+    /// Non-zeros of the real iteration matrix's sparse LU factors (L + U) after the last
+    /// factorisation; 0 on the dense path. Grows linearly with a model whose fill-reducing
+    /// order works (`docs/performance.md`, "Scaling").
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub lu_entries: usize,
     /// Newton iterations over all step attempts.
     pub newton_iterations: usize,
     /// Evaluations of the event (root) functions.

@@ -96,12 +96,14 @@ impl<P: DaeProblem + ?Sized> Bdf<'_, P> {
 
     fn factor_matrix(&mut self) -> Result<(), StepFail> {
         self.stats.lu_factorizations += 1;
-        self.jac
-            .factor(&self.col_scale, self.opts.scale_newton_matrix)
-            .map_err(|s| {
-                self.jac_valid = false;
-                StepFail::Singular(s)
-            })?;
+        let done = self
+            .jac
+            .factor(&self.col_scale, self.opts.scale_newton_matrix);
+        self.stats.lu_entries = self.jac.lu_nnz().unwrap_or(0);
+        done.map_err(|s| {
+            self.jac_valid = false;
+            StepFail::Singular(s)
+        })?;
         self.cjold = self.cj;
         self.cjratio = 1.0;
         self.ss = 20.0;

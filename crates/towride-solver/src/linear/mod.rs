@@ -532,10 +532,21 @@ pub(crate) fn fill_reducing_order(
 /// evaluation perturbing all of them gives each column's finite difference (Curtis,
 /// Powell & Reid 1974).
 fn colour_columns(n: usize, col_ptr: &[usize], row_idx: &[usize]) -> Vec<Vec<usize>> {
-    let mut row_cols: Vec<Vec<usize>> = vec![Vec::new(); n];
+    // The transpose (columns of each row, ascending), flat: per-row vectors cost a
+    // third of the colouring at 18 k unknowns.
+    let mut row_ptr = vec![0usize; n + 1];
+    for &r in row_idx {
+        row_ptr[r + 1] += 1;
+    }
+    for r in 0..n {
+        row_ptr[r + 1] += row_ptr[r];
+    }
+    let mut fill = row_ptr.clone();
+    let mut row_cols = vec![0usize; row_idx.len()];
     for c in 0..n {
         for &r in &row_idx[col_ptr[c]..col_ptr[c + 1]] {
-            row_cols[r].push(c);
+            row_cols[fill[r]] = c;
+            fill[r] += 1;
         }
     }
     let mut colour = vec![usize::MAX; n];
@@ -543,10 +554,12 @@ fn colour_columns(n: usize, col_ptr: &[usize], row_idx: &[usize]) -> Vec<Vec<usi
     let mut groups: Vec<Vec<usize>> = Vec::new();
     for c in 0..n {
         for &r in &row_idx[col_ptr[c]..col_ptr[c + 1]] {
-            for &k in &row_cols[r] {
-                if colour[k] != usize::MAX {
-                    forbidden_mark[colour[k]] = c;
-                }
+            // Only the columns before c are coloured yet.
+            for &k in row_cols[row_ptr[r]..row_ptr[r + 1]]
+                .iter()
+                .take_while(|&&k| k < c)
+            {
+                forbidden_mark[colour[k]] = c;
             }
         }
         let g = (0..)

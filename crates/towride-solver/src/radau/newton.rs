@@ -98,9 +98,9 @@ impl<P: DaeProblem + ?Sized> Radau5<'_, P> {
             let equilibrate = self.opts.scale_newton_matrix;
             self.jac.recombine(GAMMA / self.h);
             self.stats.lu_factorizations += 1;
-            self.jac
-                .factor(&self.col_scale, equilibrate)
-                .map_err(NewtonFail::Singular)?;
+            let done = self.jac.factor(&self.col_scale, equilibrate);
+            self.stats.lu_entries = self.jac.lu_nnz().unwrap_or(0);
+            done.map_err(NewtonFail::Singular)?;
             self.stats.complex_lu_factorizations += 1;
             let shift = Complex::new(ALPHA / self.h, BETA / self.h);
             self.cjac
