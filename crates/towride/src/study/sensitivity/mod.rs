@@ -44,6 +44,15 @@ pub enum Method {
     Morris,
 }
 
+impl std::fmt::Display for Method {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Method::Oat => "OAT elasticities",
+            Method::Morris => "Morris elementary effects",
+        })
+    }
+}
+
 /// What to study.
 #[derive(Clone, Debug)]
 pub struct Settings {

@@ -160,7 +160,7 @@ pub fn tornado(s: &Study, path: &Path) -> Result<()> {
     fig.panel_height = 120 + 40 * n as u32;
     fig.header.push(HeaderLine {
         text: format!(
-            "Sensitivity of {} ({:?}, {} runs): {}",
+            "Sensitivity of {} ({}, {} runs): {}",
             out.name, s.method, s.runs, s.file
         ),
         size: 22.0,
@@ -184,7 +184,7 @@ pub fn page(s: &Study) -> String {
     let _ = write!(
         h,
         "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>towride: sensitivity of {}</title>\
-         <style>{}</style></head><body>\n<h1>Sensitivity: {}</h1>\n<p>{:?}, {} runs on {} threads in {:.1} s ({:.1} s of runs){}</p>\n",
+         <style>{}</style></head><body>\n<h1>Sensitivity: {}</h1>\n<p>{}, {} runs on {} threads in {:.1} s ({:.1} s of runs){}</p>\n",
         escape(&s.file),
         crate::report::html::REPORT_CSS,
         escape(&s.file),
