@@ -104,7 +104,7 @@ pub(crate) fn quantised(out: &mut String, values: impl Iterator<Item = f64> + Cl
 
 /// `v` in decimal: the bulk of a report's bytes, written without the formatting
 /// machinery.
-fn integer(out: &mut String, v: i64) {
+pub(crate) fn integer(out: &mut String, v: i64) {
     let mut buf = [0u8; 20];
     let mut i = buf.len();
     let mut u = v.unsigned_abs();

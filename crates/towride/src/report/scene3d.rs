@@ -24,12 +24,39 @@ const ROAD_MARGIN_M: f64 = 3.0;
 /// Smallest box side drawn [m] (a body with a near-zero principal moment).
 const MIN_SIDE_M: f64 = 0.02;
 
-/// A number with 6 significant digits.
+/// A number rounded to 6 decimals (micrometres, microradians: below any pixel), as
+/// `format!("{}", (v * 1e6).round() / 1e6)` prints it, written from the integer of
+/// millionths: the poses are most of the view's numbers, and the formatting machinery
+/// was most of the view's build time.
 fn n6(out: &mut String, v: f64) {
-    if v.is_finite() {
-        let _ = write!(out, "{}", (v * 1e6).round() / 1e6);
-    } else {
+    if !v.is_finite() {
         out.push_str("null");
+        return;
+    }
+    let micro = (v * 1e6).round();
+    if micro.abs() >= 9e15 {
+        let _ = write!(out, "{}", micro / 1e6);
+        return;
+    }
+    let micro = micro as i64;
+    if micro < 0 {
+        out.push('-');
+    }
+    let (whole, frac) = (
+        micro.unsigned_abs() / 1_000_000,
+        micro.unsigned_abs() % 1_000_000,
+    );
+    crate::report::html::integer(out, whole as i64);
+    if frac > 0 {
+        let mut digits = [b'0'; 6];
+        let mut f = frac;
+        for d in digits.iter_mut().rev() {
+            *d = b'0' + (f % 10) as u8;
+            f /= 10;
+        }
+        let end = 6 - digits.iter().rev().take_while(|&&d| d == b'0').count();
+        out.push('.');
+        out.push_str(std::str::from_utf8(&digits[..end]).unwrap_or("0"));
     }
 }
 
@@ -331,4 +358,43 @@ pub fn modes_view(sys: &System, q: &[f64], modes: &[ModeShape]) -> String {
     });
     out.push('}');
     out
+}
+
+#[cfg(test)]
+mod tests {
+    /// The fast writer prints what the formatting machinery prints for the rounded value.
+    #[test]
+    fn n6_matches_display_of_the_rounded_value() {
+        let values = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            0.5,
+            1e-7,
+            -4e-7,
+            6e-7,
+            0.123456789,
+            -2.462,
+            12.3400001,
+            -0.000001,
+            0.000010,
+            1234567.8912345,
+            -98765.4321,
+            3.0e9,
+            f64::NAN,
+        ];
+        for v in values {
+            let mut fast = String::new();
+            super::n6(&mut fast, v);
+            let want = if v.is_finite() {
+                format!("{}", (v * 1e6).round() / 1e6)
+            } else {
+                "null".to_string()
+            };
+            // -0 prints as "-0" by Display; the fast path writes "0" for it.
+            let want = if want == "-0" { "0".to_string() } else { want };
+            assert_eq!(fast, want, "{v}");
+        }
+    }
 }
