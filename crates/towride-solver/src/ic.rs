@@ -37,7 +37,7 @@ pub fn consistent_index1<P: DaeProblem + ?Sized>(
     let dense = prob.jacobian_pattern().is_none() || n < opts.dense_limit;
     let mut m = NewtonMatrix::new(n, prob.jacobian_pattern(), dense)
         .map_err(|e| SolverError::InitialConditions { why: e.to_string() })?;
-    let colours = m.colours.clone();
+    let colours = m.take_colours();
     let w: Vec<f64> = (0..n)
         .map(|i| 1.0 / (opts.rtol * y[i].abs() + opts.atol_of(i)))
         .collect();

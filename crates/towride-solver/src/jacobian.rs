@@ -84,7 +84,7 @@ impl JacobianEval {
         let mut f1 = vec![0.0; n];
         let mut col = vec![0.0; n];
         let srur = UROUND.sqrt();
-        let colours = std::mem::take(&mut jac.colours);
+        let colours = jac.take_colours();
         let mut incs = vec![0.0; n];
         for group in &colours {
             for &j in group {
@@ -108,7 +108,7 @@ impl JacobianEval {
                 ypw[j] = yp[j];
             }
         }
-        jac.colours = colours;
+        jac.keep_colours(colours);
         Ok(())
     }
 }

@@ -50,8 +50,10 @@ pub struct NewtonMatrix {
     /// Column-major structure (also used by the dense path for colouring).
     col_ptr: Vec<usize>,
     row_idx: Vec<usize>,
-    /// Groups of structurally orthogonal columns for finite differences.
-    pub colours: Vec<Vec<usize>>,
+    /// Groups of structurally orthogonal columns for finite differences, made on first
+    /// use: a problem with an analytic matrix never needs them, and at 1150 unknowns
+    /// they were a quarter of the integrator's set-up.
+    colours: Option<Vec<Vec<usize>>>,
     row_scale: Vec<f64>,
     col_scale: Vec<f64>,
     work: Vec<f64>,
@@ -78,37 +80,13 @@ impl NewtonMatrix {
         pattern: Option<Vec<(usize, usize)>>,
         dense: bool,
     ) -> Result<Self, SolverError> {
-        let mut cols: Vec<Vec<usize>> = vec![Vec::new(); n];
-        match pattern {
-            Some(p) => {
-                for (r, c) in p {
-                    if r >= n || c >= n {
-                        return Err(SolverError::SizeMismatch {
-                            what: format!("pattern entry ({r}, {c}) outside a {n} x {n} matrix"),
-                        });
-                    }
-                    cols[c].push(r);
-                }
-                for (c, col) in cols.iter_mut().enumerate() {
-                    col.push(c);
-                    col.sort_unstable();
-                    col.dedup();
-                }
-            }
-            None => {
-                for col in cols.iter_mut() {
-                    *col = (0..n).collect();
-                }
-            }
-        }
-        let mut col_ptr = Vec::with_capacity(n + 1);
-        let mut row_idx = Vec::new();
-        col_ptr.push(0);
-        for col in &cols {
-            row_idx.extend_from_slice(col);
-            col_ptr.push(row_idx.len());
-        }
-        let colours = colour_columns(n, &col_ptr, &row_idx);
+        let (col_ptr, row_idx) = match pattern {
+            Some(p) => compressed_columns(n, &p)?,
+            None => (
+                (0..=n).map(|c| c * n).collect(),
+                (0..n).flat_map(|_| 0..n).collect(),
+            ),
+        };
         let storage = if dense {
             Storage::Dense {
                 a: DMatrix::zeros(n, n),
@@ -128,7 +106,7 @@ impl NewtonMatrix {
             storage,
             col_ptr,
             row_idx,
-            colours,
+            colours: None,
             row_scale: vec![1.0; n],
             col_scale: vec![1.0; n],
             work: vec![0.0; n],
@@ -255,6 +233,19 @@ impl NewtonMatrix {
             Storage::Sparse { lu, factored, .. } => factored.then(|| lu.nnz()),
             Storage::Dense { .. } => None,
         }
+    }
+
+    /// The column colouring for finite differences, made now if it was not kept; give it
+    /// back with [`Self::keep_colours`].
+    pub fn take_colours(&mut self) -> Vec<Vec<usize>> {
+        self.colours
+            .take()
+            .unwrap_or_else(|| colour_columns(self.n, &self.col_ptr, &self.row_idx))
+    }
+
+    /// Keeps the colouring taken by [`Self::take_colours`] for the next evaluation.
+    pub fn keep_colours(&mut self, colours: Vec<Vec<usize>>) {
+        self.colours = Some(colours);
     }
 
     /// Rows of column `c` in the structure.
@@ -528,6 +519,61 @@ pub(crate) fn fill_reducing_order(
     Ok(perm)
 }
 
+/// Compressed columns of `pattern` plus the diagonal, rows ascending and unique, by a
+/// counting sort in O(entries): a vector per column and a sort of each cost a fifth of
+/// the integrator's set-up on a chain of 50 links.
+fn compressed_columns(
+    n: usize,
+    pattern: &[(usize, usize)],
+) -> Result<(Vec<usize>, Vec<usize>), SolverError> {
+    if let Some(&(r, c)) = pattern.iter().find(|&&(r, c)| r >= n || c >= n) {
+        return Err(SolverError::SizeMismatch {
+            what: format!("pattern entry ({r}, {c}) outside a {n} x {n} matrix"),
+        });
+    }
+    // Bucket by row first, then by column: each column's rows come out ascending.
+    let mut row_start = vec![0usize; n + 1];
+    for &(r, _) in pattern {
+        row_start[r + 1] += 1;
+    }
+    for r in 0..n {
+        row_start[r + 1] += row_start[r] + 1;
+    }
+    let mut by_row = vec![0usize; pattern.len() + n];
+    let mut fill = row_start.clone();
+    for c in 0..n {
+        by_row[fill[c]] = c;
+        fill[c] += 1;
+    }
+    for &(r, c) in pattern {
+        by_row[fill[r]] = c;
+        fill[r] += 1;
+    }
+    let mut col_count = vec![0usize; n + 1];
+    let mut seen = vec![usize::MAX; n];
+    let mut triples = Vec::with_capacity(by_row.len());
+    for r in 0..n {
+        for &c in &by_row[row_start[r]..row_start[r + 1]] {
+            // Rows are visited in order, so `seen[c] == r` marks a repeat in this row.
+            if seen[c] != r {
+                seen[c] = r;
+                col_count[c + 1] += 1;
+                triples.push((r, c));
+            }
+        }
+    }
+    for c in 0..n {
+        col_count[c + 1] += col_count[c];
+    }
+    let mut row_idx = vec![0usize; triples.len()];
+    let mut fill = col_count.clone();
+    for (r, c) in triples {
+        row_idx[fill[c]] = r;
+        fill[c] += 1;
+    }
+    Ok((col_count, row_idx))
+}
+
 /// Greedy distance-2 colouring: columns of one colour share no row, so one residual
 /// evaluation perturbing all of them gives each column's finite difference (Curtis,
 /// Powell & Reid 1974).
@@ -591,11 +637,37 @@ mod tests {
     }
 
     #[test]
+    fn compressed_columns_sort_deduplicate_and_add_the_diagonal() {
+        // Repeats, any order, a missing diagonal: the reference is a sorted set.
+        let p = vec![
+            (3, 0),
+            (1, 2),
+            (0, 0),
+            (3, 0),
+            (2, 1),
+            (0, 3),
+            (1, 2),
+            (2, 0),
+        ];
+        let (ptr, rows) = compressed_columns(4, &p).unwrap();
+        let mut want: Vec<(usize, usize)> = p.iter().map(|&(r, c)| (c, r)).collect();
+        want.extend((0..4).map(|i| (i, i)));
+        want.sort_unstable();
+        want.dedup();
+        let got: Vec<(usize, usize)> = (0..4)
+            .flat_map(|c| rows[ptr[c]..ptr[c + 1]].iter().map(move |&r| (c, r)))
+            .collect();
+        assert_eq!(got, want);
+        assert!(compressed_columns(4, &[(4, 0)]).is_err());
+    }
+
+    #[test]
     fn colouring_of_tridiagonal_needs_three_colours() {
-        let m = NewtonMatrix::new(10, Some(tridiag(10)), false).unwrap();
-        assert_eq!(m.colours.len(), 3);
+        let mut m = NewtonMatrix::new(10, Some(tridiag(10)), false).unwrap();
+        let colours = m.take_colours();
+        assert_eq!(colours.len(), 3);
         // No two columns of one colour share a row.
-        for g in &m.colours {
+        for g in &colours {
             let mut seen = [false; 10];
             for &c in g {
                 for &r in m.column_rows(c) {

@@ -33,6 +33,7 @@
 //! u + theta x d, and with D = int rho d d^T: int rho a b^T = m u_a u_b^T
 //! + ~theta_a D ~theta_b^T, int rho s b^T = m x u_b^T + D ~theta_b^T.
 
+use faer::Mat;
 use nalgebra::{Matrix3, SMatrix, Vector3};
 
 use super::mesh::Mesh;
@@ -86,37 +87,55 @@ impl Invariants {
     /// node in mode j) over the mesh's mass distribution.
     pub fn compute(mesh: &Mesh, shapes: &[Vec<[f64; 6]>]) -> Invariants {
         let nm = shapes.len();
+        let points = mesh.mass_points();
         let mut m = 0.0;
         let mut s1 = Vector3::zeros();
         let mut sss = Matrix3::zeros();
         let mut i3 = vec![Vector3::zeros(); nm];
         let mut p = vec![Matrix3::zeros(); nm];
-        let mut q = vec![vec![Matrix3::zeros(); nm]; nm];
-        let mut u = vec![Vector3::zeros(); nm];
-        let mut th = vec![Matrix3::zeros(); nm];
-        for (nodes, mp) in mesh.mass_points() {
+        // The second-order tensors Q_jk = sum_p w u_j u_k^T + ~th_j D ~th_k^T as products
+        // of tall matrices: per point p, row 4p holds (w u_j)_a on the left and (u_k)_b on
+        // the right, rows 4p+1+c hold (~th_j D)_ac and (~th_k)_bc, so (L_a^T R_b)_jk is
+        // (Q_jk)_ab. A loop over points and mode pairs made the same sums at scalar
+        // speed: 37 ms of a 50 ms vehicle set-up with 100 modes.
+        let rows = 4 * points.len();
+        let mut left: [Mat<f64>; 3] = std::array::from_fn(|_| Mat::zeros(rows, nm));
+        let mut right: [Mat<f64>; 3] = std::array::from_fn(|_| Mat::zeros(rows, nm));
+        for (pi, (nodes, mp)) in points.iter().enumerate() {
             let w = mp.mass_kg;
             let x = mp.position;
             let d = mp.second_moment;
-            for j in 0..nm {
-                let qe = SMatrix::<f64, 12, 1>::from_fn(|i, _| shapes[j][nodes[i / 6]][i % 6]);
-                u[j] = mp.nu * qe;
-                th[j] = skew(&(mp.nt * qe));
-            }
             m += w;
             s1 += x * w;
             sss += x * x.transpose() * w + d;
             for j in 0..nm {
-                i3[j] += u[j] * w;
-                p[j] += x * u[j].transpose() * w + d * th[j].transpose();
-                for k in j..nm {
-                    q[j][k] += u[j] * u[k].transpose() * w + th[j] * d * th[k].transpose();
+                let qe = SMatrix::<f64, 12, 1>::from_fn(|i, _| shapes[j][nodes[i / 6]][i % 6]);
+                let u = mp.nu * qe;
+                let th = skew(&(mp.nt * qe));
+                i3[j] += u * w;
+                p[j] += x * u.transpose() * w + d * th.transpose();
+                let thd = th * d;
+                for a in 0..3 {
+                    left[a][(4 * pi, j)] = w * u[a];
+                    right[a][(4 * pi, j)] = u[a];
+                    for c in 0..3 {
+                        left[a][(4 * pi + 1 + c, j)] = thd[(a, c)];
+                        right[a][(4 * pi + 1 + c, j)] = th[(a, c)];
+                    }
                 }
             }
         }
-        for j in 0..nm {
-            for k in 0..j {
-                q[j][k] = q[k][j].transpose();
+        let mut q = vec![vec![Matrix3::zeros(); nm]; nm];
+        for a in 0..3 {
+            for b in a..3 {
+                // (Q_jk)_ab; (Q_jk)_ba = (Q_kj)_ab because D is symmetric.
+                let g = left[a].transpose() * &right[b];
+                for (j, row) in q.iter_mut().enumerate() {
+                    for (k, t) in row.iter_mut().enumerate() {
+                        t[(a, b)] = g[(j, k)];
+                        t[(b, a)] = g[(k, j)];
+                    }
+                }
             }
         }
         let eye = Matrix3::identity();

@@ -76,8 +76,6 @@ pub struct FlexBody {
     pub assembly: Assembly,
     /// The Craig-Bampton reduction.
     pub cb: CraigBampton,
-    /// Orthonormalised modes, rigid-body modes included.
-    pub table: Vec<ModeRow>,
     /// The mode-selection rule in force (the options' rule, else the file's).
     pub rule: Rule,
     /// What `rule` keeps, with the load-path shares when it is that rule.
@@ -98,8 +96,16 @@ impl FlexBody {
         FlexBody::from_mesh(mesh, options)
     }
 
-    /// Reduces an already built mesh: assembly, Craig-Bampton reduction, mode table,
-    /// modal data and selection.
+    /// The table of the orthonormalised modes, rigid-body modes included, with their
+    /// effective masses and kinetic energy by section. Made on request: a vehicle's
+    /// modal body does not need it, and with 100 modes it cost a third of the body's
+    /// reduction.
+    pub fn table(&self) -> Vec<ModeRow> {
+        craig_bampton::mode_table(&self.mesh, &self.assembly, &self.cb)
+    }
+
+    /// Reduces an already built mesh: assembly, Craig-Bampton reduction, modal data and
+    /// selection.
     pub fn from_mesh(mesh: Mesh, options: &Options) -> Result<FlexBody, FlexError> {
         let model_err = |e: FlexError| FlexError::Model {
             file: mesh.path.display().to_string(),
@@ -110,7 +116,6 @@ impl FlexBody {
             .fixed_interface_modes
             .unwrap_or(mesh.fixed_interface_modes);
         let cb = craig_bampton::reduce(&mesh, &assembly, n_fixed).map_err(model_err)?;
-        let table = craig_bampton::mode_table(&mesh, &assembly, &cb);
         let mut modal = ModalData::build(&mesh, &assembly, &cb);
         let rule = options
             .rule
@@ -122,7 +127,6 @@ impl FlexBody {
             mesh,
             assembly,
             cb,
-            table,
             rule,
             selection,
             modal,

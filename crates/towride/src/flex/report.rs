@@ -224,7 +224,7 @@ impl ModesReport {
             body.selection.max_share.as_ref().map(|s| s[k])
         };
         let modes: Vec<ModeRecord> = body
-            .table
+            .table()
             .iter()
             .map(|r| {
                 let m = md.modes.iter().find(|m| m.number == r.number);

@@ -8,11 +8,12 @@
 //! dropped, its reaction is carried by the rows it depends on, and the dependency is
 //! reported by name so `doctor` can say which joints over-constrain which.
 //!
-//! Two sweeps make the same choice: a sparse LU of B^T with the rows as columns in model
-//! order ([`towride_solver::linear::ColumnBasis`]: cost linear in a chain or a ladder of
-//! loops), and modified Gram-Schmidt, twice, on dense rows (cost m^2 n, kept for small
-//! models so their reports stay bit for bit, and as the reference the sparse sweep is
-//! tested against).
+//! The sweep is a sparse LU of B^T with the rows as columns in model order
+//! ([`towride_solver::linear::ColumnBasis`]: cost linear in a chain or a ladder of
+//! loops). Modified Gram-Schmidt, twice, on dense rows ([`select_dense`], cost m^2 n) is
+//! kept as the reference it is tested against: on every model of the repository both
+//! keep the same rows and name the same dependencies, with coefficients equal to 1e-9,
+//! so the run, which sees only the kept rows, is the same to the last digit.
 
 use super::system::{Redundant, System};
 use towride_solver::linear::{ColumnBasis, Offer};
@@ -20,24 +21,15 @@ use towride_solver::linear::{ColumnBasis, Offer};
 /// Relative size below which a row counts as dependent.
 const TOL: f64 = 1e-8;
 
-/// Up to this many constraint rows the dense sweep is used, so that every model that ran
-/// before the sparse sweep existed (the vehicle has 71 rows, Andrews' mechanism 50) keeps
-/// its report bit for bit. Not for speed: measured (docs/performance.md, "What is
-/// sparse"), the sparse sweep is faster at every size, 5 against 12 us at 20 rows and 25
-/// against 1200 us at 100, so the threshold costs at most about a millisecond.
-pub const DENSE_ROWS: usize = 100;
-
 /// One row of B: (element, row within it) and its entries (velocity unknown, value).
 pub type JacobianRow = ((usize, usize), Vec<(usize, f64)>);
 
 /// Returns the kept rows (element, row) in order and the redundant ones.
 pub fn select_rows(sys: &System, t: f64, q: &[f64]) -> (Vec<(usize, usize)>, Vec<Redundant>) {
-    let rows = jacobian_rows(sys, t, q);
-    if rows.len() <= DENSE_ROWS {
-        select_dense(sys.nv, &rows)
-    } else {
-        select_sparse(sys.nv, &rows)
-    }
+    // The dense sweep, used up to 100 rows until the sparse one was trusted, cost
+    // 1 ms of a 12 ms run on a ladder of five loops (85 rows) and 8 ms of the vehicle's
+    // set-up with 100 hitch modes; the sparse one takes a few tens of microseconds.
+    select_sparse(sys.nv, &jacobian_rows(sys, t, q))
 }
 
 /// Every row of B at (t, q), kept or not, in model order.
@@ -103,7 +95,8 @@ pub fn select_sparse(nv: usize, rows: &[JacobianRow]) -> (Vec<(usize, usize)>, V
     (kept, redundant)
 }
 
-/// The dense sweep: modified Gram-Schmidt, twice, over the rows in model order.
+/// The dense reference sweep: modified Gram-Schmidt, twice, over the rows in model
+/// order.
 pub fn select_dense(nv: usize, rows: &[JacobianRow]) -> (Vec<(usize, usize)>, Vec<Redundant>) {
     let mut basis: Vec<Vec<f64>> = Vec::new();
     // r_cols[k][j] = component of kept row k on basis vector j (upper triangular R).

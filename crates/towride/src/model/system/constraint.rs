@@ -181,7 +181,7 @@ impl System {
     }
 
     /// True when a side of `e` is a modal body (its rows take the chain-rule path).
-    fn has_flex(&self, e: &ConElem) -> bool {
+    pub(super) fn has_flex(&self, e: &ConElem) -> bool {
         self.bodies_of(e.mi, e.mj)
             .iter()
             .any(|b| b.is_some_and(|b| self.nm[b] > 0))

@@ -212,12 +212,73 @@ impl System {
         jac: &mut JacobianSink,
         structural: bool,
     ) {
-        let (_, ov, ol, om) = self.offsets();
-        let pick = |x: f64| if structural { 1.0 } else { x };
         for e in &self.cons {
             if e.slot.iter().all(|s| s.is_none()) {
                 continue;
             }
+            if structural && !self.has_flex(e) {
+                self.rigid_constraint_pattern(e, jac);
+            } else {
+                self.constraint_block(e, t, q, v, lam, jac, structural);
+            }
+        }
+    }
+
+    /// The entries [`Self::constraint_block`] emits for a constraint between rigid
+    /// bodies with `structural` set (every entry, both sides 6 velocities and 7
+    /// coordinates wide, second derivatives present), without evaluating it: the
+    /// evaluation with dual numbers was most of the integrator's set-up on a chain.
+    fn rigid_constraint_pattern(&self, e: &ConElem, jac: &mut JacobianSink) {
+        let (_, ov, ol, om) = self.offsets();
+        let bodies = self.bodies_of(e.mi, e.mj);
+        for slot in &e.slot {
+            let Some(row) = *slot else { continue };
+            for b in bodies.iter().flatten() {
+                let (o, w) = (self.qo[*b], self.vo[*b]);
+                for c in 0..6 {
+                    jac.add(ov + w + c, ol + row, 1.0);
+                    jac.add(om + row, ov + w + c, 1.0);
+                    if c < 3 {
+                        jac.add(o + c, om + row, 1.0);
+                    } else {
+                        for a in 0..4 {
+                            jac.add(o + 3 + a, om + row, 1.0);
+                        }
+                    }
+                }
+                for l in 0..7 {
+                    jac.add(ol + row, o + l, 1.0);
+                }
+            }
+            for qb in bodies.iter().flatten() {
+                for l in 0..7 {
+                    for b in bodies.iter().flatten() {
+                        for c in 0..6 {
+                            jac.add(ov + self.vo[*b] + c, self.qo[*qb] + l, 1.0);
+                        }
+                    }
+                    jac.add(om + row, self.qo[*qb] + l, 1.0);
+                }
+            }
+        }
+    }
+
+    /// The iteration-matrix entries of constraint element `e` (with `structural`, every
+    /// possible one, values meaningless).
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn constraint_block(
+        &self,
+        e: &ConElem,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        lam: &[f64],
+        jac: &mut JacobianSink,
+        structural: bool,
+    ) {
+        let (_, ov, ol, om) = self.offsets();
+        let pick = |x: f64| if structural { 1.0 } else { x };
+        {
             let ev = self.con_eval2(e, t, q);
             let bodies = self.bodies_of(e.mi, e.mj);
             let wq = [ev.first.w[0] + 1, ev.first.w[1] + 1];
@@ -542,5 +603,65 @@ impl System {
     fn body_at(&self, offs: &[usize], i: usize) -> (usize, usize) {
         let b = offs.partition_point(|&o| o <= i) - 1;
         (b, i - offs[b])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::System;
+    use crate::input::Loader;
+    use crate::job::Job;
+    use std::path::Path;
+    use towride_solver::problem::JacobianSink;
+
+    fn file(rel: &str) -> std::path::PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../..")
+            .join(rel)
+    }
+
+    /// Each rigid constraint's pattern written from its topology equals the entries its
+    /// structural evaluation emits, as a set, so the iteration matrix keeps its structure
+    /// and its fill-reducing order.
+    fn check(sys: &System) -> usize {
+        let y = sys.structural_state();
+        let (_, ov, ol, om) = sys.offsets();
+        let mut checked = 0;
+        for e in sys.cons.iter().filter(|e| !sys.has_flex(e)) {
+            if e.slot.iter().all(|s| s.is_none()) {
+                continue;
+            }
+            let set = |f: &dyn Fn(&mut JacobianSink)| {
+                let mut v = Vec::new();
+                f(&mut JacobianSink::new(&mut v));
+                let mut p: Vec<(usize, usize)> = v.into_iter().map(|(r, c, _)| (r, c)).collect();
+                p.sort_unstable();
+                p.dedup();
+                p
+            };
+            let by_topology = set(&|j| sys.rigid_constraint_pattern(e, j));
+            let by_evaluation =
+                set(&|j| sys.constraint_block(e, 0.0, &y[..ov], &y[ov..ol], &y[ol..om], j, true));
+            assert!(!by_topology.is_empty());
+            assert_eq!(by_topology, by_evaluation, "{}", sys.con_name(e));
+            checked += 1;
+        }
+        checked
+    }
+
+    #[test]
+    fn rigid_constraint_patterns_from_topology_match_their_structural_evaluation() {
+        let vehicle = Job::from_scene_file(
+            &file("scenes/default.toml"),
+            &Default::default(),
+            &Loader::new(),
+        )
+        .expect("default scene");
+        assert!(check(&vehicle.system) >= 10);
+        for example in ["andrews", "elements", "pendulum", "two_mass_chain"] {
+            let path = file(&format!("scenes/examples/{example}.toml"));
+            let job = Job::from_mechanism_file(&path, &Loader::new()).expect("example loads");
+            check(&job.system);
+        }
     }
 }

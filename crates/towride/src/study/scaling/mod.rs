@@ -512,16 +512,17 @@ impl Study {
         w.flush().map_err(|e| Error::io(path, e))
     }
 
-    /// Time per step, set-up and the whole run against the equations, per family, with
-    /// the fitted exponents in the legend and a line of slope 1 through each family's
-    /// first fitted point.
+    /// Time per step, set-up, the whole run and the set-up's share of it against the
+    /// equations, per family, with the fitted exponents in the legend, a line of slope 1
+    /// through each family's first fitted point, and the share's 10 % goal.
     fn plot(&self, path: &Path) -> Result<()> {
-        let quantities: [(&str, &str, Quantity); 3] = [
+        let quantities: [(&str, &str, Quantity); 4] = [
             ("time per step", "time per step [s]", |p| p.per_step_s),
             ("set-up", "set-up [s]", |p| p.setup_s),
             ("whole run", "total [s]", |p| p.total_s),
+            ("set-up share", "set-up / whole run [-]", |p| p.setup_share),
         ];
-        let panels: Vec<Panel> = quantities
+        let mut panels: Vec<Panel> = quantities
             .iter()
             .map(|(name, unit, y)| {
                 let mut series = Vec::new();
@@ -567,6 +568,14 @@ impl Study {
                 }
             })
             .collect();
-        loglog_panels(path, &panels, 3).map_err(Error::from)
+        let sizes = self.points.iter().map(|p| p.equations as f64);
+        let (lo, hi) = sizes.fold((f64::INFINITY, 0.0f64), |(a, b), x| (a.min(x), b.max(x)));
+        if let Some(share) = panels.last_mut().filter(|_| hi >= lo) {
+            share.series.push(Series {
+                label: "goal: 10 %".into(),
+                points: vec![(lo, 0.1), (hi, 0.1)],
+            });
+        }
+        loglog_panels(path, &panels, 2).map_err(Error::from)
     }
 }
