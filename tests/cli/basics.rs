@@ -352,3 +352,58 @@ fn bench_replot_redraws_a_stored_table_and_names_a_bad_cell() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `run --json` on a scene carries the assumed inputs its text output lists, read from
+/// the scene's sensitivity study in `out/sensitivity/STEM` under the working directory.
+#[test]
+fn run_json_lists_the_assumed_inputs_of_the_scenes_study() {
+    let dir = std::env::temp_dir().join(format!("towride-assumed-cli-{}", std::process::id()));
+    let study = dir.join("out/sensitivity/default");
+    std::fs::create_dir_all(&study).unwrap();
+    let param = |path: &str, e: f64| {
+        serde_json::json!({
+            "param": {
+                "name": format!("vehicles/trailer/box_trailer.toml:{path}"),
+                "file": "vehicles/trailer/box_trailer.toml",
+                "path": path,
+            },
+            "elasticity": [e],
+        })
+    };
+    let json = serde_json::json!({
+        "method": "oat",
+        "outputs": [{"name": "hitch_fx.peak", "unit": "N"}],
+        // body.mass_kg is tagged [scaled], half.inertia_kg_m2 [assumed].
+        "params": [param("body.mass_kg", 0.54), param("half.inertia_kg_m2", 0.22)],
+    });
+    std::fs::write(study.join("sensitivity.json"), json.to_string()).unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_towride"))
+        .current_dir(&dir)
+        .args([
+            "run",
+            repo!("scenes/default.toml"),
+            "--out",
+            "run",
+            "--json",
+        ])
+        .output()
+        .expect("run towride");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["status"], "completed");
+    let a = &v["assumed_inputs"];
+    assert_eq!(a["output"], "hitch_fx.peak", "{a}");
+    let inputs = a["inputs"].as_array().unwrap();
+    assert_eq!(inputs.len(), 1, "{a}");
+    assert_eq!(inputs[0]["rank"], 2);
+    assert_eq!(
+        inputs[0]["parameter"],
+        "vehicles/trailer/box_trailer.toml:half.inertia_kg_m2"
+    );
+    assert_eq!(inputs[0]["class"], "assumed");
+    std::fs::remove_dir_all(&dir).ok();
+}

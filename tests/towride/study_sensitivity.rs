@@ -97,3 +97,57 @@ fn oat_elasticities_of_a_mass_spring_frequency_are_one_half() {
     // The ranking puts the two half-elasticities first.
     assert!(st.ranking(0)[2].param.name.ends_with("inertia_kg_m2[2]"));
 }
+
+/// The assumed inputs among the most sensitive ones are read from a study's ranking and
+/// the source classes written in the vehicle files: a `scaled` and a `published` value
+/// ranked above or beside an `assumed` one are left out, a parameter of a file the scene
+/// does not read is skipped, and ranks are those of the study.
+#[test]
+fn assumed_inputs_are_the_assumed_values_among_the_highest_ranked() {
+    use towride::study::sensitivity::assumed::assumed_inputs;
+    let scene = PathBuf::from(repo!("scenes/default.toml"));
+    let dir = std::env::temp_dir().join(format!("towride-assumed-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let param = |file: &str, path: &str, e: f64| {
+        serde_json::json!({
+            "param": {"name": format!("{file}:{path}"), "file": file, "path": path},
+            "elasticity": [e],
+        })
+    };
+    let study = serde_json::json!({
+        "method": "oat",
+        "outputs": [{"name": "hitch_fx.peak", "unit": "N"}],
+        "params": [
+            // `# [assumed] light box trailer class estimate` in the file.
+            param("vehicles/trailer/box_trailer.toml", "half.mass_kg", 0.5),
+            // `# [scaled] empty trailer 100 kg (thesis 5.5.3.1) ...`
+            param("vehicles/trailer/box_trailer.toml", "body.mass_kg", -0.9),
+            // `# [published] standard gravity ...`
+            param("vehicles/fabia.toml", "vehicle.gravity_m_s2", 0.7),
+            param("vehicles/no_such_file.toml", "a.b_kg", 0.6),
+            param("vehicles/trailer/box_trailer.toml", "wheel.mass_kg", 0.01),
+        ],
+    });
+    std::fs::write(dir.join("sensitivity.json"), study.to_string()).unwrap();
+    let a = assumed_inputs(&scene, &dir, 4);
+    assert_eq!(a.note, None);
+    assert_eq!(a.output.as_deref(), Some("hitch_fx.peak"));
+    // Ranked by |elasticity|: body 0.9, gravity 0.7, missing file 0.6, half 0.5; the
+    // wheel (0.01) is fifth, outside the top four.
+    assert_eq!(a.inputs.len(), 1, "{a:?}");
+    let i = &a.inputs[0];
+    assert_eq!(
+        (i.rank, i.parameter.as_str(), i.class.as_str()),
+        (
+            4,
+            "vehicles/trailer/box_trailer.toml:half.mass_kg",
+            "assumed"
+        )
+    );
+    assert_eq!(i.sensitivity, 0.5);
+    assert!(i.source.contains("light box trailer"), "{}", i.source);
+    // Without a study the answer says so and lists nothing.
+    let none = assumed_inputs(&scene, &dir.join("nothing"), 10);
+    assert!(none.inputs.is_empty() && none.note.unwrap().contains("towride sensitivity"));
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -87,7 +87,13 @@ pub fn run(a: &RunArgs) -> CliResult {
         };
         crate::interrupt::install();
         let res = run_job(&job, &a.out, a.json)?;
-        if a.json {
+        if a.json && job.scene.is_some() {
+            // The summary plus the assumed inputs, as the text output lists them.
+            // Plain data: serialisation cannot fail.
+            let mut v = serde_json::to_value(&res.summary).unwrap_or_default();
+            v["assumed_inputs"] = serde_json::to_value(assumed(&a.file)).unwrap_or_default();
+            println!("{}", serde_json::to_string_pretty(&v).unwrap_or_default());
+        } else if a.json {
             println!("{}", res.summary.to_json());
         } else if job.scene.is_some() {
             print_assumed(&a.file);
@@ -265,11 +271,16 @@ fn print_summary(r: &RunResult) {
     }
 }
 
-/// The assumed values among the inputs the scene's key output is most sensitive to, from
-/// the scene's latest sensitivity study (none is run here).
-fn print_assumed(scene: &Path) {
+/// The assumed values among the ten inputs the scene's key output is most sensitive to,
+/// from the scene's latest sensitivity study in its default folder (none is run here).
+fn assumed(scene: &Path) -> towride::study::sensitivity::assumed::AssumedInputs {
     use towride::study::sensitivity::{assumed::assumed_inputs, default_dir};
-    let a = assumed_inputs(scene, &default_dir(scene), 10);
+    assumed_inputs(scene, &default_dir(scene), 10)
+}
+
+/// Prints [`assumed`].
+fn print_assumed(scene: &Path) {
+    let a = assumed(scene);
     if let Some(note) = &a.note {
         println!("assumed inputs: {note}");
         return;
