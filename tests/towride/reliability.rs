@@ -365,3 +365,21 @@ fn a_larger_peak_in_the_reference_s_direction_is_a_positive_change() {
     assert!((peak_change(6000.0, 5000.0) - 0.2).abs() < 1e-12);
     assert!(peak_change(-4000.0, -5000.0) < 0.0);
 }
+
+/// Every stress case is a model the input checks accept: a case they refuse measures the
+/// checks, not the solver (the mass-ratio case's 1e-9 kg rims did, unnoticed, once the
+/// checks refused masses under 1e-6 kg).
+#[test]
+fn every_stress_case_passes_the_input_checks() {
+    use towride::input::Loader;
+    use towride::job::Job;
+    let scene = std::path::Path::new(repo!("scenes/default.toml"));
+    let cases = towride::study::stress::cases();
+    assert!(cases.len() >= 30);
+    for c in &cases {
+        let loader = Loader::with_overrides(c.props.clone());
+        if let Err(e) = Job::from_scene_file(scene, &c.scene, &loader) {
+            panic!("{} / {}: {e}", c.group, c.label);
+        }
+    }
+}
