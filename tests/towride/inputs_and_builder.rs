@@ -169,6 +169,65 @@ fn a_scene_override_table_changes_a_vehicle_file_and_a_bad_one_is_located() {
     assert_eq!(e.field, "override[0].file", "{e}");
 }
 
+/// A value set both by a scene's `[[override]]` table and by the caller (`run --set`, a
+/// sweep case, a sensitivity study) takes the caller's: the scene's tables are applied
+/// first. Both are recorded as used.
+#[test]
+fn the_callers_override_wins_over_the_scenes_own() {
+    let d = Scratch::new("sceneov2");
+    let path = engine_mass_scene(&d);
+    let engine_mass = |s: &scene::Scene| {
+        let b = &s.vehicle.model.bodies;
+        b[b.iter().position(|b| b.name == "engine").unwrap()].mass
+    };
+    assert_eq!(engine_mass(&scene::load(&path).unwrap()), 110.0);
+    let caller =
+        towride::input::Loader::with_overrides(vec![towride::input::Override::from_argument(
+            "fabia/engine.toml:engine.mass_kg=130.0",
+        )
+        .unwrap()]);
+    let s = scene::load_with(&path, &Default::default(), &caller).unwrap();
+    assert_eq!(engine_mass(&s), 130.0);
+}
+
+/// A sensitivity study perturbs the value the run uses: its base is the scene's
+/// `[[override]]` value, not the file's (125 kg), and its perturbed runs change it.
+#[test]
+fn a_sensitivity_base_is_the_scenes_overridden_value() {
+    use towride::study::sensitivity::params::{candidates, Base};
+    let d = Scratch::new("sceneov3");
+    let path = engine_mass_scene(&d);
+    let all = candidates(&path, &[]).unwrap();
+    let p = all
+        .iter()
+        .find(|p| p.path == "engine.mass_kg" && p.file.ends_with("fabia/engine.toml"))
+        .expect("the engine's mass is a parameter");
+    assert_eq!(p.base, Base::Scalar(110.0));
+    let s = scene::load_with(
+        &path,
+        &Default::default(),
+        &Loader::with_overrides(vec![p.scaled(1.1)]),
+    )
+    .unwrap();
+    let b = &s.vehicle.model.bodies;
+    let engine = &b[b.iter().position(|b| b.name == "engine").unwrap()];
+    assert!((engine.mass - 121.0).abs() < 1e-9, "{}", engine.mass);
+}
+
+/// The default scene with an `[[override]]` setting the engine's mass to 110 kg.
+fn engine_mass_scene(d: &Scratch) -> PathBuf {
+    let base = std::fs::read_to_string(repo!("scenes/default.toml")).unwrap();
+    // The scene's relative paths resolve from the copy's folder: point them back.
+    let root = Path::new(repo!("")).display().to_string();
+    let base = base
+        .replace("\"../vehicles/", &format!("\"{root}vehicles/"))
+        .replace("\"../roads/", &format!("\"{root}roads/"));
+    let text = format!(
+        "{base}\n[[override]]\nfile = \"fabia/engine.toml\"\npath = \"engine.mass_kg\"\nvalue = 110.0\n"
+    );
+    d.write("scene.toml", &text)
+}
+
 fn mechanism(d: &Scratch, name: &str, text: &str) -> Result<Job, towride::Error> {
     Job::from_mechanism_file(&d.write(name, text), &Loader::new())
 }

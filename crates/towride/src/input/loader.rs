@@ -79,6 +79,28 @@ impl Loader {
         }
     }
 
+    /// This loader with `first` applied before its own overrides, so that its own win
+    /// where both set a value (a scene's `[[override]]` tables under the command line's
+    /// `--set`); the record of use is shared with `self`.
+    pub fn under(&self, first: Vec<Override>) -> Loader {
+        let mut entries: Vec<Arc<Entry>> = first
+            .into_iter()
+            .map(|ov| {
+                Arc::new(Entry {
+                    ov,
+                    file_hit: AtomicBool::new(false),
+                    path_hit: AtomicBool::new(false),
+                })
+            })
+            .collect();
+        entries.extend(self.entries.iter().cloned());
+        Loader {
+            entries,
+            read: Arc::clone(&self.read),
+            modes: self.modes.clone(),
+        }
+    }
+
     /// The same overrides with a fresh record of use (one case of a batch); the list of
     /// files read stays shared, so the caller learns what the case read.
     pub fn fresh(&self) -> Loader {

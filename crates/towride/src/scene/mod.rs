@@ -50,7 +50,7 @@ use serde::Deserialize;
 pub use channels::Channel;
 
 use crate::input::overrides::Origin;
-use crate::input::{InputError, Loader, Override};
+use crate::input::{InputError, Loader, Override, Source};
 use crate::model::builder::ModelBuilder;
 use crate::model::elements::JointBushing;
 use crate::model::{Model, System};
@@ -300,6 +300,30 @@ pub fn has_table(path: &Path, key: &str) -> bool {
         .is_some_and(|t| t.contains_key(key))
 }
 
+/// The scene file's `[[override]]` tables, each located where it was written.
+fn overrides_in(src: &Source, f: &File) -> Vec<Override> {
+    f.overrides
+        .iter()
+        .enumerate()
+        .map(|(k, x)| Override {
+            file: x.file.clone(),
+            path: x.path.clone(),
+            value: crate::sweep::toml_text(&x.value),
+            origin: Origin::File {
+                file: Box::new(src.error(&path!["override", k, "file"], "")),
+                path: Box::new(src.error(&path!["override", k, "path"], "")),
+            },
+        })
+        .collect()
+}
+
+/// The `[[override]]` tables of the scene file at `path` (as `load` applies them).
+pub fn file_overrides(path: &Path) -> Result<Vec<Override>, InputError> {
+    let src = Source::read(path)?;
+    let f: File = src.parse()?;
+    Ok(overrides_in(&src, &f))
+}
+
 /// Reads a scene file.
 pub fn load(path: &Path) -> Result<Scene, InputError> {
     load_with(path, &Changes::default(), &Loader::new())
@@ -312,21 +336,9 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
     let loader = loader.fresh();
     let src = loader.toml(path)?;
     let f: File = src.parse()?;
-    let loader = loader.extended(
-        f.overrides
-            .iter()
-            .enumerate()
-            .map(|(k, x)| Override {
-                file: x.file.clone(),
-                path: x.path.clone(),
-                value: crate::sweep::toml_text(&x.value),
-                origin: Origin::File {
-                    file: Box::new(src.error(&path!["override", k, "file"], "")),
-                    path: Box::new(src.error(&path!["override", k, "path"], "")),
-                },
-            })
-            .collect(),
-    );
+    // The file's overrides first, so that the caller's (`run --set`, a sweep case, a
+    // sensitivity study) win where both set a value.
+    let loader = loader.under(overrides_in(&src, &f));
     let dir = path.parent().unwrap_or(Path::new("."));
     // Modes from an earlier run: the command line's choice wins over the file's.
     let loader = match (&f.scene.modes_from, loader.run_modes()) {

@@ -164,6 +164,14 @@ pub fn candidates(scene: &Path, groups: &[String]) -> Result<Vec<Param>, crate::
                 .unwrap_or_default(),
         })
     });
+    // Base values as the run sees them: a scene's `[[override]]` tables replace values of
+    // the files (and the study's own overrides then replace those, see `scene::load_with`).
+    let scene_overrides = if is_scene {
+        crate::scene::file_overrides(scene)?
+    } else {
+        Vec::new()
+    };
+    let effective = Loader::with_overrides(scene_overrides);
     let mut out = Vec::new();
     for ((f, c), g) in files.iter().zip(&canon).zip(&group) {
         let Some(g) = g else { continue };
@@ -178,8 +186,19 @@ pub fn candidates(scene: &Path, groups: &[String]) -> Result<Vec<Param>, crate::
             .to_string();
         let text = crate::input::loader::read_text(f)?;
         if f.extension().is_some_and(|e| e == "tir") {
+            let first = out.len();
             tir_values(&text, &rel, g, &mut out);
-        } else if let Ok(t) = text.parse::<toml_edit::DocumentMut>() {
+            for e in effective.matching(f) {
+                let x = e.ov.value.trim().parse::<f64>();
+                let p = out[first..].iter_mut().find(|p| p.path == e.ov.path);
+                if let (Some(p), Ok(x)) = (p, x) {
+                    p.base = Base::Scalar(x);
+                }
+            }
+        } else if let Ok(t) =
+            crate::input::overrides::apply_toml(f, text.clone(), &effective.matching(f))?
+                .parse::<toml_edit::DocumentMut>()
+        {
             let mut found = Vec::new();
             walk(t.as_item(), "", &mut found);
             for (path, base, key) in found {
