@@ -229,3 +229,43 @@ fn stubby_simply_supported_beam_matches_timoshenko_theory() {
         assert!(eb > 1.01 * want);
     }
 }
+
+/// The words a mode is named by (`flex::character`) follow its strain energy: on the
+/// free-free bar along x the bending modes in the x-y and x-z planes are "lateral" and
+/// "vertical bending", the twisting ones "torsion about x", the stretching one "axial
+/// along x", each with over 99 % of the strain energy, and the first mode named torsion
+/// and the first named axial sit at Saint-Venant's and the axial-wave frequency.
+#[test]
+fn modes_are_named_by_their_strain_energy() {
+    use towride::flex::character::character;
+    let mesh = bar(BAR.l, BAR.b, BAR.h, 20, false);
+    let asm = Assembly::new(&mesh);
+    let e = generalized_eigen(asm.k.as_ref(), asm.m.as_ref()).unwrap();
+    let want = [
+        "axial along x, bar",
+        "lateral bending, bar",
+        "vertical bending, bar",
+        "torsion about x, bar",
+    ];
+    let (mut torsion, mut axial) = (None, None);
+    // Every mode up to just above the first axial one (1293 Hz).
+    let up_to = 1.1 * (E / RHO).sqrt() / (2.0 * BAR.l);
+    for k in (6..e.omega2.len()).filter(|&k| frequency_hz(e.omega2[k]) < up_to) {
+        let shape = asm.expand(|d| e.vectors[(d, k)]);
+        let (name, share) = character(&mesh, &shape);
+        assert_eq!(name, want[family(&asm.m, &e, k)], "mode {k}");
+        assert!(share > 0.99, "mode {k}: {share}");
+        let f = frequency_hz(e.omega2[k]);
+        if name.starts_with("torsion") && torsion.is_none() {
+            torsion = Some(f);
+        }
+        if name.starts_with("axial") && axial.is_none() {
+            axial = Some(f);
+        }
+    }
+    let p = mesh.sections[0].1.properties(NU);
+    let g = E / (2.0 * (1.0 + NU));
+    let c_t = (g * p.torsion_constant_m4 / (RHO * (p.iy_m4 + p.iz_m4))).sqrt();
+    assert!(rel(torsion.unwrap(), c_t / (2.0 * BAR.l)) < 2e-3);
+    assert!(rel(axial.unwrap(), (E / RHO).sqrt() / (2.0 * BAR.l)) < 2e-3);
+}

@@ -128,9 +128,9 @@ fn print_text(r: &ModesReport) {
     }
     println!();
     println!(
-        "{:>4} {:>12} {:<7} {:>8} {:>9} {:>9} {:>9} {:>10} {:>10} {:>10} {:>6} {:>7} {:>4}  moving part",
+        "{:>4} {:>12} {:<7} {:>8} {:>9} {:>9} {:>9} {:>10} {:>10} {:>10} {:>6} {:>7} {:>4}  {:<36} moving part",
         "mode", "freq [Hz]", "kind", "gen.mass", "m_x [kg]", "m_y [kg]", "m_z [kg]",
-        "I_x[kgm2]", "I_y[kgm2]", "I_z[kgm2]", "zeta", "share%", "sel"
+        "I_x[kgm2]", "I_y[kgm2]", "I_z[kgm2]", "zeta", "share%", "sel", "what it does (strain energy)"
     );
     for m in &r.modes {
         let e = m.effective_mass;
@@ -141,8 +141,12 @@ fn print_text(r: &ModesReport) {
             .map(|(n, e)| format!("{n} {:.0}%", 100.0 * e))
             .collect::<Vec<_>>()
             .join(", ");
+        let what = m
+            .character
+            .as_ref()
+            .map_or("-".to_string(), |(c, s)| format!("{c} ({:.0}%)", 100.0 * s));
         println!(
-            "{:>4} {:>12.4} {:<7} {:>8.5} {:>9.3e} {:>9.3e} {:>9.3e} {:>10.3e} {:>10.3e} {:>10.3e} {:>6} {:>7} {:>4}  {part}",
+            "{:>4} {:>12.4} {:<7} {:>8.5} {:>9.3e} {:>9.3e} {:>9.3e} {:>10.3e} {:>10.3e} {:>10.3e} {:>6} {:>7} {:>4}  {what:<36} {part}",
             m.index,
             m.frequency_hz,
             m.kind,

@@ -10,6 +10,7 @@
 
 pub(crate) mod assemble;
 pub mod beam;
+pub mod character;
 pub mod craig_bampton;
 pub(crate) mod damping;
 pub mod feedback;

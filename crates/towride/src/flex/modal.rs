@@ -54,6 +54,9 @@ pub struct ModalMode {
     pub damping_ratio: f64,
     /// Kept by the selection rule (only selected modes become modal coordinates).
     pub selected: bool,
+    /// What the mode does ("vertical bending", "torsion about y"; [`super::character`])
+    /// and the share of its strain energy behind that word.
+    pub character: (String, f64),
 }
 
 /// The data of a modal body (SI units, body frame = the FE file's frame).
@@ -123,9 +126,11 @@ impl ModalData {
         }
         let modes = elastic
             .iter()
-            .map(|&k| {
+            .zip(&shapes)
+            .map(|(&k, shape)| {
                 let f = frequency_hz(cb.omega2[k]);
                 ModalMode {
+                    character: super::character::character(mesh, shape),
                     number: k + 1,
                     frequency_hz: f,
                     stiffness: cb.omega2[k],

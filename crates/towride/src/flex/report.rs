@@ -34,6 +34,9 @@ pub struct ModeRecord {
     pub energy_share: Option<f64>,
     /// Share of the mode's kinetic energy per section, largest first.
     pub kinetic_energy_by_section: Vec<(String, f64)>,
+    /// What an elastic mode does ("vertical bending, crossbeam") and the share of its
+    /// strain energy behind the word ([`super::character`]); `None` for rigid-body modes.
+    pub character: Option<(String, f64)>,
 }
 
 /// A fixed-interface normal mode with its effective mass relative to the held
@@ -238,6 +241,7 @@ impl ModesReport {
                     damping_ratio: m.map(|m| m.damping_ratio),
                     energy_share: share_of(r.number),
                     kinetic_energy_by_section: r.kinetic_energy_by_section.clone(),
+                    character: m.map(|m| m.character.clone()),
                 }
             })
             .collect();

@@ -46,7 +46,8 @@ pub struct Mode {
     pub bodies: Vec<Share>,
     /// Strain-energy share per force element, largest first (shares > 1 %).
     pub elements: Vec<Share>,
-    /// The dominant motion ("car_body bounce", "wheel hop wheel_fl", "hitch elastic"):
+    /// The dominant motion ("car_body bounce", "wheel hop wheel_fl", "hitch vertical
+    /// bending, crossbeam"):
     /// the body and direction with the largest share of the mode's kinetic energy
     /// ([`motion_shares`]); "first-order states (tyres, controllers)" when the bodies
     /// carry no kinetic energy.
@@ -191,15 +192,20 @@ pub fn naming_groups(sys: &System) -> Vec<(String, Vec<usize>, bool)> {
 /// The shares of [`motion_energies`] pooled over [`naming_groups`], with their names,
 /// largest first (all of them).
 pub fn motion_shares(sys: &System, q: &[f64], xr: &[f64], xi: &[f64]) -> Vec<Share> {
-    let e = motion_energies(sys, q, xr, xi);
+    let energies = motion_energies(sys, q, xr, xi);
+    let e = &energies;
     let total: f64 = e.iter().flatten().map(|v| v.max(0.0)).sum();
     let mut out: Vec<Share> = naming_groups(sys)
         .iter()
         .flat_map(|(name, members, wheel)| {
-            (0..7).map(|k| {
+            (0..7).map(move |k| {
                 let v: f64 = members.iter().map(|&b| e[b][k].max(0.0)).sum();
+                let elastic = (k == 6).then(|| elastic_character(sys, members, xr, xi));
                 Share {
-                    name: motion_name(name, k, *wheel),
+                    name: match elastic.flatten() {
+                        Some(c) => format!("{name} {c}"),
+                        None => motion_name(name, k, *wheel),
+                    },
                     share: if total > 0.0 { v / total } else { 0.0 },
                 }
             })
@@ -207,6 +213,26 @@ pub fn motion_shares(sys: &System, q: &[f64], xr: &[f64], xi: &[f64]) -> Vec<Sha
         .collect();
     out.sort_by(|a, b| b.share.total_cmp(&a.share));
     out
+}
+
+/// The character of the modal coordinate carrying most of the elastic kinetic energy of
+/// `members` in the vector (xr, xi) ("vertical bending", [`crate::flex::character`]),
+/// `None` when they have no modal coordinates.
+fn elastic_character(sys: &System, members: &[usize], xr: &[f64], xi: &[f64]) -> Option<String> {
+    let mut best: Option<(f64, &str)> = None;
+    for &b in members {
+        let Some(m) = &sys.model.bodies[b].modal else {
+            continue;
+        };
+        for (j, mode) in m.data.modes.iter().enumerate() {
+            let i = sys.vo[b] + 6 + j;
+            let e = xr[i] * xr[i] + xi[i] * xi[i];
+            if best.is_none_or(|(x, _)| e > x) {
+                best = Some((e, mode.character.0.as_str()));
+            }
+        }
+    }
+    best.map(|(_, c)| c.to_string())
 }
 
 /// The mode's name from its sorted motion shares: the largest, or the two largest of the

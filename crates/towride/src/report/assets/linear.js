@@ -83,7 +83,7 @@
 
   // --- the table
   app.append(el("h2", { id: "modes" }, "Modes"));
-  app.append(el("p", { class: "hint" }, "Name: the body and direction with the largest share of the mode's kinetic energy (translations along and rotations about world axes, the elastic part of a modal body); shares of kinetic energy per body and of strain energy per force element, largest first."));
+  app.append(el("p", { class: "hint" }, "Name: the body and direction with the largest share of the mode's kinetic energy (translations along and rotations about world axes, the elastic part of a modal body, named by what its dominant FE mode does: bending, torsion or stretch, the axis, and the section holding most of its strain energy); shares of kinetic energy per body and of strain energy per force element, largest first."));
   const rows = D.modes.map((m) => [m.index, m.undamped_hz, m.damped_hz, m.damping_ratio, m.name,
     m.name_share > 0 ? `${(100 * m.name_share).toFixed(0)} %` : "",
     m.bodies.slice(0, 3).map((b) => `${b.name} ${(100 * b.share).toFixed(0)} %`).join(", "),
