@@ -146,14 +146,9 @@ fn a_sweep_parameter_that_matches_nothing_is_an_error_at_its_line_and_field() {
 #[test]
 fn a_scene_override_table_changes_a_vehicle_file_and_a_bad_one_is_located() {
     let d = Scratch::new("sceneov");
-    let base = std::fs::read_to_string(repo!("scenes/default.toml")).unwrap();
-    // The scene's relative paths resolve from the copy's folder: point them back.
-    let root = Path::new(repo!("")).display().to_string();
-    let base = base
-        .replace("\"../vehicles/", &format!("\"{root}vehicles/"))
-        .replace("\"../roads/", &format!("\"{root}roads/"));
     let good = format!(
-        "{base}\n[[override]]\nfile = \"fabia/hitch.toml\"\npath = \"ball_coupling.kind\"\nvalue = \"bushing\"\n"
+        "{}\n[[override]]\nfile = \"fabia/hitch.toml\"\npath = \"ball_coupling.kind\"\nvalue = \"bushing\"\n",
+        default_scene_text()
     );
     let s = scene::load(&d.write("good.toml", &good)).unwrap();
     let (_, kind) = s.vehicle.handles.ball.as_ref().unwrap();
@@ -214,16 +209,20 @@ fn a_sensitivity_base_is_the_scenes_overridden_value() {
     assert!((engine.mass - 121.0).abs() < 1e-9, "{}", engine.mass);
 }
 
+/// The default scene's text for a copy in another folder: its relative paths point back
+/// to the repository.
+fn default_scene_text() -> String {
+    let base = std::fs::read_to_string(repo!("scenes/default.toml")).unwrap();
+    let root = Path::new(repo!("")).display().to_string();
+    base.replace("\"../vehicles/", &format!("\"{root}vehicles/"))
+        .replace("\"../roads/", &format!("\"{root}roads/"))
+}
+
 /// The default scene with an `[[override]]` setting the engine's mass to 110 kg.
 fn engine_mass_scene(d: &Scratch) -> PathBuf {
-    let base = std::fs::read_to_string(repo!("scenes/default.toml")).unwrap();
-    // The scene's relative paths resolve from the copy's folder: point them back.
-    let root = Path::new(repo!("")).display().to_string();
-    let base = base
-        .replace("\"../vehicles/", &format!("\"{root}vehicles/"))
-        .replace("\"../roads/", &format!("\"{root}roads/"));
     let text = format!(
-        "{base}\n[[override]]\nfile = \"fabia/engine.toml\"\npath = \"engine.mass_kg\"\nvalue = 110.0\n"
+        "{}\n[[override]]\nfile = \"fabia/engine.toml\"\npath = \"engine.mass_kg\"\nvalue = 110.0\n",
+        default_scene_text()
     );
     d.write("scene.toml", &text)
 }
