@@ -28,7 +28,7 @@ pub struct LinearArgs {
 }
 
 pub fn linear(a: &LinearArgs) -> CliResult {
-    let mut job = Job::from_file(&a.file, &Loader::new())?;
+    let mut job = Job::from_file(&a.file, &Loader::new())?.without_view();
     if let Some(t) = a.at.filter(|t| *t > 0.0) {
         // The state of a run at t, started as the file says.
         job.settings.t_end = t;

@@ -191,6 +191,7 @@ fn method_label(m: Method) -> String {
 
 fn run_at(scene: &Path, f: impl FnOnce(&mut SolverOptions)) -> Result<RunResult> {
     Job::from_scene_file(scene, &Changes::default(), &Loader::new())?
+        .without_view()
         .tune(f)?
         .run(&Silent)
 }

@@ -222,6 +222,7 @@ pub fn run(
     progress: &dyn Progress,
 ) -> Result<Stress> {
     let reference = Job::from_scene_file(scene, &Changes::default(), &Loader::new())?
+        .without_view()
         .tune(|o| o.rtol = REFERENCE_RTOL)?
         .run(&Silent)?;
     reference.require_completed()?;
@@ -271,6 +272,7 @@ pub fn run(
 fn run_case(scene: &Path, c: &Case, method: Option<Method>) -> Result<RunResult> {
     let loader = Loader::with_overrides(c.props.clone());
     Job::from_scene_file(scene, &c.scene, &loader)?
+        .without_view()
         .tune(|o: &mut SolverOptions| {
             if let Some(m) = method {
                 o.method = m;

@@ -141,6 +141,12 @@ fn run_case_kept(
     keep: Option<(&Path, usize)>,
 ) -> Result<Figures> {
     let job = Job::from_file(path, loader)?;
+    // Only a kept case writes a report with the 3D view.
+    let job = if keep.is_some() {
+        job
+    } else {
+        job.without_view()
+    };
     let mut r = job.run(stop)?;
     if let (Some((cases, index)), None) = (keep, r.samples.interrupted) {
         super::cases::keep(&mut r, cases, index)?;

@@ -43,7 +43,9 @@ impl Simulator for VehicleSimulator {
             obstacle_ahead_m: Some(ahead),
             ..Default::default()
         };
-        let r = Job::from_scene_file(scene, &changes, &Loader::new())?.run(&Silent)?;
+        let r = Job::from_scene_file(scene, &changes, &Loader::new())?
+            .without_view()
+            .run(&Silent)?;
         r.require_completed()?;
         let res = r.samples;
         // The accelerometer channels: what a measurement can be compared with.

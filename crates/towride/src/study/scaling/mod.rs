@@ -365,7 +365,7 @@ fn measure(
     job: impl FnOnce() -> Result<Job>,
 ) -> Result<Point> {
     let wall = Instant::now();
-    let job = job()?;
+    let job = job()?.without_view();
     let built = wall.elapsed().as_secs_f64();
     let run = Instant::now();
     let r: RunResult = job.run(&Silent)?;

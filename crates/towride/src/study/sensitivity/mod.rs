@@ -280,7 +280,8 @@ fn run_all(
                 }
                 let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(
                     || -> Result<Vec<f64>> {
-                        let job = Job::from_file(&s.file, &Loader::with_overrides(ov.clone()))?;
+                        let job = Job::from_file(&s.file, &Loader::with_overrides(ov.clone()))?
+                            .without_view();
                         let r = job.run(&StopOnly(progress))?;
                         r.require_completed()?;
                         outputs::evaluate(specs, &r)
