@@ -104,7 +104,7 @@ fn a_plan_with_a_vanishing_speed_is_refused_at_its_line() {
 fn a_closed_or_full_stdout_ends_quietly_without_a_panic() {
     // The reader is gone before the first line: exit 141 (SIGPIPE's code), nothing said.
     let mut child = Command::new(env!("CARGO_BIN_EXE_towride"))
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR")))
         .args(["modes", "flex/hitch_crossbeam.toml"])
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
@@ -119,7 +119,7 @@ fn a_closed_or_full_stdout_ends_quietly_without_a_panic() {
     // A full disk: one line on stderr, exit 2, and the run's files are complete.
     let d = tmp("full");
     let out = Command::new(env!("CARGO_BIN_EXE_towride"))
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR")))
         .args(["run", "scenes/examples/pendulum.toml", "--out"])
         .arg(&d)
         .stdout(std::fs::File::create("/dev/full").unwrap())
@@ -232,7 +232,7 @@ fn ctrl_c_stops_a_run_keeping_its_rows_with_status_interrupted() {
     let d = tmp("sigint");
     // An hour of pendulum at 1 kHz: minutes of work, stopped after a second.
     let child = Command::new(env!("CARGO_BIN_EXE_towride"))
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR")))
         .args([
             "run",
             "scenes/examples/pendulum.toml",

@@ -7,7 +7,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
+const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"));
 
 fn tmp(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("towride_slurm_{name}_{}", std::process::id()));

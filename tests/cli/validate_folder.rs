@@ -7,9 +7,9 @@ use crate::towride;
 use std::path::PathBuf;
 
 use crate::validate_sim::Analytic;
-use towride::validate::plan::{plan, write_plan};
-use towride::validate::synth::SensorModel;
-use towride::validate::{validate_folder, write_summary, Options};
+use towride_app::validate::plan::{plan, write_plan};
+use towride_app::validate::synth::SensorModel;
+use towride_app::validate::{validate_folder, write_summary, Options};
 
 fn tmp(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("towride-vfold-{name}-{}", std::process::id()));
@@ -165,8 +165,9 @@ fn plan_of_72_runs_with_one_bad_file() {
         rate_hz: 1000.0,
         ..Analytic::default()
     };
-    let p = towride::scene::plan::load(std::path::Path::new(repo!("scenes/measurement_plan.toml")))
-        .unwrap();
+    let p =
+        towride_app::scene::plan::load(std::path::Path::new(repo!("scenes/measurement_plan.toml")))
+            .unwrap();
     let runs = plan(&p);
     assert_eq!(runs.len(), 72);
     let mut names: Vec<&str> = runs.iter().map(|r| r.name.as_str()).collect();

@@ -1,0 +1,199 @@
+//! The application's errors and [`Error`], the top-level error every one of them
+//! converts into, in one `thiserror` hierarchy (as diffsol keeps its own in one
+//! `error.rs`); the physics crate's errors live in its layers and are wrapped here. The
+//! module sits at the bottom of the crate's module order so every layer can return its
+//! error; `scene`, `validate` and `report` re-export theirs. Every error says what went
+//! wrong and, for input, where: file, line and field ([`InputError`]).
+//!
+//! | layer | type | defined in |
+//! |---|---|---|
+//! | input files | [`InputError`] | `towride_mbs::input` |
+//! | model building and analyses | [`ModelError`] | `towride_mbs::model` |
+//! | flexible bodies | [`FlexError`] | `towride_mbs::flex` |
+//! | road and tyre | [`RoadError`] | `towride_mbs::road` |
+//! | the integrator | [`SolverError`] | `towride_solver` |
+//! | scenes, plans, jobs, sweeps | [`SceneError`] | here |
+//! | validation against measurements | [`ValidateError`] | here |
+//! | figures and reports | [`ReportError`] | here |
+
+use std::path::PathBuf;
+
+pub use towride_mbs::flex::FlexError;
+pub use towride_mbs::input::InputError;
+pub use towride_mbs::model::ModelError;
+pub use towride_mbs::road::RoadError;
+pub use towride_solver::SolverError;
+
+/// A signal the processing cannot take.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SignalError {
+    /// A filter that cannot be designed for the sample rate.
+    #[error("Butterworth low-pass needs order >= 1 and 0 < cutoff ({cutoff_hz} Hz) < rate/2 ({} Hz)", 0.5 * rate_hz)]
+    FilterDesign {
+        /// Filter order asked for.
+        order: usize,
+        /// Cutoff asked for [Hz].
+        cutoff_hz: f64,
+        /// Sample rate [Hz].
+        rate_hz: f64,
+    },
+}
+
+/// Any error of the library.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// A bad input file or value.
+    #[error(transparent)]
+    Input(#[from] InputError),
+    /// A model that cannot be built, started or analysed.
+    #[error(transparent)]
+    Model(#[from] ModelError),
+    /// A flexible body the reduction refuses.
+    #[error(transparent)]
+    Flex(#[from] FlexError),
+    /// A road or tyre failure.
+    #[error(transparent)]
+    Road(#[from] RoadError),
+    /// A scene, plan, job or sweep failure.
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+    /// A validation failure.
+    #[error(transparent)]
+    Validate(#[from] ValidateError),
+    /// A figure or report that could not be drawn.
+    #[error(transparent)]
+    Report(#[from] ReportError),
+    /// A signal the processing cannot take.
+    #[error(transparent)]
+    Signal(#[from] SignalError),
+    /// The integrator stopped.
+    #[error(transparent)]
+    Solver(#[from] SolverError),
+    /// A file that could not be written or read.
+    #[error("{}: {source}", path.display())]
+    Io {
+        /// The file or folder.
+        path: PathBuf,
+        /// What the system said.
+        source: std::io::Error,
+    },
+}
+
+impl Error {
+    /// An I/O error about `path`.
+    pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Error {
+        Error::Io {
+            path: path.into(),
+            source,
+        }
+    }
+}
+
+/// `Result` with the library's [`Error`].
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// A scene, plan or batch that cannot be loaded or run as asked.
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    /// A bad scene, plan or sweep file.
+    #[error(transparent)]
+    Input(#[from] InputError),
+    /// A plan asked for something it does not hold.
+    #[error("{}: {message}", file.display())]
+    Plan {
+        /// The plan file.
+        file: PathBuf,
+        /// What is wrong.
+        message: String,
+    },
+    /// The solver stopped a run that had to complete (a batch case, a validation
+    /// simulation); the message is the solver's.
+    #[error("{name}: run failed at t = {t:.6} s: {message}")]
+    RunFailed {
+        /// The scene or model.
+        name: String,
+        /// Time reached [s].
+        t: f64,
+        /// The solver's message.
+        message: String,
+    },
+    /// A run stopped on request (Ctrl-C) that had to complete.
+    #[error("{name}: interrupted at t = {t:.6} s")]
+    Interrupted {
+        /// The scene or model.
+        name: String,
+        /// Time of the last sample kept [s].
+        t: f64,
+    },
+    /// A run that would hold more samples than the memory limit allows
+    /// (`input::bounds::budget`).
+    #[error("{}: field `{field}`: {message}", file.display())]
+    TooLarge {
+        /// The input file of the run.
+        file: PathBuf,
+        /// The run settings that set its size.
+        field: String,
+        /// Rows and memory against the limits.
+        message: String,
+    },
+    /// A case or group asked for by name that does not exist.
+    #[error("{0}")]
+    NoSuchCase(String),
+    /// A shard specification that is not `I/N` with 0 <= I < N.
+    #[error("{0}")]
+    Shard(String),
+    /// Shard summaries that cannot be merged.
+    #[error("{}: {message}", file.display())]
+    Merge {
+        /// The shard file.
+        file: PathBuf,
+        /// What is wrong.
+        message: String,
+    },
+}
+
+/// Why a recorded run could not be validated.
+#[derive(Debug, thiserror::Error)]
+pub enum ValidateError {
+    /// A bad descriptor or measurement file.
+    #[error(transparent)]
+    Input(#[from] InputError),
+    /// A signal the processing chain cannot take (filter design, too few samples,
+    /// trigger pulses).
+    #[error("{0}")]
+    Signal(String),
+    /// A filter the acquisition chain cannot design for the sample rate.
+    #[error(transparent)]
+    Filter(#[from] SignalError),
+    /// Measurement and simulation do not fit together (a channel the model lacks).
+    #[error("{0}")]
+    Mismatch(String),
+    /// The simulator failed.
+    #[error("simulation: {0}")]
+    Simulation(Box<Error>),
+    /// A figure could not be drawn.
+    #[error(transparent)]
+    Report(#[from] ReportError),
+    /// A file could not be written.
+    #[error("{}: {source}", path.display())]
+    Io {
+        /// The file or folder.
+        path: std::path::PathBuf,
+        /// What the system said.
+        source: std::io::Error,
+    },
+}
+
+/// A figure or report that could not be drawn or written.
+#[derive(Debug, Clone, thiserror::Error)]
+pub enum ReportError {
+    /// The plotting backend failed (a file that cannot be written, a bad font).
+    #[error("plot: {0}")]
+    Plot(String),
+}
+
+impl From<String> for ReportError {
+    fn from(message: String) -> Self {
+        ReportError::Plot(message)
+    }
+}

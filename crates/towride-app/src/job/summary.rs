@@ -1,0 +1,483 @@
+//! The run summary: everything `summary.json` holds, as a typed, serialisable struct
+//! that sweeps, benches and the command line read by field.
+
+use std::collections::BTreeMap;
+
+use serde::Serialize;
+
+use super::{Job, StartState};
+use crate::vehicle::Design;
+use towride_mbs::model::desc::Accelerations;
+use towride_mbs::model::energy::{select_by_energy, strain_shares, BodyEnergy};
+use towride_mbs::model::ic::AssemblyReport;
+use towride_mbs::model::run::Samples;
+use towride_mbs::model::start::StartReport;
+use towride_mbs::model::statics::StaticsReport;
+use towride_mbs::model::System;
+use towride_solver::{MatrixRebuilds, Stats};
+
+/// Version of the summary's layout; raised when a field changes meaning or goes away.
+pub const SCHEMA_VERSION: u32 = 1;
+
+/// How a run ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RunStatus {
+    /// The end time was reached.
+    Completed,
+    /// The solver stopped early; the samples up to `failed_at_s` are kept.
+    Failed,
+    /// Stopped on request (Ctrl-C); the samples up to `interrupted_at_s` are kept.
+    Interrupted,
+}
+
+/// Solver effort, as the integrator counted it.
+#[derive(Clone, Debug, Serialize)]
+pub struct SolverSummary {
+    /// Accepted steps.
+    pub steps: usize,
+    /// Rejected step attempts.
+    pub rejected_steps: usize,
+    /// Residual evaluations.
+    pub residual_evals: usize,
+    /// Iteration-matrix evaluations.
+    pub jacobian_evals: usize,
+    /// Iteration matrices rebuilt for a new step size without an evaluation.
+    pub matrix_recombinations: usize,
+    /// LU factorisations.
+    pub lu_factorizations: usize,
+    /// Newton iterations.
+    pub newton_iterations: usize,
+    /// Why the iteration matrix was rebuilt.
+    pub matrix_rebuilds: MatrixRebuilds,
+    /// The unknowns whose error estimate limited the most steps.
+    pub step_limiters: Vec<StepLimiter>,
+    /// Accepted steps per order 1..=5.
+    pub order_counts: [usize; 5],
+}
+
+/// An unknown that limited the step, and how often.
+#[derive(Clone, Debug, Serialize)]
+pub struct StepLimiter {
+    /// The unknown's name.
+    pub unknown: String,
+    /// Accepted steps it limited.
+    pub steps: usize,
+}
+
+/// The sizes of the assembled equations.
+#[derive(Clone, Debug, Serialize)]
+pub struct Unknowns {
+    /// Position unknowns (centres, quaternions, modal coordinates).
+    pub positions: usize,
+    /// Velocity unknowns.
+    pub velocities: usize,
+    /// Constraint multipliers (kept rows).
+    pub multipliers: usize,
+    /// States of the extension elements (tyres, controllers).
+    pub extension_states: usize,
+}
+
+/// One channel's extremes and the times they occur.
+#[derive(Clone, Debug, Serialize)]
+pub struct ChannelSummary {
+    /// Unit of the values.
+    pub unit: String,
+    /// Largest value and its time [s].
+    pub max: f64,
+    /// Time of the largest value [s].
+    pub t_max: f64,
+    /// Smallest value.
+    pub min: f64,
+    /// Time of the smallest value [s].
+    pub t_min: f64,
+    /// The value of largest magnitude, with its sign.
+    pub peak: f64,
+    /// Time of `peak` [s].
+    pub t_peak: f64,
+}
+
+/// A wheel off the road.
+#[derive(Clone, Debug, Serialize)]
+pub struct LiftOff {
+    /// Wheel short name (fl, fr, rl, rr, tl, tr).
+    pub wheel: String,
+    /// Start of the flight [s].
+    pub start_s: f64,
+    /// Landing [s]; `None` when still in the air at the end.
+    pub end_s: Option<f64>,
+    /// Time in the air [s].
+    pub duration_s: f64,
+}
+
+/// A modal body's strain-energy shares over the run.
+#[derive(Clone, Debug, Serialize)]
+pub struct ModalEnergy {
+    /// Per mode, over the run.
+    #[serde(flatten)]
+    pub shares: BodyEnergy,
+    /// The modes a 1 % share threshold keeps (the thesis's commercial-tool method).
+    pub kept_at_1_percent: Vec<usize>,
+}
+
+/// What a vehicle run adds.
+#[derive(Clone, Debug, Serialize)]
+pub struct SceneInfo {
+    /// Set speed [m/s].
+    pub speed_m_s: f64,
+    /// The road file.
+    pub road: String,
+    /// Trailer load case.
+    pub load_case: Option<String>,
+    /// Hitch crossbeam variant.
+    pub hitch_variant: Option<u32>,
+    /// Design statics of the vehicle.
+    pub design: Design,
+    /// Values a compact (`simple`) vehicle file left to its defaults file or derived from
+    /// its numbers (empty for an assembly file).
+    pub assumed: Vec<crate::vehicle::simple::Assumed>,
+    /// What the run did not compute, and why.
+    pub skipped: Skipped,
+}
+
+/// Work the run left out, and why (a scene skips what it does not need).
+#[derive(Clone, Debug, Serialize)]
+pub struct Skipped {
+    /// Tyre-road queries.
+    pub tyre_road_queries: u64,
+    /// Queries answered by the memo of the last query.
+    pub answered_from_memo: u64,
+    /// Queries answered on flat road without an enveloping search.
+    pub answered_flat_without_search: u64,
+    /// Tandem-cam enveloping searches done.
+    pub enveloping_searches: u64,
+    /// Why.
+    pub why: &'static str,
+    /// Per modal body: the modes kept and why the others are not integrated.
+    pub modal_bodies: Vec<ModesKept>,
+    /// Whether the per-sample acceleration solve was skipped.
+    pub acceleration_solves: SkippedSolves,
+    /// Iteration matrices built without a Jacobian evaluation.
+    pub jacobian_evaluations: SkippedJacobians,
+}
+
+/// A modal body's kept modes.
+#[derive(Clone, Debug, Serialize)]
+pub struct ModesKept {
+    /// The body.
+    pub body: String,
+    /// Modes integrated.
+    pub modes_kept: usize,
+    /// Why.
+    pub why: &'static str,
+}
+
+/// The per-sample acceleration solve.
+#[derive(Clone, Debug, Serialize)]
+pub struct SkippedSolves {
+    /// True when sampled accelerations come from the interpolant.
+    pub skipped: bool,
+    /// Why.
+    pub why: &'static str,
+}
+
+/// Jacobian evaluations saved by recombination.
+#[derive(Clone, Debug, Serialize)]
+pub struct SkippedJacobians {
+    /// Evaluations done.
+    pub evaluated: usize,
+    /// Matrices rebuilt from kept parts.
+    pub matrices_recombined_without_evaluation: usize,
+    /// Why.
+    pub why: &'static str,
+}
+
+/// Everything `summary.json` holds.
+#[derive(Clone, Debug, Serialize)]
+pub struct RunSummary {
+    /// Layout version ([`SCHEMA_VERSION`]).
+    pub schema_version: u32,
+    /// "mechanism" or "scene".
+    pub kind: &'static str,
+    /// The model's or the scene's name.
+    pub name: String,
+    /// The input file.
+    pub file: String,
+    /// How the run ended.
+    pub status: RunStatus,
+    /// The solver's message when it stopped early.
+    pub error: Option<String>,
+    /// Time reached when it stopped early [s].
+    pub failed_at_s: Option<f64>,
+    /// Time of the last sample kept when the run was interrupted [s].
+    pub interrupted_at_s: Option<f64>,
+    /// End time asked for [s].
+    pub t_end_s: f64,
+    /// Last sample time [s].
+    pub t_reached_s: f64,
+    /// Output sample rate [Hz].
+    pub sample_rate_hz: f64,
+    /// Output samples written.
+    pub samples: usize,
+    /// Wall time of the integration, initial state included [s].
+    pub wall_s: f64,
+    /// Wall time of the start policy (statics, start at speed) [s].
+    pub start_wall_s: f64,
+    /// Solver effort.
+    #[serde(flatten)]
+    pub solver: SolverSummary,
+    /// Number of unknowns.
+    pub equations: usize,
+    /// The unknowns by kind.
+    pub unknowns: Unknowns,
+    /// Kept constraint rows.
+    pub constraint_rows: usize,
+    /// Constraint rows dropped as redundant.
+    pub redundant_rows: usize,
+    /// Warnings of the model checks.
+    pub warnings: Vec<String>,
+    /// The kinematic assembly of the initial state.
+    pub assembly: AssemblyReport,
+    /// The equilibrium search of a statics start.
+    pub statics: Option<StaticsReport>,
+    /// The start at speed of a scene.
+    pub start: Option<StartReport>,
+    /// Vehicle figures of a scene run.
+    pub scene: Option<SceneInfo>,
+    /// Wheels off the road.
+    pub lift_off: Vec<LiftOff>,
+    /// Strain-energy shares of the modal bodies.
+    pub modal_energy: Vec<ModalEnergy>,
+    /// The hitch's fore-aft force (`hitch_fx`): peak, RMS, dominant frequency and the
+    /// damping of its ringing ([`super::ringing`]); `None` without a hitch.
+    pub hitch_force: Option<super::ringing::Ringing>,
+    /// Per channel, by name: unit, extremes and their times.
+    pub channels: BTreeMap<String, ChannelSummary>,
+    /// The CSV written, once written.
+    pub outputs_csv: Option<String>,
+    /// The plot page written (or why not), once written.
+    pub plots: Option<String>,
+    /// The HTML report written (or why not), once written.
+    pub report: Option<String>,
+    /// Wall time of writing the HTML report [s] (spectra included).
+    pub report_wall_s: Option<f64>,
+}
+
+impl RunSummary {
+    /// The summary of `samples`, a run of `job` from `start`.
+    pub fn of(job: &Job, samples: &Samples, start: StartState, start_wall_s: f64) -> RunSummary {
+        let sys = &job.system;
+        let st = &samples.stats;
+        RunSummary {
+            schema_version: SCHEMA_VERSION,
+            kind: if job.scene.is_some() {
+                "scene"
+            } else {
+                "mechanism"
+            },
+            name: job.name.clone(),
+            file: job.file.display().to_string(),
+            status: if samples.error.is_some() {
+                RunStatus::Failed
+            } else if samples.interrupted.is_some() {
+                RunStatus::Interrupted
+            } else {
+                RunStatus::Completed
+            },
+            error: samples.error.as_ref().map(|e| e.0.clone()),
+            failed_at_s: samples.error.as_ref().map(|e| e.1),
+            interrupted_at_s: samples.interrupted,
+            t_end_s: job.settings.t_end,
+            t_reached_s: samples.times.last().copied().unwrap_or(0.0),
+            sample_rate_hz: job.settings.sample_rate,
+            samples: samples.times.len(),
+            wall_s: samples.wall_s,
+            start_wall_s,
+            solver: solver_summary(st),
+            equations: sys.size(),
+            unknowns: Unknowns {
+                positions: sys.nq,
+                velocities: sys.nv,
+                multipliers: sys.m,
+                extension_states: sys.ne,
+            },
+            constraint_rows: sys.m,
+            redundant_rows: sys.redundant.len(),
+            warnings: job.warnings.clone(),
+            assembly: samples.assembly.clone(),
+            statics: start.statics,
+            start: start.start,
+            scene: job.scene.as_ref().map(|s| SceneInfo {
+                speed_m_s: s.speed,
+                road: s.road_file.display().to_string(),
+                load_case: s
+                    .vehicle
+                    .design
+                    .trailer
+                    .as_ref()
+                    .map(|t| t.load_case.clone()),
+                hitch_variant: s.vehicle.handles.hitch.as_ref().map(|h| h.variant),
+                design: s.vehicle.design.clone(),
+                assumed: s.vehicle.assumed.clone(),
+                skipped: skipped(sys, st),
+            }),
+            lift_off: lift_off(samples),
+            modal_energy: strain_shares(sys, samples)
+                .into_iter()
+                .map(|b| ModalEnergy {
+                    kept_at_1_percent: select_by_energy(&b, 0.01),
+                    shares: b,
+                })
+                .collect(),
+            hitch_force: samples
+                .channel("hitch_fx")
+                .and_then(|y| super::ringing::ringing("hitch_fx", &samples.times, &y)),
+            channels: channels(samples),
+            outputs_csv: None,
+            plots: None,
+            report: None,
+            report_wall_s: None,
+        }
+    }
+
+    /// The summary as pretty-printed JSON.
+    pub fn to_json(&self) -> String {
+        // Plain data (strings, numbers, maps): serialisation cannot fail.
+        serde_json::to_string_pretty(self).unwrap_or_default()
+    }
+}
+
+fn solver_summary(st: &Stats) -> SolverSummary {
+    SolverSummary {
+        steps: st.steps,
+        rejected_steps: st.rejected_steps,
+        residual_evals: st.residual_evals,
+        jacobian_evals: st.jacobian_evals,
+        matrix_recombinations: st.matrix_recombinations,
+        lu_factorizations: st.lu_factorizations,
+        newton_iterations: st.newton_iterations,
+        matrix_rebuilds: st.matrix_rebuilds.clone(),
+        step_limiters: st
+            .step_limiters
+            .iter()
+            .map(|(u, n)| StepLimiter {
+                unknown: u.clone(),
+                steps: *n,
+            })
+            .collect(),
+        order_counts: st.order_counts,
+    }
+}
+
+/// Per channel: unit, extremes, the signed peak, and their times.
+fn channels(s: &Samples) -> BTreeMap<String, ChannelSummary> {
+    let mut m = BTreeMap::new();
+    for (c, ch) in s.channels.iter().enumerate() {
+        let mut x = ChannelSummary {
+            unit: ch.unit.to_string(),
+            max: f64::NEG_INFINITY,
+            t_max: 0.0,
+            min: f64::INFINITY,
+            t_min: 0.0,
+            peak: 0.0,
+            t_peak: 0.0,
+        };
+        for (t, row) in s.times.iter().zip(&s.rows) {
+            let v = row[c];
+            if v < x.min {
+                (x.min, x.t_min) = (v, *t);
+            }
+            if v > x.max {
+                (x.max, x.t_max) = (v, *t);
+            }
+            if v.abs() > x.peak.abs() {
+                (x.peak, x.t_peak) = (v, *t);
+            }
+        }
+        m.insert(ch.name.clone(), x);
+    }
+    m
+}
+
+/// Intervals without contact per wheel, from the `tyre_<w>_contact` channels.
+pub fn lift_off(s: &Samples) -> Vec<LiftOff> {
+    let mut out = Vec::new();
+    for (c, ch) in s.channels.iter().enumerate() {
+        let Some(w) = ch
+            .name
+            .strip_prefix("tyre_")
+            .and_then(|n| n.strip_suffix("_contact"))
+        else {
+            continue;
+        };
+        let mut start: Option<f64> = None;
+        for (t, row) in s.times.iter().zip(&s.rows) {
+            match (row[c] < 0.5, start) {
+                (true, None) => start = Some(*t),
+                (false, Some(t0)) => {
+                    out.push(LiftOff {
+                        wheel: w.to_string(),
+                        start_s: t0,
+                        end_s: Some(*t),
+                        duration_s: t - t0,
+                    });
+                    start = None;
+                }
+                _ => {}
+            }
+        }
+        if let (Some(t0), Some(t1)) = (start, s.times.last()) {
+            out.push(LiftOff {
+                wheel: w.to_string(),
+                start_s: t0,
+                end_s: None,
+                duration_s: t1 - t0,
+            });
+        }
+    }
+    out
+}
+
+/// What the run did not compute, and why.
+fn skipped(sys: &System, st: &Stats) -> Skipped {
+    let mut q = [0u64; 3];
+    for t in &sys.model.tyres {
+        if let Some(c) = t.tyre.query_counts() {
+            for k in 0..3 {
+                q[k] += c[k];
+            }
+        }
+    }
+    let solved = sys.model.accelerations == Accelerations::Solve;
+    Skipped {
+        tyre_road_queries: q[0],
+        answered_from_memo: q[1],
+        answered_flat_without_search: q[2],
+        enveloping_searches: q[0] - q[1] - q[2],
+        why: "no tandem-cam search where the road under a tyre is flat; the last query is memoised",
+        modal_bodies: sys
+            .model
+            .bodies
+            .iter()
+            .filter_map(|b| b.modal.as_ref().map(|m| (b, m)))
+            .map(|(b, m)| ModesKept {
+                body: b.name.clone(),
+                modes_kept: m.data.modes.len(),
+                why: "modes outside the body file's selection rule are not integrated",
+            })
+            .collect(),
+        acceleration_solves: SkippedSolves {
+            skipped: !solved,
+            why: if solved {
+                "[run] accelerations = \"solve\": solved at every sample"
+            } else {
+                "sampled accelerations and hitch forces from the integrator's interpolant; the per-sample acceleration-level solve took about 30 % of a default run (docs/performance.md)"
+            },
+        },
+        jacobian_evaluations: SkippedJacobians {
+            evaluated: st.jacobian_evals,
+            matrices_recombined_without_evaluation: st.matrix_recombinations,
+            why: "a step change rebuilds the iteration matrix from the kept dF/dy and dF/dy' (jacobian_recombine); one evaluation costs about 25 Newton iterations",
+        },
+    }
+}

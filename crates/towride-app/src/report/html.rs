@@ -1,0 +1,347 @@
+//! The self-contained HTML report of a run (`report.html` beside the CSV): interactive
+//! time histories grouped like the PNG page plus one chart per unit for the other
+//! channels, Welch spectra of every channel, the run summary and the solver's step size
+//! and order over time. uPlot (vendored, `vendor/README.md`) and the data are embedded:
+//! the file opens from the file system without a network.
+
+use std::fmt::Write as _;
+
+use serde::Serialize;
+
+use super::run::run_panels;
+use crate::signal::psd::{segment_length, welch};
+use towride_mbs::model::run::Samples;
+
+pub(crate) const UPLOT_JS: &str = include_str!("vendor/uplot/uPlot.iife.min.js");
+pub(crate) const UPLOT_CSS: &str = include_str!("vendor/uplot/uPlot.min.css");
+/// DOM helpers, formats and uPlot plugins shared by the pages.
+pub(crate) const COMMON_JS: &str = include_str!("assets/common.js");
+const REPORT_JS: &str = include_str!("assets/report.js");
+/// three.js (vendored, `vendor/README.md`) and the 3D view built on it.
+pub(crate) const THREE_JS: &str = include_str!("vendor/three/three.min.js");
+pub(crate) const VIEW_JS: &str = include_str!("assets/view3d.js");
+pub(crate) const REPORT_CSS: &str = include_str!("assets/report.css");
+/// Records uncaught errors on `<html data-errors>` (the browser test reads them).
+pub(crate) const ERROR_HOOK: &str = "<script>window.onerror = (m, f, l) => { const b = document.documentElement; \
+    b.setAttribute(\"data-errors\", (b.getAttribute(\"data-errors\") || \"\") + m + \" (line \" + l + \"); \"); };</script>";
+
+/// `s` with `&`, `<` and `>` escaped for HTML text.
+pub(crate) fn escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}
+
+/// three.js and the 3D view's script, when the page has a view.
+pub(crate) fn view_scripts(view: bool) -> String {
+    if view {
+        format!("<script>{THREE_JS}</script>\n<script>{VIEW_JS}</script>\n")
+    } else {
+        String::new()
+    }
+}
+
+/// Longest Welch segment [samples]: 0.5 Hz resolution at 1 kHz sampling.
+const PSD_MAX_SEGMENT: usize = 2048;
+
+/// A number for the embedded data: six significant digits, `null` when not finite.
+fn num(out: &mut String, v: f64) {
+    if !v.is_finite() {
+        out.push_str("null");
+    } else if v == 0.0 {
+        out.push('0');
+    } else {
+        let s = format!("{v:.5e}");
+        let (mant, exp) = s.split_once('e').unwrap_or((&s, "0"));
+        let mant = if mant.contains('.') {
+            mant.trim_end_matches('0').trim_end_matches('.')
+        } else {
+            mant
+        };
+        if exp == "0" {
+            out.push_str(mant);
+        } else {
+            let _ = write!(out, "{mant}e{exp}");
+        }
+    }
+}
+
+fn array(out: &mut String, values: impl IntoIterator<Item = f64>) {
+    out.push('[');
+    for (k, v) in values.into_iter().enumerate() {
+        if k > 0 {
+            out.push(',');
+        }
+        num(out, v);
+    }
+    out.push(']');
+}
+
+/// A signal as integers and a scale (`{"s":scale,"q":[...]}`, value = q s): a millionth
+/// of the signal's largest magnitude, finer than any chart shows or the read-out's five
+/// digits near the peak; integers keep the file small and quick to write.
+pub(crate) fn quantised(out: &mut String, values: impl Iterator<Item = f64> + Clone) {
+    let peak = values
+        .clone()
+        .filter(|v| v.is_finite())
+        .fold(0.0f64, |m, v| m.max(v.abs()));
+    let scale = if peak > 0.0 { peak / 999_999.0 } else { 1.0 };
+    out.push_str("{\"s\":");
+    num(out, scale);
+    out.push_str(",\"q\":[");
+    for (k, v) in values.enumerate() {
+        if k > 0 {
+            out.push(',');
+        }
+        if v.is_finite() {
+            integer(out, (v / scale).round() as i64);
+        } else {
+            out.push_str("null");
+        }
+    }
+    out.push_str("]}");
+}
+
+/// `v` in decimal: the bulk of a report's bytes, written without the formatting
+/// machinery.
+pub(crate) fn integer(out: &mut String, v: i64) {
+    let mut buf = [0u8; 20];
+    let mut i = buf.len();
+    let mut u = v.unsigned_abs();
+    loop {
+        i -= 1;
+        buf[i] = b'0' + (u % 10) as u8;
+        u /= 10;
+        if u == 0 {
+            break;
+        }
+    }
+    if v < 0 {
+        out.push('-');
+    }
+    out.push_str(std::str::from_utf8(&buf[i..]).unwrap_or("0"));
+}
+
+pub(crate) fn string(out: &mut String, s: &str) {
+    // serde_json escapes quotes and control characters; `</` is split so that no
+    // string can close the script element.
+    out.push_str(
+        &serde_json::to_string(s)
+            .unwrap_or_default()
+            .replace("</", "<\\/"),
+    );
+}
+
+/// One series of a chart: channel index, colour and whether it is drawn dashed (the
+/// right side of a left/right pair).
+#[derive(Serialize)]
+struct Series {
+    ch: usize,
+    colour: String,
+    width: u32,
+    dash: bool,
+}
+
+/// A chart of time histories.
+#[derive(Serialize)]
+struct Group {
+    title: String,
+    y: String,
+    series: Vec<Series>,
+}
+
+/// A channel's family: its name with wheel names, numbers and axis letters as `*`
+/// (`tyre_*_contact`, `hitch_eta_*`, `acc_hitch_*`), the channels charted together.
+fn family(name: &str) -> String {
+    const WHEELS: [&str; 6] = ["fl", "fr", "rl", "rr", "tl", "tr"];
+    const AXES: [&str; 6] = ["x", "y", "z", "rx", "ry", "rz"];
+    let parts: Vec<&str> = name.split(['_', '.']).collect();
+    let last = parts.len() - 1;
+    parts
+        .iter()
+        .enumerate()
+        .map(|(k, p)| {
+            let wild = WHEELS.contains(p)
+                || (!p.is_empty() && p.chars().all(|c| c.is_ascii_digit()))
+                || (k == last && k > 0 && AXES.contains(p));
+            if wild {
+                "*"
+            } else {
+                p
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("_")
+}
+
+/// The charts: the run page's panels, then the remaining channels by family and unit.
+fn groups(res: &Samples) -> Vec<Group> {
+    let index = |name: &str| res.channels.iter().position(|c| c.name == name);
+    let hex = |c: [u8; 3]| format!("#{:02x}{:02x}{:02x}", c[0], c[1], c[2]);
+    let mut used = vec![false; res.channels.len()];
+    let mut out: Vec<Group> = Vec::new();
+    for p in run_panels(res) {
+        let series = p
+            .traces
+            .iter()
+            .filter_map(|t| {
+                let ch = index(&t.label)?;
+                used[ch] = true;
+                Some(Series {
+                    ch,
+                    colour: hex(t.style.colour),
+                    width: t.style.width.max(1),
+                    dash: t.style.width == 1,
+                })
+            })
+            .collect();
+        out.push(Group {
+            title: p.title,
+            y: p.y.label,
+            series,
+        });
+    }
+    let palette = super::figure::PALETTE;
+    let mut keys: Vec<(String, &str)> = Vec::new();
+    for (c, ch) in res.channels.iter().enumerate() {
+        let key = (family(&ch.name), ch.unit);
+        if !used[c] && !keys.contains(&key) {
+            keys.push(key);
+        }
+    }
+    for (key, unit) in keys {
+        let series: Vec<Series> = res
+            .channels
+            .iter()
+            .enumerate()
+            .filter(|(c, ch)| !used[*c] && ch.unit == unit && family(&ch.name) == key)
+            .enumerate()
+            .map(|(k, (c, _))| Series {
+                ch: c,
+                colour: hex(palette[k % palette.len()]),
+                width: 2,
+                dash: k >= palette.len(),
+            })
+            .collect();
+        out.push(Group {
+            title: key,
+            y: format!("[{unit}]"),
+            series,
+        });
+    }
+    out
+}
+
+/// The report page of a run: `summary_json` is the run summary as written to
+/// `summary.json`; `steps` the solver's accepted steps (end time [s], step [s], order);
+/// `view` the 3D view's data ([`super::scene3d::run_view`]), if any.
+pub fn run_report(
+    title: &str,
+    res: &Samples,
+    summary_json: &str,
+    steps: &[(f64, f64, usize)],
+    view: Option<&str>,
+) -> String {
+    let n = res.times.len();
+    let fs = if n > 1 {
+        (n - 1) as f64 / (res.times[n - 1] - res.times[0])
+    } else {
+        0.0
+    };
+    let mut d = String::with_capacity(12 * n * (res.channels.len() + 1) + 4096);
+    d.push_str("{\"t\":");
+    quantised(&mut d, res.times.iter().copied());
+    d.push_str(",\"channels\":[");
+    for (c, ch) in res.channels.iter().enumerate() {
+        if c > 0 {
+            d.push(',');
+        }
+        d.push_str("{\"name\":");
+        string(&mut d, &ch.name);
+        d.push_str(",\"unit\":");
+        string(&mut d, ch.unit);
+        d.push_str(",\"v\":");
+        quantised(&mut d, res.rows.iter().map(|r| r[c]));
+        d.push('}');
+    }
+    d.push_str("],\"groups\":");
+    d.push_str(
+        &serde_json::to_string(&groups(res))
+            .unwrap_or_default()
+            .replace("</", "<\\/"),
+    );
+    // Spectra of every channel on one frequency grid.
+    let len = segment_length(n, PSD_MAX_SEGMENT);
+    d.push_str(",\"psd\":{\"segment\":");
+    let _ = write!(d, "{len},\"fs\":");
+    num(&mut d, fs);
+    let mut freq = None;
+    d.push_str(",\"density\":[");
+    for c in 0..res.channels.len() {
+        if c > 0 {
+            d.push(',');
+        }
+        let y: Vec<f64> = res.rows.iter().map(|r| r[c]).collect();
+        match (fs > 0.0).then(|| welch(&y, fs, len)).flatten() {
+            Some(p) => {
+                array(&mut d, p.density.iter().copied());
+                freq.get_or_insert(p.freq);
+            }
+            None => d.push_str("null"),
+        }
+    }
+    d.push_str("],\"f\":");
+    array(&mut d, freq.unwrap_or_default());
+    d.push_str("},\"steps\":{\"t\":");
+    array(&mut d, steps.iter().map(|s| s.0));
+    d.push_str(",\"h\":");
+    array(&mut d, steps.iter().map(|s| s.1));
+    d.push_str(",\"order\":");
+    array(&mut d, steps.iter().map(|s| s.2 as f64));
+    d.push_str("},\"summary\":");
+    d.push_str(&summary_json.replace("</", "<\\/"));
+    if let Some(v) = view {
+        d.push_str(",\"view\":");
+        d.push_str(v);
+    }
+    d.push('}');
+
+    let mut h = String::with_capacity(d.len() + UPLOT_JS.len() + 16384);
+    let esc = escape(title);
+    let _ = write!(
+        h,
+        "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
+         <meta name=\"generator\" content=\"towride {}\">\
+         <title>towride: {esc}</title>\n<style>{UPLOT_CSS}\n{REPORT_CSS}</style></head>\n\
+         <body>\n<h1>{esc}</h1>\n<div id=\"app\"><noscript>This report needs JavaScript \
+         (no network: everything is in this file).</noscript></div>\n\
+         <script type=\"application/json\" id=\"data\">{d}</script>\n\
+         {ERROR_HOOK}\n\
+         <script>{UPLOT_JS}</script>\n{three}<script>{COMMON_JS}</script>\n<script>{REPORT_JS}</script>\n</body></html>\n",
+        env!("CARGO_PKG_VERSION"),
+        three = view_scripts(view.is_some()),
+    );
+    h
+}
+
+/// A self-contained page (the sweep's, a validated run's): `title` and `heading` as
+/// text, `data` (JSON) in `<script id="data">`, uPlot, the shared script and the page's
+/// own `script`, which builds the page into `#app`.
+pub(crate) fn page(title: &str, heading: &str, data: &str, script: &str) -> String {
+    let mut h = String::with_capacity(data.len() + UPLOT_JS.len() + script.len() + 8192);
+    let _ = write!(
+        h,
+        "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
+         <meta name=\"generator\" content=\"towride {}\">\
+         <title>{}</title>\n<style>{UPLOT_CSS}\n{REPORT_CSS}</style></head>\n\
+         <body>\n<h1>{}</h1>\n<div id=\"app\"><noscript>This page needs JavaScript \
+         (no network: everything is in this file).</noscript></div>\n\
+         <script type=\"application/json\" id=\"data\">{data}</script>\n{ERROR_HOOK}\n\
+         <script>{UPLOT_JS}</script>\n<script>{COMMON_JS}</script>\n<script>{script}</script>\n\
+         </body></html>\n",
+        env!("CARGO_PKG_VERSION"),
+        escape(title),
+        escape(heading),
+    );
+    h
+}

@@ -1,0 +1,118 @@
+//! The page of plots a vehicle run writes beside its CSV.
+
+use std::path::Path;
+
+use super::figure::{render, Figure, Panel, Style, Trace};
+use super::ReportError;
+use towride_mbs::model::run::Samples;
+
+/// Left/right pairs by the last part of a channel name: the colour index of the pair
+/// and whether this is the right side (fl/fr, rl/rr, tl/tr; *_left_*/*_right_*).
+fn side_of(name: &str) -> Option<(usize, bool)> {
+    for (k, (l, r)) in [("_fl", "_fr"), ("_rl", "_rr"), ("_tl", "_tr")]
+        .iter()
+        .enumerate()
+    {
+        if name.contains(&format!("{l}_")) || name.ends_with(l) {
+            return Some((k, false));
+        }
+        if name.contains(&format!("{r}_")) || name.ends_with(r) {
+            return Some((k, true));
+        }
+    }
+    for (k, pos) in ["front", "rear"].iter().enumerate() {
+        if name.contains(&format!("{pos}_left")) {
+            return Some((k, false));
+        }
+        if name.contains(&format!("{pos}_right")) {
+            return Some((k, true));
+        }
+    }
+    None
+}
+
+/// The panels of the run page: each panel's traces, left/right pairs in one colour told
+/// apart by line style.
+pub fn run_panels(res: &Samples) -> Vec<Panel> {
+    let series = |pred: &dyn Fn(&str) -> bool| -> Vec<Trace> {
+        let mut n = 0;
+        res.channels
+            .iter()
+            .enumerate()
+            .filter(|(_, ch)| pred(&ch.name))
+            .map(|(c, ch)| {
+                let style = match side_of(&ch.name) {
+                    Some((k, right)) => Style::side(k, right),
+                    None => {
+                        n += 1;
+                        Style::nth(n - 1)
+                    }
+                };
+                let points = res
+                    .times
+                    .iter()
+                    .zip(&res.rows)
+                    .map(|(t, r)| (*t, r[c]))
+                    .collect();
+                Trace::new(ch.name.clone(), points, style)
+            })
+            .collect()
+    };
+    let panel = |title: &str, y: &str, traces: Vec<Trace>| Panel {
+        traces,
+        ..Panel::new(title, "time [s]", y)
+    };
+    let acc = "acceleration [m/s²]";
+    let panels = vec![
+        panel(
+            "hitch force on the car",
+            "force [N]",
+            series(&|n| n == "hitch_fx" || n == "hitch_fz"),
+        ),
+        panel("trailer box", acc, series(&|n| n == "trailer_ax")),
+        panel(
+            "tyre normal forces",
+            "force [N]",
+            series(&|n| n.starts_with("tyre_") && n.ends_with("_fz")),
+        ),
+        panel(
+            "crossbeam strain energy",
+            "energy [J]",
+            series(&|n| n == "hitch_strain_energy"),
+        ),
+        panel(
+            "vertical accelerations at the wheels",
+            acc,
+            series(&|n| n.starts_with("acc_wheel_") && n.ends_with("_z")),
+        ),
+        panel(
+            "vertical accelerations on the car body",
+            acc,
+            series(&|n| n.starts_with("acc_body_") && n.ends_with("_z")),
+        ),
+        panel(
+            "vertical accelerations at the hitch and drawbar",
+            acc,
+            series(&|n| {
+                n.starts_with("acc_")
+                    && n.ends_with("_z")
+                    && !n.starts_with("acc_wheel_")
+                    && !n.starts_with("acc_body_")
+            }),
+        ),
+        panel("speed", "speed [m/s]", series(&|n| n == "speed")),
+    ];
+    panels
+        .into_iter()
+        .filter(|p| !p.traces.is_empty())
+        .collect()
+}
+
+/// One page (PNG or SVG by extension): hitch force, trailer acceleration, tyre normal
+/// forces, crossbeam strain energy, the vertical accelerations at the wheels, on the
+/// body and at the hitch and drawbar, and the speed.
+pub fn run_page(res: &Samples, path: &Path) -> Result<(), ReportError> {
+    let mut fig = Figure::new(run_panels(res), 2);
+    fig.panel_height = 560;
+    render(path, &fig).map(|_| ())
+}

@@ -1,0 +1,79 @@
+//! A run's files, written from its data: `outputs.csv`, `plots.png` (scenes),
+//! `report.html` (with the 3D view when the run recorded poses) and `summary.json`. The
+//! run pipeline returns a [`RunResult`] and never writes; this printer does (as
+//! ripgrep's searcher hands matches to a printer).
+
+use std::io::Write;
+use std::path::Path;
+use std::time::Instant;
+
+use crate::atomic::{self, Atomic};
+use crate::error::{Error, Result};
+use crate::job::RunResult;
+use towride_mbs::model::run::Samples;
+use towride_mbs::model::System;
+
+/// Writes the samples as CSV with units in the headers, whole or not at all
+/// ([`crate::atomic`]).
+pub fn samples_csv(samples: &Samples, path: &Path) -> std::io::Result<()> {
+    let mut w = csv::Writer::from_writer(Atomic::create(path)?);
+    let mut head = vec!["time [s]".to_string()];
+    head.extend(
+        samples
+            .channels
+            .iter()
+            .map(|c| format!("{} [{}]", c.name, c.unit)),
+    );
+    w.write_record(&head)?;
+    // Numbers need no quoting: written straight into the buffer, no string per value.
+    let mut out = std::io::BufWriter::new(w.into_inner().map_err(|e| e.into_error())?);
+    for (t, row) in samples.times.iter().zip(&samples.rows) {
+        write!(out, "{t:.9e}")?;
+        for v in row {
+            write!(out, ",{v:.9e}")?;
+        }
+        out.write_all(b"\n")?;
+    }
+    out.into_inner().map_err(|e| e.into_error())?.commit()
+}
+
+/// Writes `outputs.csv` (units in the headers), the plot page of a scene (`plots.png`),
+/// the HTML report (`report.html`, with the 3D view of `system` when the run recorded
+/// poses) and `summary.json` into `dir`; the summary records the files and the report's
+/// wall time. Each file is written whole or not at all ([`crate::atomic`]), the summary
+/// last. `system` is the one the run integrated (`Job::system`).
+pub fn write_run(run: &mut RunResult, system: &System, dir: &Path) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    let csv = dir.join("outputs.csv");
+    samples_csv(&run.samples, &csv).map_err(|e| Error::io(&csv, e))?;
+    run.summary.outputs_csv = Some(csv.display().to_string());
+    if run.summary.scene.is_some() {
+        let plot = dir.join("plots.png");
+        run.summary.plots = Some(match super::run_page(&run.samples, &plot) {
+            Ok(()) => plot.display().to_string(),
+            Err(e) => format!("not written: {e}"),
+        });
+    }
+    let html = dir.join("report.html");
+    run.summary.report = Some(html.display().to_string());
+    let wall = Instant::now();
+    let view = run
+        .samples
+        .poses
+        .as_ref()
+        .and_then(|p| super::scene3d::run_view(system, p));
+    let page = super::html::run_report(
+        &run.summary.name,
+        &run.samples,
+        &run.summary.to_json(),
+        &run.samples.stats.step_history,
+        view.as_deref(),
+    );
+    if let Err(e) = atomic::write(&html, page) {
+        run.summary.report = Some(format!("not written: {e}"));
+    }
+    run.summary.report_wall_s = Some(wall.elapsed().as_secs_f64());
+    let path = dir.join("summary.json");
+    let text = run.summary.to_json();
+    atomic::write(&path, text).map_err(|e| Error::io(&path, e))
+}

@@ -1,0 +1,478 @@
+//! Scenes: a vehicle on a road at a set speed, with what to run and what to record.
+//!
+//! ```toml
+//! [scene]
+//! name = "thesis ramp, empty trailer, 50 km/h"
+//! vehicle = "../vehicles/fabia_trailer.toml"
+//! load_case = "empty"          # optional overrides of the vehicle's files
+//! hitch_variant = 5
+//! tyre_model = "rigid-ring"
+//! ball_coupling = "spherical"
+//! rear_cross_member = "rigid"  # or "flexible" (the twist beam's modal cross member)
+//!
+//! [road]
+//! file = "../roads/ramp_thesis.toml"
+//! obstacle_ahead_m = 1.0       # front tyres' contact to the road's first edge
+//!
+//! [run]
+//! speed_km_h = 50.0
+//! duration_s = 3.0
+//! sample_rate_hz = 1000.0
+//! start = "equilibrium_at_speed"
+//! settle_s = 0.5
+//!
+//! [solver]                     # any SolverOptions field
+//! rtol = 1e-4
+//!
+//! [[sensor]]                   # extra sensors, as in the vehicle file
+//!
+//! [[override]]                 # a value of any file the scene reads, replaced
+//! file = "fabia/hitch.toml"    # matched by the end of the file's path
+//! path = "ball_coupling.kind"  # TOML `table.key`, .tir `SECTION.KEY`, CSV `column[row]`
+//! value = "bushing"
+//!
+//! [[output]]                   # more channels: a named vehicle quantity or a
+//! quantity = "susp_fl_travel"  # marker, joint or element ([`outputs`])
+//! ```
+//!
+//! [`load`] gives the [`Scene`]: the vehicle's model with its road and the standard
+//! outputs ([`channels`]), and the run settings. A plan file ([`plan`]) expands one
+//! template scene over obstacles, speeds and load cases.
+
+pub mod channels;
+pub mod outputs;
+pub mod plan;
+
+pub use crate::error::SceneError;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use serde::Deserialize;
+
+pub use channels::Channel;
+
+use crate::vehicle::sensors::{self, SensorSpec};
+use crate::vehicle::{self, build::Builder, Options, Vehicle};
+use towride_mbs::flex::feedback::RunModes;
+use towride_mbs::input::Origin;
+use towride_mbs::input::{InputError, Loader, Override, Source};
+use towride_mbs::model::builder::ModelBuilder;
+use towride_mbs::model::elements::JointBushing;
+use towride_mbs::model::{Model, System};
+use towride_mbs::path;
+use towride_mbs::road::Road;
+use towride_mbs::tyre::TyreKind;
+use towride_solver::SolverOptions;
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct File {
+    scene: SceneSec,
+    road: RoadSec,
+    run: RunSec,
+    #[serde(default)]
+    solver: SolverOptions,
+    #[serde(default)]
+    sensor: Vec<SensorSpec>,
+    #[serde(default, rename = "override")]
+    overrides: Vec<OverrideSec>,
+    /// Outputs beyond the fixed channels ([`outputs`]).
+    #[serde(default)]
+    output: Vec<towride_mbs::model::spec::OutputSpec>,
+    #[serde(default)]
+    report: ReportSec,
+}
+
+/// `[report]`: what the run's HTML report shows.
+#[derive(Deserialize, Debug, Default)]
+#[serde(deny_unknown_fields)]
+struct ReportSec {
+    /// Rate of the body poses for the 3D view [Hz]; 0 switches the view off.
+    animation_rate_hz: Option<f64>,
+}
+
+/// A scene's `[[override]]`: one value of a file the scene reads.
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct OverrideSec {
+    file: String,
+    path: String,
+    value: toml::Value,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct SceneSec {
+    name: String,
+    vehicle: String,
+    load_case: Option<String>,
+    hitch_variant: Option<u32>,
+    tyre_model: Option<TyreKind>,
+    ball_coupling: Option<String>,
+    joints_as_bushings: Option<JointBushing>,
+    rear_cross_member: Option<String>,
+    /// A run folder whose strain-energy shares select the modal bodies' modes.
+    modes_from: Option<String>,
+    /// The share a mode needs there (fraction; default 0.01).
+    modes_min_energy_share: Option<f64>,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct RoadSec {
+    file: String,
+    obstacle_ahead_m: Option<f64>,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct RunSec {
+    speed_km_h: f64,
+    duration_s: f64,
+    sample_rate_hz: f64,
+    start: Start,
+    #[serde(default)]
+    settle_s: f64,
+    /// Absolute tolerances per kind of unknown from the model (`System::atol`) times
+    /// this, unless `[solver]` gives `atol`.
+    #[serde(default = "one")]
+    atol_scale: f64,
+    /// Sampled accelerations and hitch forces: "interpolant" (default, the integrator's
+    /// own solution) or "solve" (the acceleration-level equations at every sample).
+    #[serde(default)]
+    accelerations: towride_mbs::model::desc::Accelerations,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+/// Where a run starts from.
+#[derive(Deserialize, Debug, Clone, Copy, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum Start {
+    /// Static equilibrium, then the set speed and free-rolling spin, then `settle_s` of
+    /// driving on flat road (`model::start::at_speed`).
+    EquilibriumAtSpeed,
+    /// The design position with the set speed, assembled onto the constraints.
+    Assembly,
+}
+
+/// The report's 3D-view pose rate when a file does not set one (`[report]
+/// animation_rate_hz` of a scene; mechanism files always use it) [Hz].
+pub const DEFAULT_ANIMATION_RATE_HZ: f64 = 200.0;
+
+/// A scene ready to run.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    /// Scene name (the file's, or the plan case's).
+    pub name: String,
+    /// The scene file.
+    pub file: PathBuf,
+    /// The vehicle, its model carrying the road and the outputs.
+    pub vehicle: Vehicle,
+    /// Set speed [m/s].
+    pub speed: f64,
+    /// Run length [s] and output sample rate [Hz].
+    pub duration: f64,
+    /// Output sample rate [Hz].
+    pub sample_rate: f64,
+    /// Pose rate of the report's 3D view [Hz] (`[report] animation_rate_hz`; 0: none).
+    pub animation_rate: f64,
+    /// How the state at t = 0 is found.
+    pub start: Start,
+    /// Settling time on flat road before t = 0 [s] (equilibrium_at_speed).
+    pub settle: f64,
+    /// Solver settings from the file's `[solver]` (see [`Scene::solver_for`]).
+    pub solver: SolverOptions,
+    /// Scale of the model's per-unknown absolute tolerances; `None` when the scene's
+    /// `[solver]` gives `atol` itself.
+    pub atol_scale: Option<f64>,
+    /// The output channels, in CSV order: the fixed ones, then the `[[output]]` tables'.
+    pub channels: Vec<Channel>,
+    /// What `[[output]]` tables can name (`run SCENE --list-names`).
+    pub names: outputs::Names,
+    /// The road file in use.
+    pub road_file: PathBuf,
+}
+
+impl Scene {
+    /// The vehicle's model.
+    pub fn model(&self) -> &Model {
+        &self.vehicle.model
+    }
+
+    /// The solver settings for the assembled scene: the file's, with the absolute
+    /// tolerances of `sys` (`System::atol`) unless the file gave them.
+    pub fn solver_for(&self, sys: &System) -> SolverOptions {
+        let mut o = self.solver.clone();
+        if let Some(s) = self.atol_scale {
+            o.atol = sys.atol(s);
+        }
+        o
+    }
+}
+
+/// Changes to a scene file's settings (a plan's cases, a validation run).
+#[derive(Clone, Debug, Default)]
+pub struct Changes {
+    /// Replaces the scene's name.
+    pub name: Option<String>,
+    /// Replaces the road file.
+    pub road: Option<PathBuf>,
+    /// Replaces the set speed [km/h].
+    pub speed_km_h: Option<f64>,
+    /// Replaces the run length [s].
+    pub duration_s: Option<f64>,
+    /// Replaces the trailer load case.
+    pub load_case: Option<String>,
+    /// Replaces the hitch variant.
+    pub hitch_variant: Option<u32>,
+    /// Distance from the front tyres' contact to the road's first obstacle edge [m].
+    pub obstacle_ahead_m: Option<f64>,
+    /// Replaces `[report] animation_rate_hz` (0: no 3D view).
+    pub animation_rate_hz: Option<f64>,
+    /// Modes of the modal bodies from an earlier run's strain-energy shares (the command
+    /// line's `--modes-from`), replacing the scene's `modes_from` and the files' rules.
+    pub run_modes: Option<Arc<RunModes>>,
+}
+
+/// True when `path` is a scene file (it has a `[scene]` table).
+pub fn is_scene(path: &Path) -> bool {
+    has_table(path, "scene")
+}
+
+/// True when the TOML file at `path` has the top-level table `key`.
+pub fn has_table(path: &Path, key: &str) -> bool {
+    std::fs::read_to_string(path)
+        .ok()
+        .and_then(|t| t.parse::<toml::Table>().ok())
+        .is_some_and(|t| t.contains_key(key))
+}
+
+/// The scene file's `[[override]]` tables, each located where it was written.
+fn overrides_in(src: &Source, f: &File) -> Vec<Override> {
+    f.overrides
+        .iter()
+        .enumerate()
+        .map(|(k, x)| Override {
+            file: x.file.clone(),
+            path: x.path.clone(),
+            value: towride_mbs::input::value_text(&x.value),
+            origin: Origin::File {
+                file: Box::new(src.error(&path!["override", k, "file"], "")),
+                path: Box::new(src.error(&path!["override", k, "path"], "")),
+            },
+        })
+        .collect()
+}
+
+/// The `[[override]]` tables of the scene file at `path` (as `load` applies them).
+pub fn file_overrides(path: &Path) -> Result<Vec<Override>, InputError> {
+    let src = Source::read(path)?;
+    let f: File = src.parse()?;
+    Ok(overrides_in(&src, &f))
+}
+
+/// Reads a scene file.
+pub fn load(path: &Path) -> Result<Scene, InputError> {
+    load_with(path, &Changes::default(), &Loader::new())
+}
+
+/// Reads a scene file with some settings replaced (`o`) and the files it reads through
+/// `loader` (its property overrides, plus the scene's own `[[override]]` tables). An
+/// override that matches no file or value read is an error.
+pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, InputError> {
+    let loader = loader.fresh();
+    let src = loader.toml(path)?;
+    let f: File = src.parse()?;
+    // The file's overrides first, so that the caller's (`run --set`, a sweep case, a
+    // sensitivity study) win where both set a value.
+    let loader = loader.under(overrides_in(&src, &f));
+    let dir = path.parent().unwrap_or(Path::new("."));
+    // Modes from an earlier run: the command line's choice wins over the file's.
+    let run_modes = match (&f.scene.modes_from, &o.run_modes) {
+        (Some(run), None) => {
+            let share = f
+                .scene
+                .modes_min_energy_share
+                .unwrap_or(towride_mbs::flex::selection::DEFAULT_MIN_ENERGY_SHARE);
+            let at = if f.scene.modes_min_energy_share.is_some() {
+                src.error(&path!["scene", "modes_min_energy_share"], "")
+            } else {
+                src.error(&path!["scene", "modes_from"], "")
+            };
+            let rm = towride_mbs::flex::feedback::from_run(&dir.join(run), share, &at)?;
+            Some(Arc::new(rm))
+        }
+        (_, given) => given.clone(),
+    };
+    let existing = |p: &[towride_mbs::input::Seg], rel: &str| -> Result<PathBuf, InputError> {
+        let full = dir.join(rel);
+        if full.is_file() {
+            Ok(full)
+        } else {
+            Err(src.error(p, format!("no file {}", full.display())))
+        }
+    };
+    let vehicle_file = existing(&path!["scene", "vehicle"], &f.scene.vehicle)?;
+    let road_file = match &o.road {
+        Some(r) => r.clone(),
+        None => existing(&path!["road", "file"], &f.road.file)?,
+    };
+    let speed_km_h = o.speed_km_h.unwrap_or(f.run.speed_km_h);
+    let speed = src.non_negative(&path!["run", "speed_km_h"], speed_km_h)? / 3.6;
+    let duration = src.positive(
+        &path!["run", "duration_s"],
+        o.duration_s.unwrap_or(f.run.duration_s),
+    )?;
+    let sample_rate = src.positive(&path!["run", "sample_rate_hz"], f.run.sample_rate_hz)?;
+    let settle = src.non_negative(&path!["run", "settle_s"], f.run.settle_s)?;
+    let animation_rate = match o.animation_rate_hz {
+        Some(r) if r.is_finite() && r >= 0.0 => r,
+        Some(r) => {
+            return Err(src.error(
+                &path!["report", "animation_rate_hz"],
+                format!("{r}: the animation rate (command line) must be 0 or positive"),
+            ))
+        }
+        None => src.non_negative(
+            &path!["report", "animation_rate_hz"],
+            f.report
+                .animation_rate_hz
+                .unwrap_or(DEFAULT_ANIMATION_RATE_HZ),
+        )?,
+    };
+    towride_mbs::input::bounds::budget::check(duration, sample_rate, 0)
+        .map_err(|m| src.error(&path!["run", "sample_rate_hz"], m))?;
+    // Which [solver] keys the file itself sets (the parsed options carry defaults).
+    let raw: Option<toml::Table> = src.text().parse().ok();
+    let solver_sets = |key: &str| {
+        raw.as_ref()
+            .and_then(|t| t.get("solver"))
+            .is_some_and(|s| s.get(key).is_some())
+    };
+    let atol_given = solver_sets("atol");
+    let mut solver = f.solver;
+    // A vehicle's Jacobian costs about 25 Newton iterations: rebuild the iteration matrix
+    // for a new step size from the kept parts unless the file says otherwise.
+    if !solver_sets("jacobian_recombine") {
+        solver.jacobian_recombine = true;
+    }
+    // For Radau IIA the same cost ratio: keep Jacobians and factorisations longer.
+    if !solver_sets("radau") {
+        solver.radau = towride_solver::RadauOptions::costly_jacobian();
+    }
+    let atol_scale = if atol_given {
+        None
+    } else {
+        Some(src.positive(&path!["run", "atol_scale"], f.run.atol_scale)?)
+    };
+    solver
+        .validate(1)
+        .map_err(|e| src.error(&path!["solver"], e.to_string()))?;
+    if let Some(b) = &f.scene.ball_coupling {
+        if b != "spherical" && b != "bushing" {
+            return Err(src.error(
+                &path!["scene", "ball_coupling"],
+                format!("'{b}': use spherical or bushing"),
+            ));
+        }
+    }
+    if let Some(k) = &f.scene.rear_cross_member {
+        if k != "rigid" && k != "flexible" {
+            return Err(src.error(
+                &path!["scene", "rear_cross_member"],
+                format!("'{k}': use rigid or flexible"),
+            ));
+        }
+    }
+    if let Some(jb) = &f.scene.joints_as_bushings {
+        vehicle::props::joint_bushing(
+            &src,
+            &path!["scene", "joints_as_bushings"],
+            &Some(jb.clone()),
+        )?;
+    }
+    let road = Road::from_file(&road_file, &loader)?;
+    let x_offset = match o.obstacle_ahead_m.or(f.road.obstacle_ahead_m) {
+        None => 0.0,
+        Some(d) => {
+            let d = src.finite(&path!["road", "obstacle_ahead_m"], d)?;
+            let (x0, span) = (-1.0e3, 2.0e3);
+            let mut kinks = Vec::new();
+            road.kinks_along([x0, 0.0], [1.0, 0.0], 0.0, span, &mut kinks);
+            let first = kinks.first().ok_or_else(|| {
+                src.error(
+                    &path!["road", "obstacle_ahead_m"],
+                    format!("{} has no obstacle to place", road_file.display()),
+                )
+            })?;
+            x0 + first - d
+        }
+    };
+    let opts = Options {
+        speed,
+        x_offset,
+        load_case: o.load_case.clone().or(f.scene.load_case.clone()),
+        hitch_variant: o.hitch_variant.or(f.scene.hitch_variant),
+        tyre_kind: f.scene.tyre_model,
+        joints_as_bushings: f.scene.joints_as_bushings.clone(),
+        ball_coupling: f.scene.ball_coupling.clone(),
+        rear_cross_member: f.scene.rear_cross_member.clone(),
+        run_modes,
+    };
+    let mut v = vehicle::load(&vehicle_file, &opts, &loader).map_err(|e| {
+        // A variant the hitch's flexible body lacks is the scene's mistake when the scene
+        // chose it: blame `scene.hitch_variant`, not the flexible-body file.
+        match (o.hitch_variant, f.scene.hitch_variant) {
+            (None, Some(n))
+                if e.field == "variant" && e.message.starts_with(&format!("no variant {n}:")) =>
+            {
+                src.error(
+                    &path!["scene", "hitch_variant"],
+                    format!("{} ({})", e.message, e.file.display()),
+                )
+            }
+            _ => e,
+        }
+    })?;
+    let extra = {
+        let model = std::mem::take(&mut v.model);
+        let mut b = Builder::new(ModelBuilder::from_model(model), &loader, None);
+        let extra = sensors::add(&mut b, &v.handles, &src, &path!["sensor"], &f.sensor);
+        v.model = b.mb.finish();
+        extra?
+    };
+    v.handles.sensors.extend(extra);
+    let (mut outputs, mut channels) = channels::standard(&v);
+    for (k, c) in channels.iter().enumerate() {
+        if channels[..k].iter().any(|d| d.name == c.name) {
+            return Err(src.error(&path!["sensor"], format!("channel '{}' is defined twice (sensor names must differ from the vehicle's channels)", c.name)));
+        }
+    }
+    let names = outputs::names(&v, &channels);
+    let (more, more_channels) = outputs::requested(&src, &mut v, &f.output, &channels)?;
+    outputs.extend(more);
+    channels.extend(more_channels);
+    v.model.outputs = outputs;
+    v.model.road = Some(road);
+    v.model.accelerations = f.run.accelerations;
+    loader.check_used()?;
+    Ok(Scene {
+        name: o.name.clone().unwrap_or(f.scene.name.clone()),
+        file: path.to_path_buf(),
+        vehicle: v,
+        speed,
+        duration,
+        sample_rate,
+        animation_rate,
+        start: f.run.start,
+        settle,
+        solver,
+        atol_scale,
+        channels,
+        names,
+        road_file,
+    })
+}

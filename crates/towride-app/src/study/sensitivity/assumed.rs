@@ -1,0 +1,108 @@
+//! The `assumed` values among the inputs a scene's key output is most sensitive to: the
+//! ranking of a finished sensitivity study ([`super::write`]'s `sensitivity.json`) and
+//! the source classes written beside the values ([`towride_mbs::input::provenance`]). No study
+//! is run here: without one the answer says so.
+
+use std::path::Path;
+
+use serde::Serialize;
+
+use towride_mbs::input::provenance::{read_provenance, SourceClass};
+use towride_mbs::input::Loader;
+
+/// One sensitive input without a better source than an assumption.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct SensitiveInput {
+    /// Rank by the output's sensitivity (1: most sensitive).
+    pub rank: usize,
+    /// `FILE:PATH`.
+    pub parameter: String,
+    /// |elasticity| (OAT) or mu* / base output (Morris).
+    pub sensitivity: f64,
+    /// `assumed`, or `untagged` when the value carries no source class.
+    pub class: String,
+    /// The source text beside the value.
+    pub source: String,
+}
+
+/// What a run can say about its assumed inputs.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct AssumedInputs {
+    /// The study read, `None` when there is none.
+    pub study: Option<String>,
+    /// The output ranked by.
+    pub output: Option<String>,
+    /// The assumed (or untagged) values among the `top` most sensitive inputs.
+    pub inputs: Vec<SensitiveInput>,
+    /// Why nothing could be listed, if so.
+    pub note: Option<String>,
+}
+
+/// The assumed values among the `top` inputs the first output of the study in `dir`
+/// ranks highest, for `scene`.
+pub fn assumed_inputs(scene: &Path, dir: &Path, top: usize) -> AssumedInputs {
+    let path = dir.join("sensitivity.json");
+    let none = |note: String| AssumedInputs {
+        study: None,
+        output: None,
+        inputs: Vec::new(),
+        note: Some(note),
+    };
+    let Ok(text) = std::fs::read_to_string(&path) else {
+        return none(format!(
+            "no sensitivity study of this scene in {} (`towride sensitivity {}` makes one)",
+            dir.display(),
+            scene.display()
+        ));
+    };
+    let Ok(v) = serde_json::from_str::<serde_json::Value>(&text) else {
+        return none(format!("{} is not a sensitivity study", path.display()));
+    };
+    let morris = v["method"] == "morris";
+    let score = |p: &serde_json::Value| -> f64 {
+        let x = if morris {
+            p["mu_star_rel"][0].as_f64()
+        } else {
+            p["elasticity"][0].as_f64()
+        };
+        x.map_or(-1.0, f64::abs)
+    };
+    let mut params: Vec<&serde_json::Value> = v["params"]
+        .as_array()
+        .map(|a| a.iter().collect())
+        .unwrap_or_default();
+    params.sort_by(|a, b| score(b).total_cmp(&score(a)));
+    // The files this scene reads, to find each parameter's file.
+    let loader = Loader::new();
+    let _ = crate::scene::load_with(scene, &crate::scene::Changes::default(), &loader);
+    let files = loader.files_read();
+    let mut inputs = Vec::new();
+    for (i, p) in params.iter().take(top).enumerate() {
+        let (file, key) = (
+            p["param"]["file"].as_str().unwrap_or(""),
+            p["param"]["path"].as_str().unwrap_or(""),
+        );
+        let Some(f) = files.iter().find(|f| f.ends_with(file)) else {
+            continue;
+        };
+        let entries = read_provenance(f).unwrap_or_default();
+        let (class, source) = match entries.iter().find(|e| e.key == key) {
+            Some(e) if e.class == SourceClass::Assumed => ("assumed", e.source.clone()),
+            Some(_) => continue,
+            None => ("untagged", String::new()),
+        };
+        inputs.push(SensitiveInput {
+            rank: i + 1,
+            parameter: p["param"]["name"].as_str().unwrap_or("").to_string(),
+            sensitivity: score(p),
+            class: class.into(),
+            source,
+        });
+    }
+    AssumedInputs {
+        study: Some(path.display().to_string()),
+        output: v["outputs"][0]["name"].as_str().map(String::from),
+        inputs,
+        note: None,
+    }
+}

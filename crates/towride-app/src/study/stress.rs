@@ -1,0 +1,346 @@
+//! The stress test of a scene: the thesis's integrator experiment and worse. Every case
+//! is run and classified: completed or failed, and its hitch-force peak against the
+//! reference (the scene at rtol 1e-5). Cases that change only numerical settings (step
+//! limits, tolerances, modes kept) must agree with it; cases that change the physics
+//! (stiffness, masses, obstacle, speed, load) report their peak and how far it moved.
+
+use std::path::{Path, PathBuf};
+
+use rayon::prelude::*;
+use serde::Serialize;
+
+use super::{pool, total_wall, Reference};
+use crate::error::{Error, Result};
+use crate::job::{Job, RunResult};
+use crate::scene::Changes;
+use towride_mbs::input::{Loader, Override};
+use towride_mbs::progress::{Progress, Silent};
+use towride_solver::{Method, SolverOptions};
+
+/// Version of `stress.json`'s layout.
+pub const SCHEMA_VERSION: u32 = 1;
+
+/// Relative tolerance of the reference run.
+pub const REFERENCE_RTOL: f64 = 1e-5;
+
+/// Largest peak deviation of a case that changes only numerical settings.
+pub const AGREEMENT: f64 = 0.02;
+
+/// One stress case.
+pub struct Case {
+    /// The group it belongs to (`--only` selects groups).
+    pub group: &'static str,
+    /// What the case does.
+    pub label: String,
+    /// Only numerical settings change: the result must match the reference.
+    pub same_physics: bool,
+    /// Property overrides.
+    pub props: Vec<Override>,
+    /// Scene setting changes.
+    pub scene: Changes,
+    /// Relative tolerance, when changed.
+    pub rtol: Option<f64>,
+    /// Largest step, when changed [s].
+    pub h_max: Option<f64>,
+}
+
+/// What a case gave.
+#[derive(Clone, Debug, Serialize)]
+pub struct Outcome {
+    /// The case's group.
+    pub group: String,
+    /// The case.
+    pub case: String,
+    /// "completed" or "failed ...".
+    pub status: String,
+    /// Wall time, start included [s].
+    pub wall_s: f64,
+    /// Accepted steps.
+    pub steps: usize,
+    /// Signed hitch-force peak [N].
+    pub hitch_peak_n: f64,
+    /// (peak - reference peak) / reference peak ([`peak_change`]): > 0 a larger peak in
+    /// the reference's direction. For a case that changes the physics (speed, load,
+    /// obstacle) it compares different experiments, not an error.
+    pub peak_deviation: f64,
+    /// RMS of the hitch-force difference over the reference's RMS.
+    pub hitch_rms_deviation: f64,
+    /// The case changes only numerical settings.
+    pub same_physics: bool,
+    /// Same-physics cases: peak within 2 % of the reference.
+    pub agrees: Option<bool>,
+}
+
+/// The reference run of a stress test.
+#[derive(Clone, Debug, Serialize)]
+pub struct ReferenceRun {
+    /// Its relative tolerance.
+    pub rtol: f64,
+    /// Signed hitch-force peak [N].
+    pub hitch_peak_n: f64,
+    /// Wall time [s].
+    pub wall_s: f64,
+}
+
+/// The stress test's result.
+#[derive(Clone, Debug, Serialize)]
+pub struct Stress {
+    /// Layout version.
+    pub schema_version: u32,
+    /// The scene file.
+    pub scene: String,
+    /// The reference run.
+    pub reference: ReferenceRun,
+    /// Cases run.
+    pub cases: usize,
+    /// Cases completed.
+    pub completed: usize,
+    /// Same-physics cases off by more than 2 %.
+    pub same_physics_disagreeing: usize,
+    /// Every case.
+    pub outcomes: Vec<Outcome>,
+}
+
+fn ov(file: &str, path: &str, value: impl std::fmt::Display) -> Override {
+    Override::program(file, path, value.to_string(), "stress case")
+}
+
+/// The stress cases, in report order.
+pub fn cases() -> Vec<Case> {
+    let base = |group, label: String, same: bool| Case {
+        group,
+        label,
+        same_physics: same,
+        props: vec![],
+        scene: Changes::default(),
+        rtol: None,
+        h_max: None,
+    };
+    let mut out = Vec::new();
+    // The thesis's settings: maximum step and a loose / tight error setting (it used
+    // 5e-2 and 5e-4 N absolute on forces; here relative tolerances 1e-2 and 1e-4).
+    for h in [5e-4, 1e-3, 2e-3, 5e-3] {
+        for (name, rtol) in [("loose", 1e-2), ("tight", 1e-4)] {
+            out.push(Case {
+                rtol: Some(rtol),
+                h_max: Some(h),
+                ..base(
+                    "thesis settings",
+                    format!("h_max {h:.0e} s, {name} (rtol {rtol:.0e})"),
+                    true,
+                )
+            });
+        }
+    }
+    let hitch_fe = "hitch_crossbeam.toml";
+    out.push(Case {
+        props: vec![ov(hitch_fe, "selection.rule", "\"all\"")],
+        ..base("modes", "all crossbeam modes".into(), true)
+    });
+    out.push(base("modes", "selected modes (file's rule)".into(), true));
+    out.push(Case {
+        props: vec![
+            ov("fabia/hitch.toml", "hitch.bracket_mount", "\"fixed\""),
+            ov(hitch_fe, "selection.rule", "\"list\""),
+            ov(hitch_fe, "selection.modes", "[7, 8, 9]"),
+        ],
+        ..base(
+            "mounting",
+            "brackets on FIXED joints, three modes".into(),
+            false,
+        )
+    });
+    out.push(Case {
+        props: vec![
+            ov(hitch_fe, "selection.rule", "\"list\""),
+            ov(hitch_fe, "selection.modes", "[7, 8, 9]"),
+        ],
+        ..base(
+            "mounting",
+            "brackets on bushings, three modes".into(),
+            false,
+        )
+    });
+    for k in [1e5, 1e6, 1e7, 1e8, 1e9] {
+        out.push(Case {
+            props: vec![ov(
+                "fabia/hitch.toml",
+                "mounting.body_stiffness_n_m",
+                format!("[{k:e}, {k:e}, {k:e}]"),
+            )],
+            ..base(
+                "bushing stiffness",
+                format!("bracket body side {k:.0e} N/m, bolts in series"),
+                false,
+            )
+        });
+    }
+    out.push(Case {
+        // The smallest mass the input checks accept (docs/reliability.md).
+        props: vec![ov("trailer/box_trailer.toml", "wheel.mass_kg", "1e-6")],
+        ..base(
+            "mass ratio",
+            "trailer rims 1e-6 kg (1e9 below the car body)".into(),
+            false,
+        )
+    });
+    for h in [0.025, 0.05, 0.075, 0.1] {
+        out.push(Case {
+            props: vec![ov("ramp_thesis.toml", "obstacle[0].height_m", h)],
+            ..base("obstacle height", format!("ramp {:.0} mm", h * 1e3), false)
+        });
+    }
+    for v in [10.0, 20.0, 30.0, 40.0, 50.0, 60.0] {
+        out.push(Case {
+            scene: Changes {
+                speed_km_h: Some(v),
+                ..Default::default()
+            },
+            ..base("speed", format!("{v:.0} km/h"), false)
+        });
+    }
+    for l in ["empty", "200kg_behind_axle"] {
+        out.push(Case {
+            scene: Changes {
+                load_case: Some(l.into()),
+                ..Default::default()
+            },
+            ..base("trailer load", l.to_string(), false)
+        });
+    }
+    out
+}
+
+/// Runs the cases whose group contains `only` (all when `None`) on `jobs` threads, each
+/// with the integration method `method` (the scene's when `None`; the reference keeps
+/// the scene's).
+pub fn run(
+    scene: &Path,
+    only: Option<&str>,
+    method: Option<Method>,
+    jobs: usize,
+    progress: &dyn Progress,
+) -> Result<Stress> {
+    let reference = Job::from_scene_file(scene, &Changes::default(), &Loader::new())?
+        .without_view()
+        .tune(|o| o.rtol = REFERENCE_RTOL)?
+        .run(&Silent)?;
+    reference.require_completed()?;
+    let refdata = Reference::of(&reference);
+    let all: Vec<Case> = cases()
+        .into_iter()
+        .filter(|c| only.is_none_or(|o| c.group.contains(o)))
+        .collect();
+    if all.is_empty() {
+        let mut groups: Vec<&str> = cases().iter().map(|c| c.group).collect();
+        groups.dedup();
+        return Err(crate::scene::SceneError::NoSuchCase(format!(
+            "no stress group contains `{}` (groups: {})",
+            only.unwrap_or(""),
+            groups.join(", ")
+        ))
+        .into());
+    }
+    progress.begin(all.len() as u64);
+    let outcomes: Vec<Outcome> = pool(jobs)?.install(|| {
+        all.par_iter()
+            .map(|c| {
+                let r = run_case(scene, c, method);
+                progress.inc(1);
+                outcome(c, r, &refdata)
+            })
+            .collect()
+    });
+    progress.finish();
+    let completed = outcomes.iter().filter(|o| o.status == "completed").count();
+    let disagree = outcomes.iter().filter(|o| o.agrees == Some(false)).count();
+    Ok(Stress {
+        schema_version: SCHEMA_VERSION,
+        scene: scene.display().to_string(),
+        reference: ReferenceRun {
+            rtol: REFERENCE_RTOL,
+            hitch_peak_n: refdata.peak,
+            wall_s: total_wall(&reference),
+        },
+        cases: outcomes.len(),
+        completed,
+        same_physics_disagreeing: disagree,
+        outcomes,
+    })
+}
+
+fn run_case(scene: &Path, c: &Case, method: Option<Method>) -> Result<RunResult> {
+    let loader = Loader::with_overrides(c.props.clone());
+    Job::from_scene_file(scene, &c.scene, &loader)?
+        .without_view()
+        .tune(|o: &mut SolverOptions| {
+            if let Some(m) = method {
+                o.method = m;
+            }
+            if let Some(r) = c.rtol {
+                o.rtol = r;
+            }
+            if let Some(h) = c.h_max {
+                o.h_max = h;
+            }
+        })?
+        .run(&Silent)
+}
+
+/// `peak` against the reference's `reference` peak, both signed: (peak - reference) /
+/// reference, so a peak larger in the reference's direction is positive whatever that
+/// direction (dividing by |reference| showed a larger push as a drop).
+pub fn peak_change(peak: f64, reference: f64) -> f64 {
+    (peak - reference) / reference
+}
+
+fn outcome(c: &Case, r: Result<RunResult>, refdata: &Reference) -> Outcome {
+    let mut o = Outcome {
+        group: c.group.into(),
+        case: c.label.clone(),
+        status: String::new(),
+        wall_s: f64::NAN,
+        steps: 0,
+        hitch_peak_n: f64::NAN,
+        peak_deviation: f64::NAN,
+        hitch_rms_deviation: f64::NAN,
+        same_physics: c.same_physics,
+        agrees: None,
+    };
+    match r {
+        Ok(r) if r.completed() => {
+            let e = refdata.errors(&r);
+            o.status = "completed".into();
+            o.wall_s = total_wall(&r);
+            o.steps = r.summary.solver.steps;
+            o.hitch_peak_n = e.peak;
+            o.peak_deviation = peak_change(e.peak, refdata.peak);
+            o.hitch_rms_deviation = e.hitch_rms;
+            o.agrees = c
+                .same_physics
+                .then_some(o.peak_deviation.abs() <= AGREEMENT);
+        }
+        Ok(r) => {
+            let (e, t) = r.failure().unwrap_or_default();
+            o.status = format!("failed at t = {t:.4} s: {e}");
+        }
+        Err(e) => o.status = format!("failed: {e}"),
+    }
+    o
+}
+
+impl Stress {
+    /// True when every case completed and every same-physics case agrees.
+    pub fn passed(&self) -> bool {
+        self.completed == self.cases && self.same_physics_disagreeing == 0
+    }
+
+    /// Writes `stress.json` into `dir`.
+    pub fn write(&self, dir: &Path) -> Result<PathBuf> {
+        std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+        let json = dir.join("stress.json");
+        let text = serde_json::to_string_pretty(self).unwrap_or_default();
+        crate::atomic::write(&json, text).map_err(|e| Error::io(&json, e))?;
+        Ok(json)
+    }
+}

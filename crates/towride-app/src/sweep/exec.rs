@@ -1,0 +1,743 @@
+//! Running sweep cases in parallel and writing and merging their summary.
+//!
+//! Nothing finished is lost: each finished case is appended to a journal
+//! (`summary.csv.journal`, one JSON line per case) as it ends, the summary is written
+//! whole at the end ([`crate::atomic`]), a case not run because the caller interrupted
+//! the batch is recorded with status `interrupted`, and [`run_sweep_in`] with `resume`
+//! runs only the cases neither the summary nor the journal holds.
+
+use std::collections::BTreeSet;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::time::Instant;
+
+use rayon::prelude::*;
+
+use super::{Case, Sweep};
+use crate::error::{Error, Result};
+use crate::job::{Job, RunResult};
+use crate::scene::SceneError;
+use towride_mbs::input::Loader;
+use towride_mbs::progress::Progress;
+
+/// Named figures of one case (peaks, energies), in a stable order.
+pub type Figures = Vec<(String, f64)>;
+
+/// What a case produced.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct CaseRow {
+    /// Case number in the full product.
+    pub index: usize,
+    /// The parameters' values (TOML text).
+    pub values: Vec<String>,
+    /// "completed", "failed" or "interrupted" (stopped, or not started, on request).
+    pub status: String,
+    /// Why it failed.
+    pub error: Option<String>,
+    /// Wall time of the case [s].
+    pub wall_s: f64,
+    /// The case's figures.
+    pub figures: Figures,
+}
+
+/// Passes only the caller's stop request on to a case's run (the batch's bar counts
+/// cases, not samples).
+struct StopOnly<'a>(&'a dyn Progress);
+
+impl Progress for StopOnly<'_> {
+    fn cancelled(&self) -> bool {
+        self.0.cancelled()
+    }
+}
+
+/// Runs `cases` on `jobs` threads with `run` (given the case, the sweep's scene, a
+/// loader holding the case's overrides and the stop request); a failed or panicking case is recorded
+/// and the others go on; once `progress` is cancelled no case starts (recorded
+/// `interrupted`). `progress` counts finished cases; `done` sees each finished row.
+pub fn run_cases<F>(
+    sweep: &Sweep,
+    cases: &[Case],
+    jobs: usize,
+    run: &F,
+    progress: &dyn Progress,
+    done: &(dyn Fn(&CaseRow) + Sync),
+) -> Result<Vec<CaseRow>>
+where
+    F: Fn(&Case, &Path, &Loader, &dyn Progress) -> Result<Figures> + Sync,
+{
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(jobs.max(1))
+        .build()
+        .map_err(|e| Error::io("thread pool", std::io::Error::other(e.to_string())))?;
+    progress.begin(cases.len() as u64);
+    let mut rows: Vec<CaseRow> = pool.install(|| {
+        cases
+            .par_iter()
+            .map(|c| {
+                let t = Instant::now();
+                if progress.cancelled() {
+                    return CaseRow {
+                        index: c.index,
+                        values: c.values.clone(),
+                        status: "interrupted".into(),
+                        error: Some("not started: the sweep was interrupted".into()),
+                        wall_s: 0.0,
+                        figures: vec![],
+                    };
+                }
+                let loader = Loader::with_overrides(c.overrides.clone());
+                let out = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                    run(c, &sweep.scene, &loader, &StopOnly(progress))
+                }));
+                progress.inc(1);
+                let (status, error, figures) = match out {
+                    Ok(Ok(f)) => ("completed", None, f),
+                    Ok(Err(e @ Error::Scene(SceneError::Interrupted { .. }))) => {
+                        ("interrupted", Some(e.to_string()), vec![])
+                    }
+                    Ok(Err(e)) => ("failed", Some(e.to_string()), vec![]),
+                    Err(p) => {
+                        let msg = p
+                            .downcast_ref::<String>()
+                            .cloned()
+                            .or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string()))
+                            .unwrap_or_else(|| "panic".into());
+                        ("failed", Some(format!("internal error: {msg}")), vec![])
+                    }
+                };
+                let row = CaseRow {
+                    index: c.index,
+                    values: c.values.clone(),
+                    status: status.into(),
+                    error,
+                    wall_s: t.elapsed().as_secs_f64(),
+                    figures,
+                };
+                if row.status != "interrupted" {
+                    done(&row);
+                }
+                row
+            })
+            .collect()
+    });
+    progress.finish();
+    rows.sort_by_key(|r| r.index);
+    Ok(rows)
+}
+
+/// Runs one case: the file (a mechanism or a scene) read through `loader`, integrated,
+/// and its figures. A run the solver stops is a failed case.
+pub fn run_case(path: &Path, loader: &Loader, stop: &dyn Progress) -> Result<Figures> {
+    run_case_kept(path, loader, stop, None)
+}
+
+/// [`run_case`], keeping the run's files (also those of a run the solver stopped) in
+/// its case folder under `keep` ([`super::cases`]).
+fn run_case_kept(
+    path: &Path,
+    loader: &Loader,
+    stop: &dyn Progress,
+    keep: Option<(&Path, usize)>,
+) -> Result<Figures> {
+    let job = Job::from_file(path, loader)?;
+    // Only a kept case writes a report with the 3D view.
+    let job = if keep.is_some() {
+        job
+    } else {
+        job.without_view()
+    };
+    let mut r = job.run(stop)?;
+    if let (Some((cases, index)), None) = (keep, r.samples.interrupted) {
+        super::cases::keep(&mut r, &job.system, cases, index)?;
+    }
+    r.require_completed()?;
+    Ok(figures(&r))
+}
+
+/// The figures a sweep records of a run. A mechanism: every channel's max and min and
+/// the steps. A vehicle scene: peak hitch force components, peak acceleration per
+/// sensor, the crossbeam's peak deflection and strain energy, solver effort.
+pub fn figures(r: &RunResult) -> Figures {
+    let s = &r.summary;
+    let mut out = Figures::new();
+    if s.scene.is_none() {
+        for (name, c) in &s.channels {
+            out.push((format!("{name} max [{}]", c.unit), c.max));
+            out.push((format!("{name} min [{}]", c.unit), c.min));
+        }
+        out.push(("steps".into(), s.solver.steps as f64));
+        return out;
+    }
+    for n in ["hitch_fx", "hitch_fy", "hitch_fz"] {
+        if let Some(c) = s.channels.get(n) {
+            out.push((format!("{n} peak [N]"), c.peak));
+        }
+    }
+    for (name, c) in &s.channels {
+        if name.starts_with("acc_") || name == "trailer_ax" {
+            out.push((format!("{name} peak [m/s^2]"), c.peak.abs()));
+        }
+    }
+    if let (Some(x), Some(y), Some(z)) = (
+        r.channel("hitch_deflection_x"),
+        r.channel("hitch_deflection_y"),
+        r.channel("hitch_deflection_z"),
+    ) {
+        let d = (0..x.len()).fold(0.0f64, |m, k| {
+            m.max((x[k] * x[k] + y[k] * y[k] + z[k] * z[k]).sqrt())
+        });
+        out.push(("crossbeam peak deflection [m]".into(), d));
+    }
+    if let Some(c) = s.channels.get("hitch_strain_energy") {
+        out.push(("crossbeam peak strain energy [J]".into(), c.peak.abs()));
+    }
+    out.push(("steps".into(), s.solver.steps as f64));
+    out.push(("run wall time [s]".into(), s.start_wall_s + s.wall_s));
+    out
+}
+
+/// Writes the summary CSV: case, parameters, status, wall time, every figure, error
+/// (whole or not at all).
+pub fn write_summary(path: &Path, sweep: &Sweep, rows: &[CaseRow]) -> Result<()> {
+    let names: Vec<String> = {
+        let mut seen = BTreeSet::new();
+        let mut v = Vec::new();
+        for r in rows {
+            for (n, _) in &r.figures {
+                if seen.insert(n.clone()) {
+                    v.push(n.clone());
+                }
+            }
+        }
+        v
+    };
+    let io = |e: csv::Error| Error::io(path, e.into());
+    let file = crate::atomic::Atomic::create(path).map_err(|e| Error::io(path, e))?;
+    let mut w = csv::Writer::from_writer(file);
+    let mut head = vec!["case".to_string()];
+    head.extend(sweep.parameters.iter().map(|p| p.name.clone()));
+    head.extend(["status".into(), "wall_time [s]".into()]);
+    head.extend(names.iter().cloned());
+    head.push("error".into());
+    w.write_record(&head).map_err(io)?;
+    for r in rows {
+        let mut rec = vec![r.index.to_string()];
+        rec.extend(r.values.iter().map(|v| v.trim_matches('"').to_string()));
+        rec.push(r.status.clone());
+        rec.push(format!("{:.4}", r.wall_s));
+        for n in &names {
+            rec.push(
+                r.figures
+                    .iter()
+                    .find(|(k, _)| k == n)
+                    .map_or(String::new(), |(_, v)| format!("{v:.6e}")),
+            );
+        }
+        rec.push(r.error.clone().unwrap_or_default());
+        w.write_record(&rec).map_err(io)?;
+    }
+    w.into_inner()
+        .map_err(|e| Error::io(path, e.into_error()))?
+        .commit()
+        .map_err(|e| Error::io(path, e))
+}
+
+/// Version of a merged table's report (`sweep merge --json`).
+pub const MERGE_SCHEMA_VERSION: u32 = 1;
+
+/// What [`merge`] joined.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct Merged {
+    /// Layout version.
+    pub schema_version: u32,
+    /// The sweep's name (from the shards' JSON twins).
+    pub sweep: String,
+    /// Cases merged; equal to `cases_total` (a gap is an error).
+    pub cases: usize,
+    /// Cases of the whole product.
+    pub cases_total: usize,
+    /// The shard files joined.
+    pub inputs: Vec<String>,
+    /// The merged table's HTML page (`not written: ...` when it could not be).
+    pub report: Option<String>,
+    /// The merged table.
+    pub out: String,
+}
+
+/// The JSON twin of a shard's summary CSV: the sweep's name and its case count.
+fn shard_meta(csv: &Path) -> Result<(String, usize)> {
+    let json = csv.with_extension("json");
+    let bad = |message: String| -> Error {
+        SceneError::Merge {
+            file: json.clone(),
+            message,
+        }
+        .into()
+    };
+    let text = std::fs::read_to_string(&json).map_err(|e| {
+        bad(format!(
+            "cannot read the shard's JSON twin (written beside every summary CSV; it \
+             says how many cases the sweep has): {e}"
+        ))
+    })?;
+    let v: serde_json::Value =
+        serde_json::from_str(&text).map_err(|e| bad(format!("not JSON: {e}")))?;
+    let name = v["sweep"].as_str().map(String::from);
+    let total = v["cases_total"].as_u64().map(|n| n as usize);
+    match (name, total) {
+        (Some(n), Some(t)) => Ok((n, t)),
+        _ => Err(bad("no `sweep` and `cases_total` fields".into())),
+    }
+}
+
+/// Joins shard summaries (same columns, same sweep) into one table ordered by case,
+/// written whole. Refused unless every case of the sweep appears exactly once and none
+/// was interrupted: the case count comes from each shard's JSON twin.
+pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<Merged> {
+    let bad = |p: &Path, message: String| -> Error {
+        SceneError::Merge {
+            file: p.to_path_buf(),
+            message,
+        }
+        .into()
+    };
+    let first = inputs
+        .first()
+        .ok_or_else(|| bad(out, "nothing to merge".into()))?;
+    let (name, total) = shard_meta(first)?;
+    let mut header: Option<csv::StringRecord> = None;
+    let mut rows: Vec<(usize, csv::StringRecord)> = Vec::new();
+    for p in inputs {
+        let (n, t) = shard_meta(p)?;
+        if n != name || t != total {
+            return Err(bad(
+                p,
+                format!(
+                    "a shard of sweep '{n}' with {t} cases, but {} is of '{name}' with {total}",
+                    first.display()
+                ),
+            ));
+        }
+        let mut r = csv::Reader::from_path(p).map_err(|e| Error::io(p, e.into()))?;
+        let h = r.headers().map_err(|e| bad(p, e.to_string()))?.clone();
+        let status = h.iter().position(|c| c == "status");
+        match &header {
+            None => header = Some(h),
+            Some(h0) if *h0 != h => {
+                return Err(bad(
+                    p,
+                    format!(
+                        "columns differ from {} (shards of different sweeps?)",
+                        first.display()
+                    ),
+                ))
+            }
+            _ => {}
+        }
+        for (line, rec) in r.records().enumerate() {
+            let rec = rec.map_err(|e| bad(p, e.to_string()))?;
+            let idx: usize = rec.get(0).and_then(|s| s.parse().ok()).ok_or_else(|| {
+                bad(
+                    p,
+                    format!("line {}: first column is not a case number", line + 2),
+                )
+            })?;
+            if idx >= total {
+                return Err(bad(
+                    p,
+                    format!("line {}: case {idx}, but the sweep has {total}", line + 2),
+                ));
+            }
+            if status.and_then(|c| rec.get(c)) == Some("interrupted") {
+                return Err(bad(
+                    p,
+                    format!(
+                        "line {}: case {idx} was interrupted: finish the shard with `sweep --resume` first",
+                        line + 2
+                    ),
+                ));
+            }
+            rows.push((idx, rec));
+        }
+    }
+    rows.sort_by_key(|(i, _)| *i);
+    if let Some(w) = rows.windows(2).find(|w| w[0].0 == w[1].0) {
+        return Err(bad(
+            out,
+            format!(
+                "case {} appears twice (the same shard merged twice?)",
+                w[0].0
+            ),
+        ));
+    }
+    if rows.len() != total {
+        let have: BTreeSet<usize> = rows.iter().map(|(i, _)| *i).collect();
+        let missing: Vec<usize> = (0..total).filter(|i| !have.contains(i)).collect();
+        let shown: Vec<String> = missing.iter().take(10).map(|i| i.to_string()).collect();
+        return Err(bad(
+            out,
+            format!(
+                "{} of the sweep's {total} cases are missing (cases {}{}): a shard not given?",
+                missing.len(),
+                shown.join(", "),
+                if missing.len() > 10 { ", ..." } else { "" }
+            ),
+        ));
+    }
+    let header = header.ok_or_else(|| bad(out, "nothing to merge".into()))?;
+    let io = |e: csv::Error| Error::io(out, e.into());
+    let file = crate::atomic::Atomic::create(out).map_err(|e| Error::io(out, e))?;
+    let mut w = csv::Writer::from_writer(file);
+    w.write_record(&header).map_err(io)?;
+    for (_, r) in &rows {
+        w.write_record(r).map_err(io)?;
+    }
+    w.into_inner()
+        .map_err(|e| Error::io(out, e.into_error()))?
+        .commit()
+        .map_err(|e| Error::io(out, e))?;
+    let report = Some(match super::page::write(out, &name) {
+        Ok(files) => files.html.display().to_string(),
+        Err(e) => format!("not written: {e}"),
+    });
+    Ok(Merged {
+        schema_version: MERGE_SCHEMA_VERSION,
+        report,
+        sweep: name,
+        cases: rows.len(),
+        cases_total: total,
+        inputs: inputs.iter().map(|p| p.display().to_string()).collect(),
+        out: out.display().to_string(),
+    })
+}
+
+/// Version of a sweep summary's layout (`summary.json`).
+pub const SCHEMA_VERSION: u32 = 3;
+
+/// A sweep (or one shard of it) run and summarised.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct SweepRun {
+    /// Layout version.
+    pub schema_version: u32,
+    /// The sweep's name.
+    pub sweep: String,
+    /// "completed" (every case of the shard ran, completed or failed) or "interrupted"
+    /// (some did not: `sweep --resume` finishes them).
+    pub status: String,
+    /// Cases of this shard.
+    pub cases: usize,
+    /// Cases of the whole product.
+    pub cases_total: usize,
+    /// Cases taken from an earlier, interrupted run (`--resume`).
+    pub resumed: usize,
+    /// This shard, (I, N).
+    pub shard: (usize, usize),
+    /// Threads used.
+    pub jobs: usize,
+    /// Cases that failed.
+    pub failed: usize,
+    /// Cases interrupted or not started.
+    pub interrupted: usize,
+    /// Wall time of the batch [s].
+    pub wall_s: f64,
+    /// The CSV written, once written.
+    pub summary_csv: Option<String>,
+    /// The sweep's HTML page, once written (`not written: ...` when it could not be).
+    pub report: Option<String>,
+    /// Every case.
+    pub rows: Vec<CaseRow>,
+}
+
+/// Runs shard `shard` = (I, N) of `sweep` on `jobs` threads, in memory only.
+pub fn run_sweep(
+    sweep: &Sweep,
+    shard: (usize, usize),
+    jobs: usize,
+    progress: &dyn Progress,
+) -> Result<SweepRun> {
+    run_with(sweep, shard, jobs, Vec::new(), None, progress, &|_| {})
+}
+
+#[allow(clippy::too_many_arguments)]
+fn run_with(
+    sweep: &Sweep,
+    shard: (usize, usize),
+    jobs: usize,
+    prior: Vec<CaseRow>,
+    keep: Option<&Path>,
+    progress: &dyn Progress,
+    done: &(dyn Fn(&CaseRow) + Sync),
+) -> Result<SweepRun> {
+    let have: BTreeSet<usize> = prior.iter().map(|r| r.index).collect();
+    let cases: Vec<Case> = sweep
+        .shard(shard.0, shard.1)
+        .into_iter()
+        .filter(|c| !have.contains(&c.index))
+        .collect();
+    let wall = Instant::now();
+    let resumed = prior.len();
+    let run = |c: &Case, path: &Path, loader: &Loader, stop: &dyn Progress| {
+        run_case_kept(path, loader, stop, keep.map(|k| (k, c.index)))
+    };
+    let mut rows = run_cases(sweep, &cases, jobs, &run, progress, done)?;
+    rows.extend(prior);
+    rows.sort_by_key(|r| r.index);
+    let interrupted = rows.iter().filter(|r| r.status == "interrupted").count();
+    Ok(SweepRun {
+        schema_version: SCHEMA_VERSION,
+        sweep: sweep.name.clone(),
+        status: if interrupted > 0 {
+            "interrupted"
+        } else {
+            "completed"
+        }
+        .into(),
+        cases: rows.len(),
+        cases_total: sweep.len(),
+        resumed,
+        shard,
+        jobs,
+        failed: rows.iter().filter(|r| r.status == "failed").count(),
+        interrupted,
+        wall_s: wall.elapsed().as_secs_f64(),
+        summary_csv: None,
+        report: None,
+        rows,
+    })
+}
+
+/// The summary CSV of shard (I, N) in `dir`: `summary.csv`, or `summary_shardIofN.csv`.
+pub fn summary_path(dir: &Path, shard: (usize, usize)) -> PathBuf {
+    let (i, n) = shard;
+    dir.join(if n > 1 {
+        format!("summary_shard{i}of{n}.csv")
+    } else {
+        "summary.csv".into()
+    })
+}
+
+fn journal_path(csv: &Path) -> PathBuf {
+    let mut name = csv.file_name().unwrap_or_default().to_os_string();
+    name.push(".journal");
+    csv.with_file_name(name)
+}
+
+/// Runs shard `shard` of `sweep` with its files in `dir`: each finished case goes to the
+/// journal as it ends; at the end (or on interruption) the summary CSV and its JSON twin
+/// are written whole and the journal removed. With `resume`, the cases that an earlier
+/// run's summary or journal holds as completed or failed are kept, not run again, so
+/// the summary equals an uninterrupted run's (wall times aside).
+pub fn run_sweep_in(
+    sweep: &Sweep,
+    shard: (usize, usize),
+    jobs: usize,
+    dir: &Path,
+    resume: bool,
+    progress: &dyn Progress,
+) -> Result<SweepRun> {
+    let opts = Options {
+        jobs,
+        resume,
+        keep_histories: false,
+    };
+    run_sweep_with(sweep, shard, dir, &opts, progress)
+}
+
+/// How [`run_sweep_with`] runs a sweep.
+#[derive(Clone, Copy, Debug)]
+pub struct Options {
+    /// Cases run in parallel.
+    pub jobs: usize,
+    /// Keep the cases an earlier run left (see [`run_sweep_in`]).
+    pub resume: bool,
+    /// Keep each case's files in `dir/cases/<case id>/` ([`super::cases`]); a resumed
+    /// run also runs again the completed cases whose folder is missing.
+    pub keep_histories: bool,
+}
+
+/// [`run_sweep_in`] with all options; also writes the sweep's HTML page and figure
+/// beside the summary ([`super::page`]).
+pub fn run_sweep_with(
+    sweep: &Sweep,
+    shard: (usize, usize),
+    dir: &Path,
+    opts: &Options,
+    progress: &dyn Progress,
+) -> Result<SweepRun> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    let csv = summary_path(dir, shard);
+    let journal = journal_path(&csv);
+    let cases = super::cases::cases_dir(dir);
+    let keep = opts.keep_histories.then_some(cases.as_path());
+    if keep.is_some() {
+        std::fs::create_dir_all(&cases).map_err(|e| Error::io(&cases, e))?;
+    }
+    let mut prior = if opts.resume {
+        previous_rows(sweep, shard, &csv, &journal)?
+    } else {
+        Vec::new()
+    };
+    if let Some(k) = keep {
+        prior.retain(|r| r.status != "completed" || super::cases::is_kept(k, r.index));
+    }
+    let jobs = opts.jobs;
+    // The journal holds what the summary will hold; rewritten so a resumed run's old
+    // entries stay with its new ones.
+    let mut j = std::fs::File::create(&journal).map_err(|e| Error::io(&journal, e))?;
+    for r in &prior {
+        journal_line(&mut j, r).map_err(|e| Error::io(&journal, e))?;
+    }
+    let j = Mutex::new(j);
+    let done = |r: &CaseRow| {
+        if let Ok(mut f) = j.lock() {
+            // A journal that cannot be written costs only the resume of this case.
+            let _ = journal_line(&mut f, r);
+        }
+    };
+    let mut res = run_with(sweep, shard, jobs, prior, keep, progress, &done)?;
+    res.write_to(sweep, &csv)?;
+    let _ = std::fs::remove_file(&journal);
+    res.report = Some(match super::page::write(&csv, &sweep.name) {
+        Ok(files) => files.html.display().to_string(),
+        Err(e) => format!("not written: {e}"),
+    });
+    // The JSON twin names the page too.
+    let json = csv.with_extension("json");
+    let text = serde_json::to_string_pretty(&res).unwrap_or_default();
+    crate::atomic::write(&json, text).map_err(|e| Error::io(&json, e))?;
+    Ok(res)
+}
+
+fn journal_line(f: &mut std::fs::File, r: &CaseRow) -> std::io::Result<()> {
+    let line = serde_json::to_string(r).map_err(std::io::Error::other)?;
+    f.write_all(format!("{line}\n").as_bytes())?;
+    f.flush()
+}
+
+/// The completed and failed cases of an earlier run of this shard: its summary CSV
+/// (when written) and its journal (when it was killed before writing one).
+fn previous_rows(
+    sweep: &Sweep,
+    shard: (usize, usize),
+    csv: &Path,
+    journal: &Path,
+) -> Result<Vec<CaseRow>> {
+    let bad = |p: &Path, message: String| -> Error {
+        SceneError::Merge {
+            file: p.to_path_buf(),
+            message,
+        }
+        .into()
+    };
+    let mut rows: Vec<CaseRow> = Vec::new();
+    if csv.is_file() {
+        let mut r = csv::Reader::from_path(csv).map_err(|e| Error::io(csv, e.into()))?;
+        let h = r.headers().map_err(|e| bad(csv, e.to_string()))?.clone();
+        let np = sweep.parameters.len();
+        let cols: Vec<&str> = h.iter().collect();
+        let params: Vec<&str> = sweep.parameters.iter().map(|p| p.name.as_str()).collect();
+        if cols.len() < np + 4
+            || cols[0] != "case"
+            || cols[1..=np] != params[..]
+            || cols[np + 1] != "status"
+            || cols.last() != Some(&"error")
+        {
+            return Err(bad(
+                csv,
+                format!(
+                    "not a summary of this sweep (columns {cols:?}): remove it or run without --resume"
+                ),
+            ));
+        }
+        let figure_names = &cols[np + 3..cols.len() - 1];
+        for (k, rec) in r.records().enumerate() {
+            let line = k + 2;
+            let rec = rec.map_err(|e| bad(csv, format!("line {line}: {e}")))?;
+            let get = |c: usize| rec.get(c).unwrap_or("");
+            let index: usize = get(0)
+                .parse()
+                .map_err(|_| bad(csv, format!("line {line}: `case` is not a case number")))?;
+            if index >= sweep.len() || index % shard.1 != shard.0 {
+                return Err(bad(
+                    csv,
+                    format!("line {line}: case {index} is not a case of this shard"),
+                ));
+            }
+            let case = sweep.case(index);
+            for (p, v) in case.values.iter().enumerate() {
+                if get(p + 1) != v.trim_matches('"') {
+                    return Err(bad(
+                        csv,
+                        format!(
+                            "line {line}: case {index} has {} = {} but the sweep file gives {v}: \
+                             the sweep changed; remove the summary or run without --resume",
+                            params[p],
+                            get(p + 1)
+                        ),
+                    ));
+                }
+            }
+            let status = get(np + 1).to_string();
+            if status != "completed" && status != "failed" {
+                continue;
+            }
+            let mut figures = Figures::new();
+            for (f, name) in figure_names.iter().enumerate() {
+                let cell = get(np + 3 + f);
+                if !cell.is_empty() {
+                    let v = cell
+                        .parse()
+                        .map_err(|_| bad(csv, format!("line {line}: `{name}` is not a number")))?;
+                    figures.push((name.to_string(), v));
+                }
+            }
+            let error = get(cols.len() - 1);
+            rows.push(CaseRow {
+                index,
+                values: case.values,
+                status,
+                error: (!error.is_empty()).then(|| error.to_string()),
+                wall_s: get(np + 2).parse().unwrap_or(0.0),
+                figures,
+            });
+        }
+    }
+    if let Ok(text) = std::fs::read_to_string(journal) {
+        for (k, l) in text.lines().enumerate() {
+            // A line cut short by a kill is the case still running: run it again.
+            let Ok(r) = serde_json::from_str::<CaseRow>(l) else {
+                continue;
+            };
+            if r.index >= sweep.len() || sweep.case(r.index).values != r.values {
+                return Err(bad(
+                    journal,
+                    format!("line {}: case {} is not of this sweep", k + 1, r.index),
+                ));
+            }
+            if !rows.iter().any(|x| x.index == r.index) {
+                rows.push(r);
+            }
+        }
+    }
+    Ok(rows)
+}
+
+impl SweepRun {
+    /// Writes the summary CSV (`summary.csv`, or `summary_shardIofN.csv` for a shard)
+    /// and its JSON twin into `dir`; returns the CSV's path.
+    pub fn write(&mut self, sweep: &Sweep, dir: &Path) -> Result<PathBuf> {
+        std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+        let csv = summary_path(dir, self.shard);
+        self.write_to(sweep, &csv)?;
+        Ok(csv)
+    }
+
+    fn write_to(&mut self, sweep: &Sweep, csv: &Path) -> Result<()> {
+        write_summary(csv, sweep, &self.rows)?;
+        self.summary_csv = Some(csv.display().to_string());
+        let json = csv.with_extension("json");
+        let text = serde_json::to_string_pretty(self).unwrap_or_default();
+        crate::atomic::write(&json, text).map_err(|e| Error::io(&json, e))
+    }
+}

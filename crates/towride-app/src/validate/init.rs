@@ -1,0 +1,570 @@
+//! `validate init`: sniffs a recording (separator, header, units row, time base, sample
+//! rate, channels with units) and drafts a commented descriptor for a scene. Channels are
+//! mapped onto the scene's sensors by name patterns (FL/FR/RL/RR, front/rear
+//! left/right, sprung/body, unsprung/wheel/hub, drawbar, hitch; x/y/z or
+//! longitudinal/lateral/vertical, vertical by default); unmapped columns are listed as
+//! comments; gravity is set to be removed where a vertical channel's median over the
+//! record (its level in steady driving, which is most of a bump run; a mean would follow
+//! the events and a short rest part) is within 0.1 g of 1 g.
+
+use std::fmt::Write as _;
+use std::path::{Component, Path, PathBuf};
+
+use serde::Serialize;
+
+use towride_mbs::input::InputError;
+
+use super::csv_reader::{
+    cells, err, lines_of, parse_number, read_table_with, split_unit, TimeSpec,
+};
+use super::measurement::flat_top_range;
+use super::timebase::TimeBase;
+use super::units::{time_factor, SpeedUnit, Unit};
+use super::G_MPS2;
+
+/// A vertical channel whose mean at rest lies this close to 1 g reads gravity [g].
+const GRAVITY_TOL_G: f64 = 0.1;
+
+/// What a column is, from its unit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Kind {
+    /// An acceleration (`g`, `gn`, `m/s^2`).
+    Acceleration,
+    /// A speed (`km/h`, `m/s`, `mph`).
+    Speed,
+    /// Anything else (pressures, angles, rates, no unit).
+    Other,
+}
+
+/// One column of a sniffed file.
+#[derive(Clone, Debug, Serialize)]
+pub struct Column {
+    /// Name in the header (without a `[unit]`).
+    pub name: String,
+    /// Unit from the header or units row.
+    pub unit: Option<String>,
+    /// What it is.
+    pub kind: Kind,
+    /// Median over the record, in the column's unit.
+    pub median: f64,
+    /// A flat top at a standard accelerometer range [g] (a clipped sensor), if seen.
+    pub flat_top_g: Option<f64>,
+    /// The scene's channel it is mapped onto, if any.
+    pub simulated: Option<String>,
+    /// Why it is not mapped, when it is not.
+    pub unmapped: Option<String>,
+}
+
+/// What `validate init` found in a recording.
+#[derive(Clone, Debug, Serialize)]
+pub struct Sniff {
+    /// The file.
+    pub file: PathBuf,
+    /// Column separator.
+    pub separator: char,
+    /// Numbers with a decimal comma.
+    pub decimal_comma: bool,
+    /// 1-based header line.
+    pub header_line: usize,
+    /// 1-based units row, if any.
+    pub units_line: Option<usize>,
+    /// The time column, if any.
+    pub time_column: Option<String>,
+    /// Data rows.
+    pub rows: usize,
+    /// The time base and sample rate.
+    pub time_base: TimeBase,
+    /// The columns other than time.
+    pub columns: Vec<Column>,
+    /// Repairs and inferences made while reading.
+    pub notes: Vec<String>,
+}
+
+/// A line's cells when every one is a number or empty (`None` otherwise).
+fn numeric_cells(line: &str, sep: char) -> Option<usize> {
+    let cs = cells(line, sep);
+    let ok = cs
+        .iter()
+        .all(|(c, _)| c.is_empty() || parse_number(c, sep != ',').is_some());
+    (ok && cs.iter().any(|(c, _)| !c.is_empty())).then_some(cs.len())
+}
+
+/// (separator, header line index, units line index) of the layout with most columns.
+fn layout(lines: &[String]) -> Option<(char, usize, Option<usize>)> {
+    let mut best: Option<(usize, char, usize, Option<usize>)> = None;
+    let content = |l: &String| !l.trim().is_empty() && !l.trim_start().starts_with('#');
+    for sep in ['\t', ';', ','] {
+        // The first numeric row followed by four more of as many cells.
+        let data = (0..lines.len()).find(|&i| {
+            let Some(n) = numeric_cells(&lines[i], sep).filter(|&n| n >= 2) else {
+                return false;
+            };
+            lines[i + 1..]
+                .iter()
+                .filter(|l| content(l))
+                .take(4)
+                .all(|l| numeric_cells(l, sep) == Some(n))
+        });
+        let Some(d) = data else { continue };
+        let n = cells(&lines[d], sep).len();
+        let above: Vec<usize> = (0..d)
+            .rev()
+            .filter(|&i| content(&lines[i]))
+            .take(2)
+            .filter(|&i| cells(&lines[i], sep).len() == n)
+            .collect();
+        let (h, u) = match above.as_slice() {
+            [u, h] if *h + 1 == *u || lines[h + 1..*u].iter().all(|l| !content(l)) => {
+                (*h, Some(*u))
+            }
+            [h, ..] => (*h, None),
+            [] => continue,
+        };
+        if best.is_none_or(|b| n > b.0) {
+            best = Some((n, sep, h, u));
+        }
+    }
+    best.map(|(_, s, h, u)| (s, h, u))
+}
+
+/// A sample rate declared in a comment line before the header (`2000 Hz`, `5 kHz`).
+fn declared_rate(lines: &[String]) -> Option<f64> {
+    for l in lines {
+        let words: Vec<&str> = l
+            .split(|c: char| c.is_whitespace() || c == ':' || c == '=')
+            .filter(|w| !w.is_empty())
+            .collect();
+        for (i, w) in words.iter().enumerate() {
+            let lw = w.to_ascii_lowercase();
+            let (num, unit) = match lw.find(|c: char| c.is_ascii_alphabetic()) {
+                Some(k) if k > 0 => (&lw[..k], &lw[k..]),
+                _ => (
+                    words.get(i.wrapping_sub(1)).copied().unwrap_or(""),
+                    lw.as_str(),
+                ),
+            };
+            let f = match unit {
+                "hz" => 1.0,
+                "khz" => 1e3,
+                _ => continue,
+            };
+            if let Ok(v) = num.replace(',', ".").parse::<f64>() {
+                if v > 0.0 && v.is_finite() {
+                    return Some(v * f);
+                }
+            }
+        }
+    }
+    None
+}
+
+/// Sniffs `file`; `rate_hz`: the sample rate when the file has no time column (else read
+/// from a comment such as `# sample rate: 2000 Hz`).
+pub fn sniff(file: &Path, rate_hz: Option<f64>) -> Result<Sniff, InputError> {
+    let lines = lines_of(file)?;
+    let (sep, h, u) = layout(&lines).ok_or_else(|| {
+        err(file, None, None, "", "no header followed by rows of numbers with as many fields (separators tab, `;` or `,`)".into())
+    })?;
+    let mut names: Vec<(String, Option<String>)> = cells(&lines[h], sep)
+        .into_iter()
+        .map(|(c, _)| split_unit(&c))
+        .collect();
+    if let Some(u) = u {
+        for ((_, unit), (c, _)) in names.iter_mut().zip(cells(&lines[u], sep)) {
+            if unit.is_none() && !c.is_empty() {
+                *unit = Some(c);
+            }
+        }
+    }
+    let time = names.iter().position(|(n, unit)| {
+        let l = super::csv_reader::normalised(n);
+        let unit_ok = unit.as_deref().is_none_or(|u| time_factor(u).is_some());
+        unit_ok && (l == "t" || l.starts_with("time") || l.starts_with("zeit") || l == "timestamp")
+    });
+    for (k, (n, _)) in names.iter().enumerate() {
+        if n.is_empty() {
+            return Err(err(
+                file,
+                Some(h + 1),
+                None,
+                "",
+                format!("column {} has no name", k + 1),
+            ));
+        }
+    }
+    let rate = match time {
+        Some(_) => None,
+        None => Some(rate_hz.or_else(|| declared_rate(&lines[..h])).ok_or_else(|| {
+            err(file, Some(h + 1), None, "", "no time column and no sample rate: give the rate (--rate-hz) or a comment `# sample rate: 2000 Hz`".into())
+        })?),
+    };
+    let spec = TimeSpec {
+        column: time.map(|k| names[k].0.clone()),
+        rate_hz: rate,
+        fall_back_to_rate: false,
+    };
+    let others: Vec<&str> = (0..names.len())
+        .filter(|k| Some(*k) != time)
+        .map(|k| names[k].0.as_str())
+        .collect();
+    let table = read_table_with(file, &spec, &others)?;
+    let rows = table.time_s.len();
+    let columns = others
+        .iter()
+        .zip(&table.columns)
+        .zip(&table.units)
+        .map(|((name, values), unit)| {
+            let kind = match unit.as_deref() {
+                Some(u) if Unit::parse(u).is_some() => Kind::Acceleration,
+                Some(u) if SpeedUnit::parse(u).is_some() => Kind::Speed,
+                _ => Kind::Other,
+            };
+            let median = {
+                let mut v = values.clone();
+                v.sort_by(f64::total_cmp);
+                v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
+            };
+            let flat_top_g = match unit.as_deref().and_then(Unit::parse) {
+                Some(un) => {
+                    let g: Vec<f64> = values.iter().map(|v| v * un.to_si() / G_MPS2).collect();
+                    flat_top_range(&g)
+                }
+                None => None,
+            };
+            Column {
+                name: name.to_string(),
+                unit: unit.clone(),
+                kind,
+                median,
+                flat_top_g,
+                simulated: None,
+                unmapped: None,
+            }
+        })
+        .collect();
+    Ok(Sniff {
+        file: file.to_path_buf(),
+        separator: sep,
+        decimal_comma: table.decimal_comma,
+        header_line: table.header_line,
+        units_line: table.units_line,
+        time_column: spec.column,
+        rows,
+        time_base: table.time_base,
+        columns,
+        notes: table.notes,
+    })
+}
+
+/// The words of a column name: lower case, split at spaces, `_`, `-`, `.`, `/` and
+/// brackets, with FL/FR/RL/RR and German VL/VR/HL/HR spelled out.
+fn words(name: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    for w in name
+        .split(|c: char| !c.is_alphanumeric())
+        .filter(|w| !w.is_empty())
+        .map(str::to_lowercase)
+    {
+        match w.as_str() {
+            "fl" | "vl" => out.extend(["front".into(), "left".into()]),
+            "fr" | "vr" => out.extend(["front".into(), "right".into()]),
+            "rl" | "hl" => out.extend(["rear".into(), "left".into()]),
+            "rr" | "hr" => out.extend(["rear".into(), "right".into()]),
+            "sprung" | "body" | "chassis" => out.push("body".into()),
+            "unsprung" | "wheel" | "hub" | "knuckle" => out.push("wheel".into()),
+            "vertical" | "vert" => out.push("z".into()),
+            "longitudinal" | "long" => out.push("x".into()),
+            "lateral" | "lat" => out.push("y".into()),
+            _ => out.push(w),
+        }
+    }
+    out
+}
+
+/// The scene channel `name` maps onto among `sensors` (name, measured axes).
+fn map_channel(name: &str, sensors: &[(String, [bool; 3])]) -> Result<String, String> {
+    let w = words(name);
+    let has = |x: &str| w.iter().any(|v| v == x);
+    let axis = ["x", "y", "z"].into_iter().position(&has).unwrap_or(2);
+    let mut need: Vec<&str> = Vec::new();
+    for k in [
+        "body", "wheel", "drawbar", "hitch", "trailer", "front", "rear", "left", "right",
+    ] {
+        if has(k) {
+            need.push(k);
+        }
+    }
+    if !need
+        .iter()
+        .any(|k| ["body", "wheel", "drawbar", "hitch"].contains(k))
+    {
+        return Err("no sprung/body, unsprung/wheel/hub, drawbar or hitch in the name".into());
+    }
+    // The sensor holding every wanted word with the fewest others.
+    let best = sensors
+        .iter()
+        .filter(|(s, axes)| {
+            let sw: Vec<&str> = s.split('_').collect();
+            axes[axis] && need.iter().all(|k| sw.contains(k))
+        })
+        .min_by_key(|(s, _)| s.split('_').count());
+    match best {
+        Some((s, _)) => Ok(format!("acc_{s}_{}", ["x", "y", "z"][axis])),
+        None => Err(format!(
+            "no sensor of the scene measures {} with {need:?} in its name",
+            ["x", "y", "z"][axis]
+        )),
+    }
+}
+
+/// The acceleration sensors of `scene` (built as a run would): name and measured axes.
+pub fn scene_sensors(scene: &Path) -> Result<Vec<(String, [bool; 3])>, InputError> {
+    let s = crate::scene::load(scene)?;
+    Ok(s.vehicle
+        .handles
+        .sensors
+        .iter()
+        .map(|x| (x.name.clone(), x.axes))
+        .collect())
+}
+
+/// Maps the sniffed acceleration columns onto `sensors`; each scene channel once.
+pub fn map_columns(s: &mut Sniff, sensors: &[(String, [bool; 3])]) {
+    let mut taken: Vec<String> = Vec::new();
+    for c in s.columns.iter_mut() {
+        if c.kind != Kind::Acceleration {
+            c.unmapped = Some(match c.kind {
+                Kind::Speed => "vehicle speed".into(),
+                _ => format!(
+                    "not an acceleration (unit {})",
+                    c.unit.as_deref().unwrap_or("none")
+                ),
+            });
+            continue;
+        }
+        match map_channel(&c.name, sensors) {
+            Ok(m) if taken.contains(&m) => {
+                c.unmapped = Some(format!("{m} is already mapped from another column"))
+            }
+            Ok(m) => {
+                taken.push(m.clone());
+                c.simulated = Some(m);
+            }
+            Err(e) => c.unmapped = Some(e),
+        }
+    }
+}
+
+/// `to` relative to the directory `from` (both made absolute against the working
+/// directory), for paths written into a descriptor.
+fn relative(to: &Path, from: &Path) -> PathBuf {
+    let abs = |p: &Path| -> Vec<String> {
+        let p = std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf());
+        let mut v: Vec<String> = Vec::new();
+        for c in p.components() {
+            match c {
+                Component::ParentDir => {
+                    v.pop();
+                }
+                Component::CurDir => {}
+                c => v.push(c.as_os_str().to_string_lossy().to_string()),
+            }
+        }
+        v
+    };
+    let (t, f) = (abs(to), abs(from));
+    let common = t.iter().zip(&f).take_while(|(a, b)| a == b).count();
+    let mut out = PathBuf::new();
+    for _ in common..f.len() {
+        out.push("..");
+    }
+    for c in &t[common..] {
+        out.push(c);
+    }
+    out
+}
+
+fn quoted(s: &str) -> String {
+    toml::Value::String(s.to_string()).to_string()
+}
+
+/// The descriptor draft for `s` (mapped by [`map_columns`]) and `scene`, to be written
+/// to `out`.
+pub fn draft(s: &Sniff, scene: &Path, out: &Path) -> String {
+    let dir = out
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let path = |p: &Path| quoted(&relative(p, dir).to_string_lossy());
+    let sep = match s.separator {
+        '\t' => "tab".to_string(),
+        c => format!("`{c}`"),
+    };
+    let mut t = String::new();
+    let _ = writeln!(
+        t,
+        "# Descriptor drafted by `towride validate init` from {}:",
+        s.file.display()
+    );
+    let _ = writeln!(
+        t,
+        "# separator {sep}{}, header on line {}{}, {} rows, {} at {} Hz.",
+        if s.decimal_comma {
+            ", decimal commas"
+        } else {
+            ""
+        },
+        s.header_line,
+        s.units_line
+            .map_or(String::new(), |u| format!(", units row on line {u}")),
+        s.rows,
+        match s.time_base.kind {
+            super::timebase::TimeBaseKind::Column => "time column",
+            super::timebase::TimeBaseKind::Reconstructed =>
+                "time column rebuilt from the row count",
+            super::timebase::TimeBaseKind::Declared => "no time column, declared rate",
+        },
+        s.time_base.rate_hz
+    );
+    for n in &s.notes {
+        let _ = writeln!(t, "#   {n}");
+    }
+    let _ = writeln!(
+        t,
+        "# Check every line marked CHECK, then run `towride validate {}`.\n",
+        out.display()
+    );
+    let _ = writeln!(t, "scene = {}", path(scene));
+    let _ = writeln!(t, "data = {}", path(&s.file));
+    match &s.time_column {
+        Some(c) => {
+            let _ = writeln!(t, "time_column = {}", quoted(c));
+        }
+        None => {
+            let _ = writeln!(
+                t,
+                "sample_rate_hz = {}  # CHECK: the logger's rate (no time column)",
+                s.time_base.rate_hz
+            );
+        }
+    }
+    let _ = writeln!(t, "# nominal_speed_kmh = 30.0  # the speed the driver aimed at, for the uncorrected comparison");
+    let _ = writeln!(t, "# load_case = \"empty\"     # default: the scene's");
+    let _ = writeln!(
+        t,
+        "\n[acquisition]  # CHECK: the logger's anti-alias low-pass"
+    );
+    let _ = writeln!(t, "filter = \"butterworth\"\norder = 4\ncutoff_hz = 100.0");
+    if s.time_base.rate_hz >= 1000.0 {
+        let _ = writeln!(
+            t,
+            "# {} Hz is far above the band compared: the recording is passed through the same\n# low-pass as the simulation.\nmeasurement = \"filtered\"",
+            s.time_base.rate_hz
+        );
+    }
+    if let Some(c) = s.columns.iter().find(|c| c.kind == Kind::Speed) {
+        let _ = writeln!(t, "\n[speed]  # the vehicle-speed channel: the simulated speed is its mean over the passage");
+        let _ = writeln!(t, "column = {}", quoted(&c.name));
+    } else {
+        let _ = writeln!(
+            t,
+            "\n# No speed channel: give nominal_speed_kmh above or [trigger] foils."
+        );
+    }
+    let _ = writeln!(
+        t,
+        "\n# No trigger: the passage is found in the wheel channels (front axle's onset, then\n# the rear axle's where the wheelbase puts it). Give [trigger] photocell and foils if\n# recorded; they take precedence."
+    );
+    for c in s.columns.iter().filter(|c| c.simulated.is_some()) {
+        let sim = c.simulated.as_deref().unwrap_or_default();
+        let _ = writeln!(
+            t,
+            "\n[[channel]]\ncolumn = {}\nsimulated = {}",
+            quoted(&c.name),
+            quoted(sim)
+        );
+        let _ = writeln!(t, "axis = \"{}\"", sim.chars().last().unwrap_or('z'));
+        let unit = c.unit.as_deref().and_then(Unit::parse);
+        let mean_g = unit.map_or(f64::NAN, |u| c.median * u.to_si() / G_MPS2);
+        if sim.ends_with("_z") && (mean_g - 1.0).abs() < GRAVITY_TOL_G {
+            let _ = writeln!(
+                t,
+                "remove_gravity = true  # reads {mean_g:.3} g in steady driving (median)"
+            );
+        } else if mean_g.is_finite() {
+            let _ = writeln!(t, "# median {mean_g:.3} g: no gravity removed");
+        }
+        match c.flat_top_g {
+            Some(r) => {
+                let _ = writeln!(
+                    t,
+                    "range_g = {r:.1}  # CHECK: a flat top at {r} g looks like this sensor's range"
+                );
+            }
+            None => {
+                let _ = writeln!(
+                    t,
+                    "# range_g = 50.0  # the sensor's range: clipped samples are left out"
+                );
+            }
+        }
+    }
+    let unmapped: Vec<&super::init::Column> =
+        s.columns.iter().filter(|c| c.simulated.is_none()).collect();
+    if !unmapped.is_empty() {
+        let _ = writeln!(t, "\n# Columns not mapped onto the scene's channels:");
+        for c in unmapped {
+            let _ = writeln!(
+                t,
+                "#   {} [{}]: {}",
+                c.name,
+                c.unit.as_deref().unwrap_or(""),
+                c.unmapped.as_deref().unwrap_or("")
+            );
+        }
+    }
+    t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_map_onto_sensors() {
+        let s: Vec<(String, [bool; 3])> = [
+            "wheel_front_left",
+            "body_rear_right",
+            "hitch",
+            "trailer_drawbar",
+            "trailer_wheel_left",
+        ]
+        .iter()
+        .map(|n| (n.to_string(), [true, true, true]))
+        .collect();
+        let m = |n: &str| map_channel(n, &s);
+        assert_eq!(
+            m("FL Unsprung acceleration").unwrap(),
+            "acc_wheel_front_left_z"
+        );
+        assert_eq!(
+            m("RR Sprung acceleration").unwrap(),
+            "acc_body_rear_right_z"
+        );
+        assert_eq!(m("rear right body acc").unwrap(), "acc_body_rear_right_z");
+        assert_eq!(m("Drawbar vertical").unwrap(), "acc_trailer_drawbar_z");
+        assert_eq!(m("hitch_x").unwrap(), "acc_hitch_x");
+        assert!(m("IMU acc z").is_err());
+        assert!(m("FR Sprung acceleration").is_err());
+        assert_eq!(
+            declared_rate(&["# Sample rate: 5 kHz".into()]),
+            Some(5000.0)
+        );
+        assert_eq!(declared_rate(&["# rate 2000 Hz".into()]), Some(2000.0));
+        assert_eq!(
+            relative(Path::new("/a/b/c.toml"), Path::new("/a/d")),
+            PathBuf::from("../b/c.toml")
+        );
+    }
+}

@@ -1,0 +1,331 @@
+//! The towing hitch: the crossbeam with brackets and hook as one modal body (the
+//! Craig-Bampton data of `flex/hitch_crossbeam.toml`, variant 1..10, modes selected by
+//! the file's rule), held on the car body by bushings at its two bracket interface nodes
+//! (the thesis: bushings, not fixed joints, so the few kept modes do not over-constrain
+//! it), and the ball coupling to the trailer drawbar at the ball interface node:
+//! a spherical joint or a stiff bushing.
+
+use std::path::Path;
+
+use serde::Deserialize;
+
+use super::build::{Builder, Link};
+use super::geom::{IDENTITY, V};
+use super::modal_body;
+use super::props::{at, joint_bushing, point, BushingLaws, BushingProps};
+use towride_mbs::input::{InputError, Source};
+use towride_mbs::model::builder::BodyHandle;
+use towride_mbs::model::desc::JointKind;
+use towride_mbs::model::elements::{JointBushing, LawSpec};
+use towride_mbs::model::math::add;
+use towride_mbs::path;
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct File {
+    hitch: Hitch,
+    mounting: Mounting,
+    ball_coupling: BallCoupling,
+}
+
+/// How each bracket is held on the body: the bolted joint in series with the body-side
+/// compliance of the side-member end at the bolts (docs/hitch_mounts.md), per axis of
+/// the mount (x, y, z; rotations about them), and the path's damping as a loss factor.
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct Mounting {
+    /// Mount z axis (the bolt axis) and x axis, vehicle coordinates.
+    z_axis: [f64; 3],
+    x_axis: [f64; 3],
+    /// Body side (side-member end and panel at the bolts) [N/m], [N m/rad].
+    body_stiffness_n_m: [f64; 3],
+    body_stiffness_n_m_rad: [f64; 3],
+    /// The bracket's bolts together [N/m], [N m/rad].
+    bolt_stiffness_n_m: [f64; 3],
+    bolt_stiffness_n_m_rad: [f64; 3],
+    /// Loss factor of the path (material and joint damping) [-].
+    loss_factor: f64,
+    /// Frequency at which the viscous damping equals the loss factor's [Hz].
+    damping_reference_hz: f64,
+}
+
+impl Mounting {
+    /// Series stiffness per axis and the viscous damping c = eta k / omega_ref.
+    fn laws(&self, src: &Source) -> Result<BushingLaws, InputError> {
+        let p = path!["mounting"];
+        let eta = src.non_negative(&at(&p, "loss_factor"), self.loss_factor)?;
+        let f = src.positive(&at(&p, "damping_reference_hz"), self.damping_reference_hz)?;
+        let omega = 2.0 * std::f64::consts::PI * f;
+        let series = |body: &[f64; 3], bolt: &[f64; 3], bk: &str, ok: &str| {
+            let mut k = [0.0; 3];
+            for i in 0..3 {
+                let a = src.positive(&at(&at(&p, bk), i), body[i])?;
+                let b = src.positive(&at(&at(&p, ok), i), bolt[i])?;
+                k[i] = a * b / (a + b);
+            }
+            Ok::<_, InputError>(k)
+        };
+        let kt = series(
+            &self.body_stiffness_n_m,
+            &self.bolt_stiffness_n_m,
+            "body_stiffness_n_m",
+            "bolt_stiffness_n_m",
+        )?;
+        let kr = series(
+            &self.body_stiffness_n_m_rad,
+            &self.bolt_stiffness_n_m_rad,
+            "body_stiffness_n_m_rad",
+            "bolt_stiffness_n_m_rad",
+        )?;
+        let lin = |k: [f64; 3], scale: f64| k.map(|x| LawSpec::Linear(x * scale));
+        BushingProps {
+            z_axis: Some(self.z_axis),
+            x_axis: Some(self.x_axis),
+            stiffness_n_m: lin(kt, 1.0),
+            damping_n_s_m: lin(kt, eta / omega),
+            stiffness_n_m_rad: lin(kr, 1.0),
+            damping_n_m_s_rad: lin(kr, eta / omega),
+        }
+        .check(src, &p, [0.0, 1.0, 0.0])
+    }
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct Hitch {
+    /// The FE model (relative to this file).
+    fe_file: String,
+    /// Crossbeam variant 1..10.
+    variant: u32,
+    /// Where the FE file's origin lies in vehicle coordinates [m] (its axes are the
+    /// vehicle's).
+    fe_origin_m: [f64; 3],
+    /// Inertia coupling of the modal body: constant, partial or full.
+    inertia_coupling: String,
+    bracket_nodes: [String; 2],
+    ball_node: String,
+    sensor_node: String,
+    /// How the brackets are held: "bushing" (default, `[mounting]`) or "fixed"
+    /// (ideal fixed joints: the thesis's over-constrained variant, for stress tests).
+    #[serde(default)]
+    bracket_mount: Option<String>,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct BallCoupling {
+    /// "spherical" (ideal joint) or "bushing".
+    kind: String,
+    /// The bushing used for kind = "bushing" (translations only: a ball passes no
+    /// moments).
+    bushing: Option<JointBushing>,
+}
+
+/// How the drawbar is coupled to the ball.
+#[derive(Clone, Debug)]
+pub enum BallKind {
+    /// An ideal spherical joint.
+    Spherical,
+    /// A bushing with these properties (translations only).
+    Bushing(JointBushing),
+}
+
+/// What the rest of the vehicle needs of the hitch.
+#[derive(Clone, Debug)]
+pub struct HitchHandle {
+    /// The crossbeam's modal body.
+    pub body: BodyHandle,
+    /// Ball centre, vehicle coordinates [m].
+    pub ball: V,
+    /// Index of the ball interface node in the modal data.
+    pub ball_node: usize,
+    /// Index of the crossbeam sensor node.
+    pub sensor_node: usize,
+    /// Sensor node position, vehicle coordinates [m].
+    pub sensor: V,
+    /// How the drawbar is coupled to the ball.
+    pub ball_kind: BallKind,
+    /// FE origin in vehicle coordinates (checked against the rear axle).
+    pub fe_origin: V,
+    /// Crossbeam variant in use (1..10).
+    pub variant: u32,
+    /// Number of selected modes.
+    pub modes: usize,
+    /// Where to complain about `fe_origin_m`.
+    pub origin_complaint: InputError,
+}
+
+/// Reads `file` and adds the hitch to the car body `body`; `variant` overrides the file.
+pub fn build(
+    b: &mut Builder,
+    file: &Path,
+    body: BodyHandle,
+    variant: Option<u32>,
+    ball: Option<&str>,
+) -> Result<HitchHandle, InputError> {
+    let src = b.read(file)?;
+    let f: File = src.parse()?;
+    let h = &f.hitch;
+    let origin = point(&src, &path!["hitch", "fe_origin_m"], &h.fe_origin_m)?;
+    let variant = variant.unwrap_or(h.variant);
+    let coupling = modal_body::coupling(
+        &src,
+        &path!["hitch", "inertia_coupling"],
+        &h.inertia_coupling,
+    )?;
+    let fe = file.parent().unwrap_or(Path::new(".")).join(&h.fe_file);
+    let data = modal_body::load(
+        &src,
+        &path!["hitch", "fe_file"],
+        &fe,
+        Some(variant),
+        None,
+        b,
+        "hitch",
+    )?;
+    let brackets = modal_body::nodes(
+        &src,
+        &path!["hitch", "bracket_nodes"],
+        &data,
+        &fe,
+        &h.bracket_nodes,
+    )?;
+    let ball_node = modal_body::node(&src, &path!["hitch", "ball_node"], &data, &fe, &h.ball_node)?;
+    let sensor_node = modal_body::node(
+        &src,
+        &path!["hitch", "sensor_node"],
+        &data,
+        &fe,
+        &h.sensor_node,
+    )?;
+    let bushing = f.mounting.laws(&src)?;
+    let ball_kind = match ball.unwrap_or(&f.ball_coupling.kind) {
+        "spherical" => BallKind::Spherical,
+        "bushing" => {
+            let jb = joint_bushing(
+                &src,
+                &path!["ball_coupling", "bushing"],
+                &f.ball_coupling.bushing,
+            )?;
+            BallKind::Bushing(jb.ok_or_else(|| {
+                src.error(
+                    &path!["ball_coupling"],
+                    "the bushing coupling needs a bushing table",
+                )
+            })?)
+        }
+        other => {
+            return Err(src.error(
+                &path!["ball_coupling", "kind"],
+                format!("'{other}': use spherical or bushing"),
+            ))
+        }
+    };
+    let at = |p: &[f64; 3]| add(&origin, p);
+    let fixed = match h.bracket_mount.as_deref() {
+        None | Some("bushing") => false,
+        Some("fixed") => true,
+        Some(other) => {
+            return Err(src.error(
+                &path!["hitch", "bracket_mount"],
+                format!("is \"bushing\" or \"fixed\", not \"{other}\""),
+            ))
+        }
+    };
+    let (ball, sensor) = (
+        at(&data.nodes[ball_node].position_m),
+        at(&data.nodes[sensor_node].position_m),
+    );
+    let modes = data.modes.len();
+    let hb = modal_body::add_body(b, "hitch", data, origin, coupling)?;
+    for (k, &n) in brackets.iter().enumerate() {
+        let p = modal_body::node_position(b, hb, origin, n);
+        let name = format!("hitch_bracket_{}", ["left", "right"][k]);
+        let link = if fixed {
+            b.add(|m| {
+                m.ideal_joint(
+                    &name,
+                    JointKind::Fixed,
+                    Some(hb),
+                    Some(body),
+                    p,
+                    &bushing.axes,
+                )
+            })?
+        } else {
+            Link::Bushing(b.bushing(
+                &name,
+                Some(hb),
+                Some(body),
+                p,
+                &bushing.axes,
+                &bushing,
+                [0.0; 6],
+            )?)
+        };
+        modal_body::pin(b, link, true, n);
+    }
+    Ok(HitchHandle {
+        body: hb,
+        ball,
+        ball_node,
+        sensor_node,
+        sensor,
+        ball_kind,
+        fe_origin: origin,
+        variant,
+        modes,
+        origin_complaint: src.error(&path!["hitch", "fe_origin_m"], ""),
+    })
+}
+
+/// The ball coupling between the hitch ball node and the trailer body `drawbar` (the
+/// builder placed in the car's coordinates). Joint: I = hitch ball, so its reaction is
+/// the drawbar's force on the car. Bushing: I = drawbar, J = hitch ball, so its force in
+/// J's axes is minus the force on the car in (nearly) car axes.
+/// A model-wide switch of joints to bushings turns the ball joint into that bushing.
+pub fn couple(
+    b: &mut Builder,
+    h: &HitchHandle,
+    drawbar: BodyHandle,
+    joints_as_bushings: Option<&JointBushing>,
+) -> Result<(Link, BallKind), InputError> {
+    let name = "ball_coupling";
+    let kind = match (&h.ball_kind, joints_as_bushings) {
+        (BallKind::Spherical, Some(g)) => BallKind::Bushing(g.clone()),
+        (k, _) => k.clone(),
+    };
+    let link = match &kind {
+        BallKind::Spherical => {
+            let link = b.add(|m| {
+                m.joint(
+                    name,
+                    JointKind::Spherical,
+                    Some(h.body),
+                    Some(drawbar),
+                    h.ball,
+                    &IDENTITY,
+                    None,
+                )
+            })?;
+            modal_body::pin(b, link, true, h.ball_node);
+            link
+        }
+        BallKind::Bushing(jb) => {
+            let link = b.add(|m| {
+                m.joint(
+                    name,
+                    JointKind::Spherical,
+                    Some(drawbar),
+                    Some(h.body),
+                    h.ball,
+                    &IDENTITY,
+                    Some(jb),
+                )
+            })?;
+            modal_body::pin(b, link, false, h.ball_node);
+            link
+        }
+    };
+    Ok((link, kind))
+}

@@ -1,0 +1,198 @@
+//! Vehicle templates: property files (TOML in `vehicles/`) turned into bodies, markers,
+//! joints or bushings and force elements of a [`Model`], knowing nothing about the
+//! solver. `docs/vehicle.md` documents the templates, coordinates and every field.
+//!
+//! An assembly file (`vehicles/*.toml`, see [`assembly`]) names the templates and
+//! property files that make a vehicle; [`load`] reads it and returns the [`Vehicle`]: the
+//! model (bodies, tyres, the speed controller; no road and no outputs yet, a scene adds
+//! those) plus named [`Handles`] and what the design statics found ([`Design`]).
+//!
+//! Coordinates: x forward, y left, z up. The car's origin is on the ground under the
+//! centre of the front axle at the design ride height (car with driver, no trailer);
+//! the trailer's is on the ground under its coupling's ball centre. Hardpoints are given
+//! at the design position; left-side values are mirrored for the right side.
+//!
+//! Templates: [`body`] (lumped body), [`mcpherson`] (front), [`twist_beam`] (rear, its
+//! cross member rigid or flexible: [`twist_flex`]),
+//! [`driveline`] (speed control), [`hitch`] (modal crossbeam and ball coupling),
+//! [`trailer`] (box trailer with rubber torsion axle); shared pieces in [`wheel`],
+//! [`swing`], [`design`] (spring preloads by virtual work), [`build`], [`props`],
+//! [`geom`], [`sensors`], [`strut`] (McPherson kinematics), [`modal_body`] (modal bodies
+//! of the hitch and the cross member).
+
+pub(crate) mod assembly;
+pub mod axle;
+pub(crate) mod body;
+pub(crate) mod build;
+pub(crate) mod design;
+pub(crate) mod driveline;
+pub(crate) mod engine;
+pub(crate) mod geom;
+pub(crate) mod hitch;
+pub(crate) mod modal_body;
+pub(crate) mod props;
+pub(crate) mod sensors;
+pub mod simple;
+pub(crate) mod strut;
+pub(crate) mod swing;
+pub(crate) mod trailer;
+pub(crate) mod twist_flex;
+pub(crate) mod wheel;
+
+use std::collections::BTreeMap;
+use std::sync::Arc;
+
+use serde::Serialize;
+
+/// Declares the axle templates' modules and lists them in [`axle::TEMPLATES`]:
+/// `file::Type`, one line per template.
+macro_rules! axle_templates {
+    ($($module:ident::$ty:ident),* $(,)?) => {
+        $(pub(crate) mod $module;)*
+
+        /// The registered axle templates.
+        pub(crate) static AXLE_TEMPLATES: &[&dyn axle::AxleTemplate] = &[$(&$module::$ty),*];
+    };
+}
+
+// The registered axle templates. A new one is its file in this folder and one line here.
+axle_templates! {
+    mcpherson::McPherson,
+    twist_beam::TwistBeam,
+}
+
+pub use build::Link;
+pub use design::CornerDesign;
+pub use geom::Placement;
+pub use hitch::{BallKind, HitchHandle};
+pub use sensors::Sensor;
+pub use wheel::WheelHandle;
+
+use towride_mbs::flex::feedback::RunModes;
+use towride_mbs::model::builder::{BodyHandle, MarkerHandle};
+use towride_mbs::model::elements::JointBushing;
+use towride_mbs::model::Model;
+use towride_mbs::tyre::TyreKind;
+
+/// Choices that override the files'.
+#[derive(Clone, Debug, Default)]
+pub struct Options {
+    /// Set speed of the driveline and initial forward speed of every body [m/s]; the
+    /// wheels spin at the free-rolling rate.
+    pub speed: f64,
+    /// World x of the car's origin [m] (the road's x = 0 is where the front wheels
+    /// touch it at the start).
+    pub x_offset: f64,
+    /// Trailer load case (assembly file: `trailer.load_case`).
+    pub load_case: Option<String>,
+    /// Hitch crossbeam variant 1..10 (hitch file: `hitch.variant`).
+    pub hitch_variant: Option<u32>,
+    /// Tyre model (assembly file: `vehicle.tyre_model`).
+    pub tyre_kind: Option<TyreKind>,
+    /// Every ideal joint becomes a bushing of these properties.
+    pub joints_as_bushings: Option<JointBushing>,
+    /// Ball coupling, "spherical" or "bushing" (hitch file: `ball_coupling.kind`; the
+    /// bushing's properties always come from the hitch file).
+    pub ball_coupling: Option<String>,
+    /// Rear axle cross member, "rigid" or "flexible" (rear axle file:
+    /// `cross_member.kind`).
+    pub rear_cross_member: Option<String>,
+    /// Modes of the modal bodies selected from an earlier run's strain-energy shares,
+    /// replacing the files' selection rules (`--modes-from`, a scene's `modes_from`).
+    pub run_modes: Option<Arc<RunModes>>,
+}
+
+/// A vehicle ready for a scene.
+#[derive(Clone, Debug)]
+pub struct Vehicle {
+    /// The multibody model: bodies, joints, elements and tyres.
+    pub model: Model,
+    /// Named parts a scene needs.
+    pub handles: Handles,
+    /// What the design statics found.
+    pub design: Design,
+    /// Values a compact (`simple`) vehicle file left to the defaults or derived from its
+    /// numbers; empty for an assembly file, which gives everything.
+    pub assumed: Vec<simple::Assumed>,
+}
+
+/// Reads a vehicle file, an assembly file ([`assembly`]) or a compact `simple` file
+/// ([`simple`]), and builds the vehicle, every file read through `loader`.
+pub fn load(
+    path: &std::path::Path,
+    opts: &Options,
+    loader: &towride_mbs::input::Loader,
+) -> Result<Vehicle, towride_mbs::input::InputError> {
+    if simple::is_simple(path) {
+        simple::load(path, opts, loader)
+    } else {
+        assembly::load(path, opts, loader)
+    }
+}
+
+/// Named parts a scene needs.
+#[derive(Clone, Debug)]
+pub struct Handles {
+    /// The car body.
+    pub car_body: BodyHandle,
+    /// Marker at the car body's centre of mass with the vehicle's axes (speed sensor,
+    /// axes of the hitch force).
+    pub car_ref: MarkerHandle,
+    /// Wheels fl, fr, rl, rr, then the trailer's tl, tr.
+    pub wheels: Vec<WheelHandle>,
+    /// The towbar crossbeam, when the car has one.
+    pub hitch: Option<HitchHandle>,
+    /// The ball coupling (joint or bushing) and what it became.
+    pub ball: Option<(Link, BallKind)>,
+    /// The trailer box, when there is a trailer.
+    pub trailer_body: Option<BodyHandle>,
+    /// Marker at the trailer box's centre of mass with its axes.
+    pub trailer_ref: Option<MarkerHandle>,
+    /// Markers on the car body above each car wheel (top mounts, upper spring seats),
+    /// by wheel name: ride heights are measured between them and the wheel centres.
+    pub ride: Vec<(String, MarkerHandle)>,
+    /// Acceleration sensors, the vehicle's and the scene's (channels `acc_<name>_<axis>`).
+    pub sensors: Vec<Sensor>,
+    /// Every body by name.
+    pub bodies: BTreeMap<String, BodyHandle>,
+    /// Placement of the car's coordinates in the world.
+    pub car_place: Placement,
+    /// Placement of the trailer's coordinates in the world, when there is a trailer.
+    pub trailer_place: Option<Placement>,
+    /// The placement of each body's subsystem (indexed like `Model::bodies`): sensor
+    /// positions are given in these coordinates.
+    pub body_place: Vec<Placement>,
+}
+
+/// What the design statics found (no solver involved).
+#[derive(Clone, Debug, Serialize)]
+pub struct Design {
+    /// Car with driver, hitch and the tyres' belts [kg], centre of mass in vehicle
+    /// coordinates [m].
+    pub car_mass_kg: f64,
+    /// Centre of mass of the car, vehicle coordinates [m].
+    pub car_cm_m: [f64; 3],
+    /// Car corners fl, fr, rl, rr at the design position.
+    pub car_corners: Vec<CornerDesign>,
+    /// The trailer's design statics, when there is a trailer.
+    pub trailer: Option<TrailerDesign>,
+    /// Everything, belts included [kg].
+    pub total_mass_kg: f64,
+}
+
+/// What the design statics found for the trailer.
+#[derive(Clone, Debug, Serialize)]
+pub struct TrailerDesign {
+    /// The trailer load case.
+    pub load_case: String,
+    /// With the payload [kg]; centre of mass in trailer coordinates [m].
+    pub mass_kg: f64,
+    /// Centre of mass with the payload, trailer coordinates [m].
+    pub cm_m: [f64; 3],
+    /// Empty trailer: ball load [N] and corners (the rubber's preload).
+    pub empty_ball_load_n: f64,
+    /// Trailer corners tl, tr of the empty trailer (the rubber's preload).
+    pub corners: Vec<CornerDesign>,
+    /// Pitch of the trailer placed on the ball [rad] (positive: nose down).
+    pub pitch_rad: f64,
+}

@@ -1,0 +1,58 @@
+//! `towride compare DIR DIR... [--out DIR]`: overlays the channels of two or more runs'
+//! `outputs.csv` in `compare.png` and `compare.html`, with peak and RMS differences
+//! against the first run.
+
+use std::path::PathBuf;
+
+use clap::Args;
+use towride_app::report::compare::{compare, load, write};
+
+use crate::CliResult;
+
+#[derive(Args, Debug)]
+pub struct CompareArgs {
+    /// Run folders (each with outputs.csv); the first is the reference.
+    #[arg(num_args = 2.., required = true)]
+    dirs: Vec<PathBuf>,
+    /// Folder for compare.png (or .svg) and compare.html.
+    #[arg(long, default_value = "compare")]
+    out: PathBuf,
+    /// Figure format.
+    #[arg(long, default_value = "png", value_parser = ["png", "svg"])]
+    format: String,
+    /// Print the comparison as JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+pub fn run(a: &CompareArgs) -> CliResult {
+    let runs = a
+        .dirs
+        .iter()
+        .map(|d| load(d))
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut c = compare(&runs);
+    if c.channels.is_empty() {
+        return Err("the runs have no channel in common".into());
+    }
+    write(&runs, &mut c, &a.out, &a.format)?;
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&c)?);
+        return Ok(0);
+    }
+    println!(
+        "{} channels in common; differences against {}:",
+        c.channels.len(),
+        c.runs[0]
+    );
+    for d in &c.differences {
+        println!(
+            "  {:<26} {:<12} peak {:>11.4e} vs {:>11.4e} ({:>+10.3e})  RMS diff {:>10.3e} [{}]",
+            d.channel, d.run, d.peak, d.reference_peak, d.peak_difference, d.rms_difference, d.unit
+        );
+    }
+    for f in &c.files {
+        println!("wrote {}", f.display());
+    }
+    Ok(0)
+}

@@ -1,0 +1,340 @@
+//! `towride run FILE`: integrate a mechanism file, a scene or a plan's cases and write
+//! the outputs (`outputs.csv`, `summary.json`, a scene's plot page).
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use clap::Args;
+
+use towride_app::job::{Job, RunResult, RunStatus};
+use towride_app::report::plan_run::PlanRun;
+use towride_app::scene::plan;
+use towride_app::scene::{self, Changes, SceneError};
+use towride_mbs::flex::feedback::RunModes;
+use towride_mbs::input::{Loader, Override};
+
+use crate::CliResult;
+
+#[derive(Args, Debug)]
+pub struct RunArgs {
+    /// A mechanism file, a scene (`[scene]`) or a plan (`[plan]`), TOML.
+    pub(crate) file: PathBuf,
+    /// Output folder for outputs.csv and summary.json (a plan: one folder per case).
+    #[arg(long, default_value = "out")]
+    pub(crate) out: PathBuf,
+    /// Print the summary as JSON.
+    #[arg(long)]
+    pub(crate) json: bool,
+    /// Plans: run only these cases (comma-separated names; `--list` shows them).
+    #[arg(long, value_delimiter = ',')]
+    pub(crate) case: Vec<String>,
+    /// Plans: list the cases and stop.
+    #[arg(long)]
+    pub(crate) list: bool,
+    /// Replace a value of any file the run reads: FILE:PATH=VALUE (FILE matched by the
+    /// end of its path; PATH `table.key`, `.tir` `SECTION.KEY`, CSV `column[row]`).
+    /// Repeatable.
+    #[arg(long = "set", value_name = "FILE:PATH=VALUE")]
+    pub(crate) set: Vec<String>,
+    /// Scenes: list what `[[output]]` tables can ask for (named quantities, bodies,
+    /// markers, joints, elements) and stop.
+    #[arg(long)]
+    pub(crate) list_names: bool,
+    /// Scenes: pose rate of the report's 3D view [Hz], replacing `[report]
+    /// animation_rate_hz` (default 200); 0 switches the view off.
+    #[arg(long, value_name = "HZ", value_parser = crate::bounded::hz)]
+    pub(crate) animation_rate_hz: Option<f64>,
+    /// Select the modal bodies' modes from this earlier run's strain-energy shares (its
+    /// folder, holding summary.json) instead of their files' rules.
+    #[arg(long, value_name = "RUN_DIR")]
+    pub(crate) modes_from: Option<PathBuf>,
+    /// With --modes-from: the strain-energy share a mode needs [%] (default 1).
+    #[arg(long, requires = "modes_from", value_parser = crate::bounded::share_pct)]
+    pub(crate) modes_share: Option<f64>,
+}
+
+pub fn run(a: &RunArgs) -> CliResult {
+    let overrides = a
+        .set
+        .iter()
+        .map(|s| Override::from_argument(s))
+        .collect::<Result<Vec<_>, _>>()?;
+    let loader = Loader::with_overrides(overrides);
+    let at = towride_mbs::input::InputError {
+        file: "command line".into(),
+        line: None,
+        column: None,
+        field: "--modes-from".into(),
+        message: String::new(),
+    };
+    let run_modes = match &a.modes_from {
+        // Modal bodies with modes to select are a vehicle's: a mechanism file has none.
+        Some(_) if !scene::is_scene(&a.file) && !plan::is_plan(&a.file) => {
+            return Err(towride_mbs::input::InputError {
+                message: format!(
+                    "{} is a mechanism file: --modes-from selects the modes of a scene's modal bodies",
+                    a.file.display()
+                ),
+                ..at
+            }
+            .into());
+        }
+        Some(dir) => {
+            let share = a.modes_share.map_or(0.01, |p| p / 100.0);
+            Some(Arc::new(towride_mbs::flex::feedback::from_run(
+                dir, share, &at,
+            )?))
+        }
+        None => None,
+    };
+    if a.list_names {
+        return list_names(a, &loader, run_modes);
+    }
+    if !plan::is_plan(&a.file) {
+        let job = if scene::is_scene(&a.file) {
+            let changes = Changes {
+                animation_rate_hz: a.animation_rate_hz,
+                run_modes,
+                ..Changes::default()
+            };
+            Job::from_scene_file(&a.file, &changes, &loader)?
+        } else {
+            let mut job = Job::from_file(&a.file, &loader)?;
+            if let Some(r) = a.animation_rate_hz {
+                job.settings.animation_rate = r;
+            }
+            job
+        };
+        crate::interrupt::install();
+        let res = run_job(&job, &a.out, a.json)?;
+        if a.json && job.scene.is_some() {
+            // The summary plus the assumed inputs, as the text output lists them.
+            // Plain data: serialisation cannot fail.
+            let mut v = serde_json::to_value(&res.summary).unwrap_or_default();
+            v["assumed_inputs"] = serde_json::to_value(assumed(&a.file)).unwrap_or_default();
+            println!("{}", serde_json::to_string_pretty(&v).unwrap_or_default());
+        } else if a.json {
+            println!("{}", res.summary.to_json());
+        } else if job.scene.is_some() {
+            print_assumed(&a.file);
+        }
+        return Ok(exit_code(&res, &a.out));
+    }
+    let p = plan::load(&a.file)?;
+    if a.list {
+        for c in &p.cases {
+            println!("{}", c.name);
+        }
+        return Ok(0);
+    }
+    for name in &a.case {
+        if p.case(name).is_none() {
+            return Err(SceneError::NoSuchCase(format!(
+                "{}: no case '{name}' (--list shows them)",
+                a.file.display()
+            ))
+            .into());
+        }
+    }
+    crate::interrupt::install();
+    let mut code = 0;
+    let mut table = PlanRun::new(&p, &a.file);
+    for c in p
+        .cases
+        .iter()
+        .filter(|c| a.case.is_empty() || a.case.contains(&c.name))
+    {
+        let out = a.out.join(&c.name);
+        if crate::interrupt::requested() {
+            table.push(c, &out, None);
+            continue;
+        }
+        let mut changes = c.changes.clone();
+        changes.run_modes.clone_from(&run_modes);
+        let mut job = Job::from_scene(scene::load_with(&c.scene, &changes, &loader)?)?;
+        if let Some(r) = a.animation_rate_hz {
+            job.settings.animation_rate = r;
+        }
+        let res = run_job(&job, &out, a.json)?;
+        code = code.max(exit_code(&res, &out));
+        table.push(c, &out, Some(&res));
+    }
+    let csv = table.write(&a.out)?;
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&table)?);
+    } else {
+        println!("plan summary: {}", csv.display());
+    }
+    Ok(code)
+}
+
+/// Prints what a scene's `[[output]]` tables can name.
+fn list_names(a: &RunArgs, loader: &Loader, run_modes: Option<Arc<RunModes>>) -> CliResult {
+    if !scene::is_scene(&a.file) || plan::is_plan(&a.file) {
+        return Err(SceneError::Plan {
+            file: a.file.clone(),
+            message: "--list-names needs a scene file (with [scene])".into(),
+        }
+        .into());
+    }
+    let changes = Changes {
+        run_modes,
+        ..Changes::default()
+    };
+    let s = scene::load_with(&a.file, &changes, loader)?;
+    let n = &s.names;
+    if a.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(n).expect("names serialise")
+        );
+        return Ok(0);
+    }
+    println!("named quantities ([[output]] quantity = \"...\"):");
+    for q in &n.quantities {
+        println!("  {:<26} {:<9} {}", q.name, format!("[{}]", q.unit), q.what);
+    }
+    println!("fixed channels (always written):");
+    for c in &n.fixed_channels {
+        println!("  {:<26} [{}]", c.name, c.unit);
+    }
+    let list = |title: &str, items: Vec<String>| {
+        println!("{title}:");
+        for i in items {
+            println!("  {i}");
+        }
+    };
+    list("bodies (centre of mass marker <body>.cm)", n.bodies.clone());
+    list(
+        "markers (marker = ...; position, velocity, acceleration, angular_velocity, angular_acceleration)",
+        n.markers.clone(),
+    );
+    list(
+        "joints (joint = ...; force, torque, displacement)",
+        n.joints.clone(),
+    );
+    list(
+        "elements (element = ...; force, deflection, velocity)",
+        n.elements
+            .iter()
+            .map(|(e, k)| format!("{e:<26} {k}"))
+            .collect(),
+    );
+    Ok(0)
+}
+
+/// Runs one job, writes its files and, without `--json`, prints its summary.
+fn run_job(job: &Job, out: &Path, json: bool) -> Result<RunResult, Box<dyn std::error::Error>> {
+    if !json {
+        for w in &job.warnings {
+            eprintln!("warning: {w}");
+        }
+    }
+    let samples = (job.settings.t_end * job.settings.sample_rate).round() as u64;
+    let pb = crate::progress(samples, json);
+    let mut res = job.run(&pb)?;
+    towride_app::report::write_run(&mut res, &job.system, out)?;
+    if !json {
+        print_summary(&res);
+    }
+    Ok(res)
+}
+
+/// 0 completed, 1 stopped by the solver, 130 interrupted (each said on stderr).
+fn exit_code(res: &RunResult, out: &Path) -> i32 {
+    let csv = out.join("outputs.csv");
+    if let Some((e, t)) = res.failure() {
+        eprintln!(
+            "error: run stopped at t = {t:.6} s: {e}\n  results up to that time are in {}",
+            csv.display()
+        );
+        return 1;
+    }
+    if let Some(t) = res.summary.interrupted_at_s {
+        eprintln!(
+            "interrupted at t = {t:.6} s: results up to that time are in {}",
+            csv.display()
+        );
+        return crate::interrupt::EXIT;
+    }
+    0
+}
+
+fn print_summary(r: &RunResult) {
+    let s = &r.summary;
+    println!(
+        "{}: {} in {:.1} s wall, {} steps, {} Newton iterations, {} Jacobians; outputs in {}",
+        s.name,
+        match s.status {
+            RunStatus::Completed => "completed",
+            RunStatus::Failed => "FAILED",
+            RunStatus::Interrupted => "INTERRUPTED",
+        },
+        s.wall_s,
+        s.solver.steps,
+        s.solver.newton_iterations,
+        s.solver.jacobian_evals,
+        s.outputs_csv.as_deref().unwrap_or("")
+    );
+    for l in &s.lift_off {
+        println!(
+            "  wheel {} off the road from {:.3} s for {:.3} s",
+            l.wheel, l.start_s, l.duration_s
+        );
+    }
+    if let Some(p) = s.plots.as_deref().filter(|p| p.starts_with("not written")) {
+        eprintln!("warning: plots {p}");
+    }
+    for (name, c) in s
+        .channels
+        .iter()
+        .filter(|(n, _)| !n.starts_with("hitch_eta_"))
+    {
+        println!(
+            "  {name:<24} min {:>11.4e} at {:>7.4} s   max {:>11.4e} at {:>7.4} s  [{}]",
+            c.min, c.t_min, c.max, c.t_max, c.unit
+        );
+    }
+}
+
+/// The assumed values among the ten inputs the scene's key output is most sensitive to,
+/// from the scene's latest sensitivity study in its default folder (none is run here).
+fn assumed(scene: &Path) -> towride_app::study::sensitivity::assumed::AssumedInputs {
+    use towride_app::study::sensitivity::{assumed::assumed_inputs, default_dir};
+    assumed_inputs(scene, &default_dir(scene), 10)
+}
+
+/// Prints [`assumed`].
+fn print_assumed(scene: &Path) {
+    let a = assumed(scene);
+    if let Some(note) = &a.note {
+        println!("assumed inputs: {note}");
+        return;
+    }
+    let output = a.output.as_deref().unwrap_or("the first output");
+    if a.inputs.is_empty() {
+        println!(
+            "assumed inputs: none among the ten {output} is most sensitive to ({})",
+            a.study.as_deref().unwrap_or("")
+        );
+        return;
+    }
+    println!(
+        "assumed or unsourced values among the ten inputs {output} is most sensitive to ({}):",
+        a.study.as_deref().unwrap_or("")
+    );
+    for i in &a.inputs {
+        println!(
+            "  {:>2}. {:<70} {:.3} {}{}",
+            i.rank,
+            i.parameter,
+            i.sensitivity,
+            i.class,
+            if i.source.is_empty() {
+                String::new()
+            } else {
+                format!(": {}", i.source)
+            }
+        );
+    }
+}

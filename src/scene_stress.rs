@@ -1,0 +1,98 @@
+//! `towride stress SCENE`: the thesis's integrator-settings matrix and worse
+//! (`towride_app::study::stress`), printed case by case.
+
+use std::path::PathBuf;
+
+use clap::Args;
+
+use towride_app::study::stress;
+
+use crate::CliResult;
+
+#[derive(Args, Debug)]
+pub struct StressArgs {
+    /// The scene file (the default scene's vehicle and road files are varied).
+    pub scene: PathBuf,
+    /// Parallel runs.
+    #[arg(long, value_parser = crate::bounded::jobs)]
+    pub jobs: Option<usize>,
+    /// Only the cases whose group contains this text.
+    #[arg(long)]
+    pub only: Option<String>,
+    /// Integration method of the cases (default: the scene's); the reference keeps the
+    /// scene's.
+    #[arg(long, value_enum)]
+    pub method: Option<crate::MethodArg>,
+    #[arg(long, default_value = "out/stress")]
+    pub out: PathBuf,
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// The peak against the reference's: an error for a same-physics case (`+0.12 % err`),
+/// for a case that changes the physics (speed, load, obstacle) a ratio marked as such
+/// (`x2.72 of ref`), as it compares two different experiments.
+fn change(o: &stress::Outcome) -> String {
+    if !o.peak_deviation.is_finite() {
+        format!("{:>13}", "")
+    } else if o.same_physics {
+        format!("{:>+8.2} % err", 100.0 * o.peak_deviation)
+    } else {
+        format!("{:>6.2}x of ref", 1.0 + o.peak_deviation)
+    }
+}
+
+pub fn run_stress(a: &StressArgs) -> CliResult {
+    let jobs = a
+        .jobs
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let pb = crate::progress(0, a.json);
+    let st = stress::run(
+        &a.scene,
+        a.only.as_deref(),
+        a.method.map(Into::into),
+        jobs,
+        &pb,
+    )?;
+    let path = st.write(&a.out)?;
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&st)?);
+    } else {
+        println!(
+            "reference: hitch_fx peak {:.1} N ({:.2} s wall)",
+            st.reference.hitch_peak_n, st.reference.wall_s
+        );
+        for o in &st.outcomes {
+            println!(
+                "{:<18} {:<46} {:<10} peak {:>9.1} N  {}  {:>6} steps {:>6.2} s {}",
+                o.group,
+                o.case,
+                if o.status == "completed" {
+                    "completed"
+                } else {
+                    "FAILED"
+                },
+                o.hitch_peak_n,
+                change(o),
+                o.steps,
+                o.wall_s,
+                match o.agrees {
+                    Some(true) => "agrees",
+                    Some(false) => "DEVIATES",
+                    None => "",
+                }
+            );
+            if o.status != "completed" {
+                println!("    {}", o.status);
+            }
+        }
+        println!(
+            "{} of {} completed; {} same-physics case(s) off by more than 2 %; wrote {}",
+            st.completed,
+            st.cases,
+            st.same_physics_disagreeing,
+            path.display()
+        );
+    }
+    Ok(if st.passed() { 0 } else { 1 })
+}

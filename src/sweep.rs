@@ -1,0 +1,123 @@
+//! `towride sweep SWEEP.toml [--jobs N] [--shard I/N] [--resume] [--keep-histories]` and
+//! `towride sweep merge`.
+
+use std::path::PathBuf;
+
+use clap::{Args, Subcommand};
+use towride_app::sweep::exec::{merge, run_sweep_with, Options};
+use towride_app::sweep::{parse_shard, Sweep};
+
+use crate::CliResult;
+
+#[derive(Args, Debug)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
+pub struct SweepArgs {
+    #[command(subcommand)]
+    cmd: Option<SweepCmd>,
+    /// The sweep file (TOML).
+    #[arg(required = true)]
+    file: Option<PathBuf>,
+    /// Parallel cases (default: all cores).
+    #[arg(long, value_parser = crate::bounded::jobs)]
+    jobs: Option<usize>,
+    /// Run only the cases with index mod N = I (0 <= I < N), for job arrays.
+    #[arg(long)]
+    shard: Option<String>,
+    /// Output folder for summary.csv, summary.json, report.html, report.png (and cases/).
+    #[arg(long, default_value = "out/sweep")]
+    out: PathBuf,
+    /// Print the summary as JSON.
+    #[arg(long)]
+    json: bool,
+    /// Keep the cases an earlier, interrupted run of this sweep (and shard) left in
+    /// --out (its summary or journal) and run only the others.
+    #[arg(long)]
+    resume: bool,
+    /// Keep each case's outputs.csv, summary.json and report.html in
+    /// OUT/cases/<case id>/ (linked from the sweep's report.html).
+    #[arg(long)]
+    keep_histories: bool,
+}
+
+#[derive(Subcommand, Debug)]
+enum SweepCmd {
+    /// Join shard summaries into one table ordered by case.
+    Merge {
+        /// Shard summary CSV files.
+        #[arg(required = true)]
+        inputs: Vec<PathBuf>,
+        /// The merged table.
+        #[arg(long, default_value = "out/sweep/summary.csv")]
+        out: PathBuf,
+        /// Print what was merged as JSON.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+pub fn run(a: &SweepArgs) -> CliResult {
+    if let Some(SweepCmd::Merge { inputs, out, json }) = &a.cmd {
+        let m = merge(inputs, out)?;
+        if *json {
+            println!("{}", serde_json::to_string_pretty(&m)?);
+        } else {
+            println!(
+                "{} cases of {} merged into {}; page {}",
+                m.cases,
+                m.sweep,
+                out.display(),
+                m.report.as_deref().unwrap_or("-")
+            );
+        }
+        return Ok(0);
+    }
+    let file = a.file.as_ref().ok_or("a sweep file is required")?;
+    let sweep = Sweep::load(file)?;
+    let shard = match &a.shard {
+        Some(s) => parse_shard(s)?,
+        None => (0, 1),
+    };
+    let jobs = a
+        .jobs
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let pb = crate::progress(0, a.json);
+    crate::interrupt::install();
+    let opts = Options {
+        jobs,
+        resume: a.resume,
+        keep_histories: a.keep_histories,
+    };
+    let res = run_sweep_with(&sweep, shard, &a.out, &opts, &pb)?;
+    let csv_path = res.summary_csv.clone().unwrap_or_default();
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&res)?);
+    } else {
+        println!(
+            "{}: {} cases ({} failed, {} interrupted, {} kept from before) on {jobs} threads in {:.2} s; summary in {csv_path}; page {}",
+            sweep.name,
+            res.cases,
+            res.failed,
+            res.interrupted,
+            res.resumed,
+            res.wall_s,
+            res.report.as_deref().unwrap_or("-"),
+        );
+        for r in res.rows.iter().filter(|r| r.status == "failed") {
+            eprintln!(
+                "  case {} {:?}: {}",
+                r.index,
+                r.values,
+                r.error.as_deref().unwrap_or("")
+            );
+        }
+    }
+    if res.interrupted > 0 {
+        eprintln!(
+            "interrupted: {} cases not finished; `towride sweep {} --resume` runs them",
+            res.interrupted,
+            file.display()
+        );
+        return Ok(crate::interrupt::EXIT);
+    }
+    Ok(if res.failed == 0 { 0 } else { 1 })
+}

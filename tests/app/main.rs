@@ -1,0 +1,50 @@
+//! Integration tests of the application crate `towride-app` (vehicle templates, scenes,
+//! the run pipeline, studies, sweeps, validation, reports), one module per area, all in
+//! one test binary (as ripgrep does), so the test build links one executable for the crate.
+//! The physics crate's own tests are `tests/mbs/`.
+//!
+//! Paths to the repository's data (`scenes/`, `vehicles/`, `flex/`, ...) go through
+//! [`repo!`]: tests run with the crate's folder as their working directory.
+
+/// A path to a file of the repository, as a `&'static str` (usable in `const`s).
+macro_rules! repo {
+    ($p:literal) => {
+        concat!(env!("CARGO_MANIFEST_DIR"), "/../../", $p)
+    };
+}
+
+#[path = "../common/mod.rs"]
+mod common;
+mod validate_sim;
+
+mod fuzz;
+mod inputs_and_builder;
+mod job_ringing;
+mod model_mechanisms;
+mod model_scaling;
+mod module_order;
+mod reliability;
+mod report_compare;
+mod report_figures;
+mod report_html;
+mod report_view;
+mod scene_outputs;
+mod study_sensitivity;
+mod sweep_report;
+mod tyre_cleat;
+mod tyre_enveloping;
+mod validate_csv;
+mod validate_filter_rating;
+mod validate_init;
+mod validate_logger;
+mod validate_passage;
+mod validate_recovery;
+mod validate_vehicle;
+mod vehicle_assembly;
+mod vehicle_engine;
+mod vehicle_errors;
+mod vehicle_scene;
+mod vehicle_simple;
+mod vehicle_statics;
+mod vehicle_twist_beam;
+mod vehicle_variants;

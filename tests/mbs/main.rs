@@ -1,0 +1,31 @@
+//! Integration tests of the physics crate `towride-mbs` (input files, flexible bodies,
+//! road, tyre, the multibody model), one module per area, in one test binary. They use
+//! nothing of the application crate: a physics test builds its model from a mechanism
+//! file, a flex file or a tyre file directly.
+//!
+//! Paths to the repository's data go through [`repo!`]: tests run with the crate's folder
+//! as their working directory.
+
+/// A path to a file of the repository, as a `&'static str` (usable in `const`s).
+macro_rules! repo {
+    ($p:literal) => {
+        concat!(env!("CARGO_MANIFEST_DIR"), "/../../", $p)
+    };
+}
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod flex_beam;
+mod flex_hitch;
+mod flex_input;
+mod inputs_provenance;
+mod model_modal;
+mod model_modal_full;
+mod model_tyres;
+mod road_obstacles;
+mod road_profile_mesh;
+mod tyre_lift_off;
+mod tyre_rolling;
+mod tyre_static;
+mod tyre_tir;
