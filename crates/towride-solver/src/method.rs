@@ -7,8 +7,8 @@
 use std::ops::Range;
 
 use crate::error::SolverError;
-use crate::linear::Singular;
-use crate::options::{AlgebraicControl, SolverOptions, Stats};
+use crate::linear::{NewtonMatrix, Singular};
+use crate::options::{AlgebraicControl, LinearSolver, SolverOptions, Stats};
 use crate::problem::{DaeProblem, VarKind};
 use crate::roots::Roots;
 
@@ -105,6 +105,18 @@ impl<'a, P: DaeProblem + ?Sized> Core<'a, P> {
             limiter_counts: vec![0; n],
             opts,
         })
+    }
+
+    /// The real iteration matrix for the problem's sparsity pattern: dense LU without a
+    /// pattern or, under `LinearSolver::Auto`, below `dense_limit` unknowns.
+    pub(crate) fn newton_matrix(&self) -> Result<NewtonMatrix, SolverError> {
+        let pattern = self.prob.jacobian_pattern();
+        let dense = match self.opts.linear_solver {
+            LinearSolver::Dense => true,
+            LinearSolver::Sparse => false,
+            LinearSolver::Auto => pattern.is_none() || self.n < self.opts.dense_limit,
+        };
+        NewtonMatrix::new(self.n, pattern, dense)
     }
 
     /// The first step size: the options' `h_init`, or IDA's rule (IDASolve) from the

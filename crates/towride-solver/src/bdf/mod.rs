@@ -12,7 +12,7 @@ use super::error::SolverError;
 use super::jacobian::JacobianEval;
 use super::linear::{NewtonMatrix, Singular};
 use super::method::{Core, DaeMethod, Weights};
-use super::options::{AlgebraicControl, JacobianSource, LinearSolver, Method, SolverOptions};
+use super::options::{AlgebraicControl, JacobianSource, Method, SolverOptions};
 use super::problem::DaeProblem;
 
 mod control;
@@ -173,13 +173,7 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
         if opts.vector_error_weights && opts.method == Method::Variable {
             core.groups = prob.magnitude_groups();
         }
-        let pattern = prob.jacobian_pattern();
-        let dense = match opts.linear_solver {
-            LinearSolver::Dense => true,
-            LinearSolver::Sparse => false,
-            LinearSolver::Auto => pattern.is_none() || n < opts.dense_limit,
-        };
-        let jac = NewtonMatrix::new(n, pattern, dense)?;
+        let jac = core.newton_matrix()?;
         let mut phi = vec![vec![0.0; n]; MAXORD + 2];
         phi[0].copy_from_slice(y0);
         phi[1].copy_from_slice(yp0); // scaled by h once the first step size is known

@@ -26,7 +26,7 @@ use crate::error::SolverError;
 use crate::jacobian::JacobianEval;
 use crate::linear::{ComplexMatrix, NewtonMatrix};
 use crate::method::{Core, DaeMethod, Weights};
-use crate::options::{JacobianSource, LinearSolver, SolverOptions};
+use crate::options::{JacobianSource, SolverOptions};
 use crate::problem::DaeProblem;
 
 mod control;
@@ -136,13 +136,7 @@ impl<'a, P: DaeProblem + ?Sized> Radau5<'a, P> {
         if opts.vector_error_weights {
             core.groups = prob.magnitude_groups();
         }
-        let pattern = prob.jacobian_pattern();
-        let dense = match opts.linear_solver {
-            LinearSolver::Dense => true,
-            LinearSolver::Sparse => false,
-            LinearSolver::Auto => pattern.is_none() || n < opts.dense_limit,
-        };
-        let jac = NewtonMatrix::new(n, pattern, dense)?;
+        let jac = core.newton_matrix()?;
         let cjac = ComplexMatrix::like(&jac)?;
         let (rtol, atol) = control::internal_tolerances(opts, n);
         let fnewt = control::newton_stop(rtol, &atol);
