@@ -15,7 +15,7 @@ use nalgebra::{DMatrix, Matrix3, Vector3};
 use towride_mbs::flex::{FlexBody, ModalData, Options};
 use towride_mbs::model::desc::{Body, Coupling, Modal, Model};
 use towride_mbs::model::system::System;
-use towride_solver::{Advance, Bdf, DaeProblem, SolverOptions};
+use towride_solver::{Advance, Bdf, DaeMethod, DaeProblem, SolverOptions};
 
 /// World rotation matrix of a unit quaternion (w, x, y, z), body to world.
 fn rot(p: &[f64]) -> Matrix3<f64> {

@@ -2,8 +2,8 @@
 //! coordinates (period 4 sqrt(L/g) K(1/2) from horizontal release) and linear decay.
 
 use towride_solver::{
-    solve_to, AlgebraicControl, Bdf, DaeProblem, Ggl, JacobianSink, MechanicalDae, Method,
-    SolverError, SolverOptions, VarKind,
+    solve_to, AlgebraicControl, Bdf, DaeMethod, DaeProblem, Ggl, JacobianSink, MechanicalDae,
+    Method, SolverError, SolverOptions, VarKind,
 };
 
 const G: f64 = 9.81;

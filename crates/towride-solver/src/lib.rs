@@ -4,8 +4,10 @@
 //!
 //! The solver knows nothing about vehicles: a problem implements [`DaeProblem`]
 //! (residual, optional sparsity pattern and analytic iteration matrix, the index of each
-//! unknown, event functions) and [`Bdf`] or [`Radau5`] integrates it, chosen by
-//! [`SolverOptions::method`] through [`Integrator`]. See `docs/solver.md` for the
+//! unknown, event functions) and [`Bdf`] or [`Radau5`] integrates it. Both implement
+//! [`DaeMethod`], whose driver (`advance` to an output time, the stop time, events,
+//! statistics) is written once on each method's `step`; [`Integrator`] holds the one
+//! [`SolverOptions::method`] names. See `docs/solver.md` for the
 //! algorithms, the index-3 treatment and the settings.
 //!
 //! A DAE integrated with the BDF: y1' = -y1 + y2 with the algebraic equation
@@ -48,6 +50,7 @@ mod ic;
 mod integrator;
 mod jacobian;
 pub mod linear;
+mod method;
 mod options;
 pub mod problem;
 pub mod radau;
@@ -55,11 +58,12 @@ mod roots;
 mod sparse_lu;
 pub mod testset;
 
-pub use bdf::{Advance, Bdf};
+pub use bdf::Bdf;
 pub use error::SolverError;
 pub use ggl::{Ggl, MechanicalDae};
 pub use ic::consistent_index1;
 pub use integrator::Integrator;
+pub use method::{Advance, Core, DaeMethod, MXNCF, MXNEF};
 pub use options::{
     AlgebraicControl, JacobianSource, LinearSolver, MatrixRebuilds, Method, RadauOptions,
     SolverOptions, Stats,

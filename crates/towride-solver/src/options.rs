@@ -218,12 +218,12 @@ impl Default for SolverOptions {
             dense_limit: 40,
             jacobian: JacobianSource::Auto,
             max_newton_iters: 4,
-            max_convergence_failures: 10,
-            max_error_failures: 10,
-            newton_tol: 0.33,
+            max_convergence_failures: crate::method::MXNCF,
+            max_error_failures: crate::method::MXNEF,
+            newton_tol: crate::bdf::EPCON,
             newton_tol_growth_cap: false,
             max_jacobian_age: 0,
-            eta_fixed_max: 2.0,
+            eta_fixed_max: crate::bdf::ETA_MAX_FX,
             scale_newton_matrix: true,
             vector_error_weights: true,
             matrix_transport: true,
@@ -382,7 +382,7 @@ pub struct Stats {
     /// Why the iteration matrix was rebuilt.
     pub matrix_rebuilds: MatrixRebuilds,
     /// The unknowns whose error estimate dominated the most accepted steps, with the
-    /// number of steps (the five most frequent; filled by [`super::Bdf::step_limiters`]).
+    /// number of steps (the five most frequent; filled by [`crate::DaeMethod::step_limiters`]).
     pub step_limiters: Vec<(String, usize)>,
     /// (end time, step, order) of every accepted step, when
     /// `SolverOptions::record_steps` asks for them.

@@ -23,6 +23,7 @@ use crate::input::InputError;
 use crate::path;
 use crate::road::Road;
 use towride_solver::consistent_index1;
+use towride_solver::DaeMethod;
 use towride_solver::{Advance, Bdf, DaeProblem, SolverError, SolverOptions, Stats, VarKind};
 
 use super::{Tyre, TyreKind, WheelKinematics};

@@ -1,40 +1,42 @@
 //! Local error test and the choice of the next order and step (IDATestError,
 //! IDACompleteStep).
 
-use super::Bdf;
+use super::{Bdf, ERR_BIAS, ETA_LOW, ETA_MAX, ETA_MIN, ETA_MIN_FX};
+use crate::method::wrms;
 use crate::problem::DaeProblem;
 
 impl<P: DaeProblem + ?Sized> Bdf<'_, P> {
     /// Local error estimates at orders k, k-1, k-2 and the order to use on a retry
     /// (IDATestError). Returns ||E_k|| in the error-test weights.
     pub(super) fn test_error(&mut self) -> f64 {
-        let kk = self.kk;
-        let enorm_k = self.wrms(&self.ee, &self.wt_err);
-        self.err_k = self.sigma[kk] * enorm_k;
-        let terr_k = (kk as f64 + 1.0) * self.err_k;
-        self.knew = kk;
+        let ctl = &mut self.ctl;
+        let (h, w) = (&self.hist, &mut self.work);
+        let kk = ctl.kk;
+        let enorm_k = wrms(&w.ee, &self.wt.err);
+        ctl.err_k = h.sigma[kk] * enorm_k;
+        let terr_k = (kk as f64 + 1.0) * ctl.err_k;
+        ctl.knew = kk;
         if kk > 1 {
-            let mut d = std::mem::take(&mut self.scratch);
-            for ((v, p), e) in d.iter_mut().zip(&self.phi[kk]).zip(&self.ee) {
+            let d = &mut w.scratch;
+            for ((v, p), e) in d.iter_mut().zip(&h.phi[kk]).zip(&w.ee) {
                 *v = p + e;
             }
-            let enorm_km1 = self.wrms(&d, &self.wt_err);
-            self.err_km1 = self.sigma[kk - 1] * enorm_km1;
-            let terr_km1 = kk as f64 * self.err_km1;
+            let enorm_km1 = wrms(d, &self.wt.err);
+            ctl.err_km1 = h.sigma[kk - 1] * enorm_km1;
+            let terr_km1 = kk as f64 * ctl.err_km1;
             if kk > 2 {
-                for (v, p) in d.iter_mut().zip(&self.phi[kk - 1]) {
+                for (v, p) in d.iter_mut().zip(&h.phi[kk - 1]) {
                     *v += p;
                 }
-                let enorm_km2 = self.wrms(&d, &self.wt_err);
-                let err_km2 = self.sigma[kk - 2] * enorm_km2;
+                let enorm_km2 = wrms(d, &self.wt.err);
+                let err_km2 = h.sigma[kk - 2] * enorm_km2;
                 let terr_km2 = (kk as f64 - 1.0) * err_km2;
                 if terr_km1.max(terr_km2) <= terr_k {
-                    self.knew = kk - 1;
+                    ctl.knew = kk - 1;
                 }
             } else if terr_km1 <= 0.5 * terr_k {
-                self.knew = kk - 1;
+                ctl.knew = kk - 1;
             }
-            self.scratch = d;
         }
         enorm_k
     }
@@ -42,27 +44,20 @@ impl<P: DaeProblem + ?Sized> Bdf<'_, P> {
     /// Accepts the step: statistics, next order and step size, history update
     /// (IDACompleteStep).
     pub(super) fn complete_step(&mut self) {
-        self.stats.steps += 1;
-        let kdiff = self.kk as isize - self.kused as isize;
-        self.kused = self.kk;
-        self.hused = self.hh;
-        self.stats.last_order = self.kk;
-        self.stats.last_step = self.hh;
-        self.stats.order_counts[self.kk - 1] += 1;
-        if self.opts.record_steps {
-            self.stats
-                .step_history
-                .push((self.tn, self.hused, self.kused));
+        let ctl = &mut self.ctl;
+        self.core
+            .book_step(ctl.hh, ctl.kk, &self.work.ee, &self.wt.err);
+        let kdiff = ctl.kk as isize - ctl.kused as isize;
+        ctl.kused = ctl.kk;
+        let maxord = self.core.opts.max_order;
+        if ctl.knew + 1 == ctl.kk || ctl.kk == maxord {
+            ctl.phase = 1;
         }
-        let maxord = self.opts.max_order;
-        if self.knew + 1 == self.kk || self.kk == maxord {
-            self.phase = 1;
-        }
-        let hmax = self.opts.h_max;
-        if self.phase == 0 {
-            if self.stats.steps > 1 {
-                self.kk += 1;
-                self.hh = (2.0 * self.hh).min(hmax);
+        let hmax = self.core.opts.h_max;
+        if ctl.phase == 0 {
+            if self.core.stats.steps > 1 {
+                ctl.kk += 1;
+                ctl.hh = (ETA_MAX * ctl.hh).min(hmax);
             }
         } else {
             #[derive(PartialEq)]
@@ -71,23 +66,22 @@ impl<P: DaeProblem + ?Sized> Bdf<'_, P> {
                 Maintain,
                 Raise,
             }
-            let kk = self.kk;
+            let kk = ctl.kk;
             let mut err_kp1 = 0.0;
-            let action = if self.knew + 1 == kk {
+            let action = if ctl.knew + 1 == kk {
                 Action::Lower
-            } else if kk == maxord || kk + 1 >= self.ns || kdiff == 1 {
+            } else if kk == maxord || kk + 1 >= ctl.ns || kdiff == 1 {
                 Action::Maintain
             } else {
-                let mut d = std::mem::take(&mut self.scratch);
-                for ((v, e), p) in d.iter_mut().zip(&self.ee).zip(&self.phi[kk + 1]) {
+                let d = &mut self.work.scratch;
+                for ((v, e), p) in d.iter_mut().zip(&self.work.ee).zip(&self.hist.phi[kk + 1]) {
                     *v = e - p;
                 }
-                err_kp1 = self.wrms(&d, &self.wt_err) / (kk as f64 + 2.0);
-                self.scratch = d;
+                err_kp1 = wrms(d, &self.wt.err) / (kk as f64 + 2.0);
                 // IDA compares the terms T(j) = (j+1) err_j, not the scaled errors
                 // (IDACompleteStep: terr_km1 = k err_km1, terr_k = (k+1) err_k,
                 // terr_kp1 = (k+2) err_kp1; DASSL's TERKM1/TERK/TERKP1 likewise).
-                let terr_k = (kk as f64 + 1.0) * self.err_k;
+                let terr_k = (kk as f64 + 1.0) * ctl.err_k;
                 let terr_kp1 = (kk as f64 + 2.0) * err_kp1;
                 if kk == 1 {
                     if terr_kp1 >= 0.5 * terr_k {
@@ -95,7 +89,7 @@ impl<P: DaeProblem + ?Sized> Bdf<'_, P> {
                     } else {
                         Action::Raise
                     }
-                } else if kk as f64 * self.err_km1 <= terr_k.min(terr_kp1) {
+                } else if kk as f64 * ctl.err_km1 <= terr_k.min(terr_kp1) {
                     Action::Lower
                 } else if terr_kp1 >= terr_k {
                     Action::Maintain
@@ -105,33 +99,34 @@ impl<P: DaeProblem + ?Sized> Bdf<'_, P> {
             };
             let err_knew = match action {
                 Action::Raise => {
-                    self.kk += 1;
+                    ctl.kk += 1;
                     err_kp1
                 }
                 Action::Lower => {
-                    self.kk -= 1;
-                    self.err_km1
+                    ctl.kk -= 1;
+                    ctl.err_km1
                 }
-                Action::Maintain => self.err_k,
+                Action::Maintain => ctl.err_k,
             };
-            let rr = (2.0 * err_knew + 0.0001).powf(-1.0 / (self.kk as f64 + 1.0));
-            // The step is kept unless it may grow by eta_fixed_max (IDA's
-            // IDASetEtaFixedStepBounds) or must shrink; growth is capped at 2.
-            if rr >= self.opts.eta_fixed_max {
-                self.hh = (rr.min(2.0) * self.hh).min(hmax);
-            } else if rr <= 1.0 {
-                self.hh *= rr.clamp(0.5, 0.9);
+            let rr = (2.0 * err_knew + ERR_BIAS).powf(-1.0 / (ctl.kk as f64 + 1.0));
+            // The step is kept unless it may grow by eta_fixed_max (IDA's ETA_MAX_FX,
+            // IDASetEtaFixedStepBounds) or must shrink; growth is capped at ETA_MAX.
+            if rr >= self.core.opts.eta_fixed_max {
+                ctl.hh = (rr.min(ETA_MAX) * ctl.hh).min(hmax);
+            } else if rr <= ETA_MIN_FX {
+                ctl.hh *= rr.clamp(ETA_MIN, ETA_LOW);
             }
         }
-        let ku = self.kused;
+        let ku = ctl.kused;
+        let phi = &mut self.hist.phi;
         if ku < maxord {
-            self.phi[ku + 1].copy_from_slice(&self.ee);
+            phi[ku + 1].copy_from_slice(&self.work.ee);
         }
-        for (p, e) in self.phi[ku].iter_mut().zip(&self.ee) {
+        for (p, e) in phi[ku].iter_mut().zip(&self.work.ee) {
             *p += e;
         }
         for j in (0..ku).rev() {
-            let (lo, hi) = self.phi.split_at_mut(j + 1);
+            let (lo, hi) = phi.split_at_mut(j + 1);
             for (a, b) in lo[j].iter_mut().zip(&hi[0]) {
                 *a += b;
             }

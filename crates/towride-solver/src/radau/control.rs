@@ -5,8 +5,9 @@
 use super::tableau::DD;
 use super::Radau5;
 use crate::error::SolverError;
+use crate::method::wrms;
 use crate::options::{AlgebraicControl, RadauOptions, SolverOptions};
-use crate::problem::{DaeProblem, VarKind};
+use crate::problem::DaeProblem;
 
 const UROUND: f64 = f64::EPSILON;
 /// RADAU5 works with rtol' = 0.1 rtol^(2/3) and atol' = atol rtol'/rtol: its error
@@ -29,18 +30,6 @@ const ERR_FLOOR: f64 = 1e-10;
 const ERR_ACC_FLOOR: f64 = 1e-2;
 /// Exponent of the controller: the estimate is O(h^4).
 const ERR_EXPONENT: f64 = 0.25;
-
-/// `Auto` as for the BDF: a problem with index-3 unknowns gets RADAU5's h-weighted
-/// control (`Scaled`); for index <= 2 (GGL forms, the multibody System) `Auto` stays and
-/// leaves index-2 unknowns out of the error test. Measured on Andrews' mechanism in GGL
-/// form at rtol 1e-9: 742 steps (scd 8.5) with `Scaled`, 355 (scd 8.0) this way; the car
-/// axis does not change (1343 against 1342 steps, scd 5.6).
-pub(super) fn resolve_algebraic(a: AlgebraicControl, kinds: &[VarKind]) -> AlgebraicControl {
-    match a {
-        AlgebraicControl::Auto if kinds.contains(&VarKind::Index3) => AlgebraicControl::Scaled,
-        other => other,
-    }
-}
 
 /// (rtol', atol') as RADAU5 uses them inside. With rtol = 0 the transformation is
 /// applied to each atol.
@@ -82,13 +71,13 @@ pub(super) fn gustafsson<P: DaeProblem + ?Sized>(
     hnew: f64,
 ) -> f64 {
     let mut hnew = hnew;
-    if s.stats.steps >= 1 {
-        let facgus = (s.h_acc / s.h) * (err * err / s.err_acc).powf(ERR_EXPONENT) / SAFE;
+    if s.core.stats.steps >= 1 {
+        let facgus = (s.ctl.h_acc / s.h) * (err * err / s.ctl.err_acc).powf(ERR_EXPONENT) / SAFE;
         let facgus = facgus.clamp(FACR, FACL);
         hnew = hnew.min(s.h / facgus);
     }
-    s.h_acc = s.h;
-    s.err_acc = err.max(ERR_ACC_FLOOR);
+    s.ctl.h_acc = s.h;
+    s.ctl.err_acc = err.max(ERR_ACC_FLOOR);
     hnew
 }
 
@@ -96,15 +85,9 @@ impl<P: DaeProblem + ?Sized> Radau5<'_, P> {
     /// Error weights 1/(atol' + rtol' |y|) at the current state; a vector-valued unknown
     /// takes the vector's length for |y| (`vector_error_weights`).
     pub(super) fn set_ewt(&mut self) {
-        for i in 0..self.n {
-            self.ewt[i] = 1.0 / (self.rtol * self.y[i].abs() + self.atol[i]);
-        }
-        for g in &self.groups {
-            let len = self.y[g.clone()].iter().map(|y| y * y).sum::<f64>().sqrt();
-            for i in g.clone() {
-                self.ewt[i] = 1.0 / (self.rtol * len + self.atol[i]);
-            }
-        }
+        let atol = &self.atol;
+        self.wt
+            .set_ewt(&self.y, self.rtol, |i| atol[i], &self.core.groups);
     }
 
     /// Weights of the step: index-k unknowns get h^(k-1) (RADAU5 divides their SCAL by h
@@ -113,25 +96,26 @@ impl<P: DaeProblem + ?Sized> Radau5<'_, P> {
     pub(super) fn set_step_weights(&mut self) {
         let h = self.h.abs();
         let hs = h.min(1.0);
-        for i in 0..self.n {
-            let kind = self.kinds[i];
+        let (c, wt) = (&self.core, &mut self.wt);
+        for i in 0..c.n {
+            let kind = c.kinds[i];
             let level = kind.level() - 1;
             let scale = h.powi(level);
-            self.col_scale[i] = if self.opts.scale_newton_matrix {
+            wt.col_scale[i] = if c.opts.scale_newton_matrix {
                 hs.powi(-level)
             } else {
                 1.0
             };
-            let e = self.ewt[i];
-            let (err, newton) = match self.algebraic {
+            let e = wt.ewt[i];
+            let (err, newton) = match c.algebraic {
                 AlgebraicControl::Full => (e, e),
                 AlgebraicControl::Scaled => (e * scale, e * scale),
                 AlgebraicControl::Exclude => (if kind.is_algebraic() { 0.0 } else { e }, e * scale),
-                // Resolved in `resolve_algebraic`: index >= 2 out of the error test.
+                // Resolved in `Core::new`: index >= 2 out of the error test.
                 AlgebraicControl::Auto => (if level >= 1 { 0.0 } else { e }, e * scale),
             };
-            self.wt_err[i] = err;
-            self.wt_newton[i] = newton;
+            wt.err[i] = err;
+            wt.newton[i] = newton;
         }
     }
 
@@ -144,13 +128,13 @@ impl<P: DaeProblem + ?Sized> Radau5<'_, P> {
     /// (Hairer & Wanner II, (8.22)): -F(t0, y0 + e, -v).
     pub(super) fn error_estimate(&mut self) -> Result<f64, SolverError> {
         let hinv = 1.0 / self.h;
-        for i in 0..self.n {
-            self.yps[i] =
-                -hinv * (DD[0] * self.z[0][i] + DD[1] * self.z[1][i] + DD[2] * self.z[2][i]);
+        let st = &mut self.st;
+        for i in 0..self.core.n {
+            st.yps[i] = -hinv * (DD[0] * st.z[0][i] + DD[1] * st.z[1][i] + DD[2] * st.z[2][i]);
         }
         self.filtered_estimate(false)?;
         let mut err = self.error_norm();
-        if err >= 1.0 && (self.first || self.reject) {
+        if err >= 1.0 && (self.ctl.first || self.ctl.reject) {
             self.filtered_estimate(true)?;
             err = self.error_norm();
         }
@@ -159,42 +143,36 @@ impl<P: DaeProblem + ?Sized> Radau5<'_, P> {
 
     /// err_vec = -(J_y + (gamma/h) J_y')^-1 F(t0, y0 [+ err_vec], -v), -v in `yps`.
     fn filtered_estimate(&mut self, again: bool) -> Result<(), SolverError> {
-        for i in 0..self.n {
-            self.ys[i] = if again {
-                self.y[i] + self.err_vec[i]
+        let (c, st) = (&mut self.core, &mut self.st);
+        for i in 0..c.n {
+            st.ys[i] = if again {
+                self.y[i] + st.err_vec[i]
             } else {
                 self.y[i]
             };
         }
-        self.prob
-            .residual(self.t, &self.ys, &self.yps, &mut self.res);
-        self.stats.residual_evals += 1;
-        if let Some(eqs) = self.non_finite_residual() {
+        c.prob.residual(c.t, &st.ys, &st.yps, &mut st.res);
+        c.stats.residual_evals += 1;
+        if let Some(eqs) = c.non_finite(&st.res) {
             return Err(SolverError::NonFiniteResidual {
-                t: self.t,
+                t: c.t,
                 equations: eqs,
             });
         }
-        for (e, r) in self.err_vec.iter_mut().zip(&self.res) {
+        for (e, r) in st.err_vec.iter_mut().zip(&st.res) {
             *e = -r;
         }
-        let mut e = std::mem::take(&mut self.err_vec);
+        let mut e = std::mem::take(&mut self.st.err_vec);
         let solved = self.solve_real(&mut e);
-        self.err_vec = e;
+        self.st.err_vec = e;
         solved.map_err(|s| SolverError::SingularMatrix {
-            t: self.t,
+            t: self.core.t,
             h: self.h,
             detail: s.detail,
         })
     }
 
     fn error_norm(&self) -> f64 {
-        let s: f64 = self
-            .err_vec
-            .iter()
-            .zip(&self.wt_err)
-            .map(|(e, w)| (e * w) * (e * w))
-            .sum();
-        (s / self.n as f64).sqrt().max(ERR_FLOOR)
+        wrms(&self.st.err_vec, &self.wt.err).max(ERR_FLOOR)
     }
 }
