@@ -1,10 +1,10 @@
 //! The command line as a user runs it: JSON fields, files written, clear errors.
 
-use crate::towride;
+use crate::{towride, towride_err, towride_json, towride_ok};
 
 #[test]
 fn verify_json_has_the_fields_a_script_needs() {
-    let out = towride(&[
+    let v = towride_json(&[
         "verify",
         "--problems",
         "hires,caraxis",
@@ -12,12 +12,6 @@ fn verify_json_has_the_fields_a_script_needs() {
         "1e-6",
         "--json",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let recs = v.as_array().unwrap();
     assert_eq!(recs.len(), 2);
     for r in recs {
@@ -47,9 +41,7 @@ fn verify_json_has_the_fields_a_script_needs() {
 
 #[test]
 fn unknown_problem_is_a_clear_error() {
-    let out = towride(&["verify", "--problems", "nosuch"]);
-    assert_eq!(out.status.code(), Some(2));
-    let err = String::from_utf8_lossy(&out.stderr);
+    let err = towride_err(&["verify", "--problems", "nosuch"], 2);
     assert!(err.contains("unknown problem `nosuch`"), "{err}");
 }
 
@@ -86,19 +78,13 @@ fn bench_solver_writes_csv_and_png() {
 #[test]
 fn run_linear_and_doctor_speak_json() {
     let dir = std::env::temp_dir().join(format!("towride-run-{}", std::process::id()));
-    let out = towride(&[
+    let v = towride_json(&[
         "run",
         repo!("scenes/examples/two_mass_chain.toml"),
         "--out",
         dir.to_str().unwrap(),
         "--json",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["status"], "completed");
     for key in [
         "steps",
@@ -118,31 +104,19 @@ fn run_linear_and_doctor_speak_json() {
     );
     assert_eq!(csv.lines().count(), 1 + 1001);
 
-    let out = towride(&[
+    let v = towride_json(&[
         "linear",
         repo!("scenes/examples/two_mass_chain.toml"),
         "--out",
         dir.to_str().unwrap(),
         "--json",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let f = v["result"]["modes"][0]["undamped_hz"].as_f64().unwrap();
     assert!((f - 500f64.sqrt() / (2.0 * std::f64::consts::PI)).abs() < 1e-6);
     assert!(dir.join("linear.html").is_file());
     assert_eq!(v["report"].as_str(), dir.join("linear.html").to_str());
 
-    let out = towride(&["doctor", repo!("scenes/examples/andrews.toml"), "--json"]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let v = towride_json(&["doctor", repo!("scenes/examples/andrews.toml"), "--json"]);
     assert_eq!(v["redundant"].as_array().unwrap().len(), 9);
     assert!(v["newton_condition"].as_f64().unwrap() > 1.0);
 }
@@ -154,9 +128,7 @@ fn a_bad_mechanism_file_is_named_with_its_line() {
         .unwrap()
         .replace("mass_kg = 1.0", "mass_kg = -1.0");
     std::fs::write(&path, text).unwrap();
-    let out = towride(&["run", path.to_str().unwrap()]);
-    assert_eq!(out.status.code(), Some(2));
-    let err = String::from_utf8_lossy(&out.stderr);
+    let err = towride_err(&["run", path.to_str().unwrap()], 2);
     assert!(
         err.contains(".toml:17:") && err.contains("body[0].mass_kg") && err.contains("positive"),
         "{err}"
@@ -165,12 +137,7 @@ fn a_bad_mechanism_file_is_named_with_its_line() {
 
 #[test]
 fn plan_lists_its_cases_on_the_command_line() {
-    let out = towride(&["run", repo!("scenes/measurement_plan.toml"), "--list"]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let out = towride_ok(&["run", repo!("scenes/measurement_plan.toml"), "--list"]);
     let text = String::from_utf8_lossy(&out.stdout);
     assert_eq!(text.lines().count(), 72);
     assert!(text.lines().any(|l| l == "ramp_50mm_50kmh_empty"));
@@ -184,13 +151,7 @@ fn set_replaces_a_value_for_one_run_and_a_set_that_matches_nothing_is_refused() 
     let peak_tension = |extra: &[&str]| {
         let mut args = vec!["run", pendulum, "--out", d, "--json"];
         args.extend_from_slice(extra);
-        let out = towride(&args);
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        let v = towride_json(&args);
         v["channels"]["pivot.force.z"]["max"].as_f64().unwrap()
     };
     // Released from horizontal, the link tension peaks at 3 m g at the bottom.
@@ -199,16 +160,17 @@ fn set_replaces_a_value_for_one_run_and_a_set_that_matches_nothing_is_refused() 
     assert!((one / (3.0 * 9.81) - 1.0).abs() < 1e-4, "{one}");
     assert!((two / (3.0 * 2.0 * 9.81) - 1.0).abs() < 1e-4, "{two}");
 
-    let out = towride(&[
-        "run",
-        pendulum,
-        "--out",
-        d,
-        "--set",
-        "pendulm.toml:body[0].mass_kg=2.0",
-    ]);
-    assert_eq!(out.status.code(), Some(2));
-    let err = String::from_utf8_lossy(&out.stderr);
+    let err = towride_err(
+        &[
+            "run",
+            pendulum,
+            "--out",
+            d,
+            "--set",
+            "pendulm.toml:body[0].mass_kg=2.0",
+        ],
+        2,
+    );
     assert!(
         err.contains("--set pendulm.toml:body[0].mass_kg=2.0") && err.contains("matches no file"),
         "{err}"
@@ -222,7 +184,7 @@ fn set_replaces_a_value_for_one_run_and_a_set_that_matches_nothing_is_refused() 
 #[test]
 fn bench_scaling_times_each_family_by_phase() {
     let dir = std::env::temp_dir().join(format!("towride-scaling-{}", std::process::id()));
-    let out = towride(&[
+    let v = towride_json(&[
         "bench",
         "scaling",
         "--chain",
@@ -235,12 +197,6 @@ fn bench_scaling_times_each_family_by_phase() {
         "--out",
         dir.to_str().unwrap(),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["schema_version"], 1);
     let pts = v["points"].as_array().unwrap();
     assert_eq!(pts.len(), 5);
@@ -290,18 +246,12 @@ fn bench_scaling_times_each_family_by_phase() {
 
 #[test]
 fn list_names_shows_what_a_scene_can_ask_for() {
-    let out = towride(&[
+    let v = towride_json(&[
         "run",
         repo!("scenes/default.toml"),
         "--list-names",
         "--json",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["schema_version"], 1);
     let names: Vec<&str> = v["quantities"]
         .as_array()
@@ -343,9 +293,7 @@ fn bench_replot_redraws_a_stored_table_and_names_a_bad_cell() {
     let text = std::fs::read_to_string(repo!("docs/data/bench_default.csv")).unwrap();
     let bad = dir.join("bad.csv");
     std::fs::write(&bad, text.replacen(",completed,0.", ",completed,x0.", 1)).unwrap();
-    let out = towride(&["bench", "--replot", bad.to_str().unwrap(), "--out", d]);
-    assert_eq!(out.status.code(), Some(2));
-    let err = String::from_utf8_lossy(&out.stderr);
+    let err = towride_err(&["bench", "--replot", bad.to_str().unwrap(), "--out", d], 2);
     assert!(
         err.contains("bad.csv") && err.contains("wall [s]") && err.contains('2'),
         "{err}"

@@ -30,6 +30,45 @@ fn towride(args: &[&str]) -> std::process::Output {
         .expect("run towride")
 }
 
+/// Runs the binary with `args`, which must succeed (the panic shows its stderr), and
+/// returns its output.
+fn towride_ok(args: &[&str]) -> std::process::Output {
+    let out = towride(args);
+    assert!(
+        out.status.success(),
+        "towride {}: {}",
+        args.join(" "),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
+}
+
+/// Runs the binary with `args` (including `--json`), which must succeed and print
+/// exactly one JSON document; returns it.
+fn towride_json(args: &[&str]) -> serde_json::Value {
+    let out = towride_ok(args);
+    serde_json::from_slice(&out.stdout).unwrap_or_else(|e| {
+        panic!(
+            "towride {}: not one JSON document ({e}): {}",
+            args.join(" "),
+            String::from_utf8_lossy(&out.stdout)
+        )
+    })
+}
+
+/// Runs the binary with `args`, which must exit with `code`; returns its stderr.
+fn towride_err(args: &[&str], code: i32) -> String {
+    let out = towride(args);
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(
+        out.status.code(),
+        Some(code),
+        "towride {}: {err}",
+        args.join(" ")
+    );
+    err
+}
+
 /// The DOM of a report after its scripts ran in headless Chromium (Debian package
 /// `chromium`, installed by `.ci/run`), and the `data-ready` attribute of its body (the
 /// number of charts the page drew); panics on any JavaScript error the page recorded.

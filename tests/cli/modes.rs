@@ -1,22 +1,16 @@
 //! `towride modes` as a user runs it.
 
-use crate::towride;
+use crate::{towride, towride_err, towride_json, towride_ok};
 
 #[test]
 fn modes_json_has_the_mode_table_selection_and_mass_properties() {
-    let out = towride(&[
+    let v = towride_json(&[
         "modes",
         repo!("flex/hitch_crossbeam.toml"),
         "--variant",
         "5",
         "--json",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let modes = v["modes"].as_array().unwrap();
     // 3 interface nodes x 6 + 8 fixed-interface modes.
     assert_eq!(modes.len(), 26);
@@ -38,19 +32,13 @@ fn modes_json_has_the_mode_table_selection_and_mass_properties() {
 
 #[test]
 fn modes_cutoff_selects_by_frequency() {
-    let out = towride(&[
+    let v = towride_json(&[
         "modes",
         repo!("flex/hitch_crossbeam.toml"),
         "--cutoff",
         "300",
         "--json",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     for m in v["modes"].as_array().unwrap() {
         let f = m["frequency_hz"].as_f64().unwrap();
         let want = m["kind"] == "elastic" && f <= 300.0;
@@ -69,14 +57,15 @@ fn modes_text_and_bad_file_errors() {
     assert!(out.status.success());
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(text.contains("explicit list [7, 8, 9]"), "{text}");
-    let out = towride(&[
-        "modes",
-        repo!("flex/hitch_crossbeam.toml"),
-        "--variant",
-        "11",
-    ]);
-    assert_eq!(out.status.code(), Some(2));
-    let err = String::from_utf8_lossy(&out.stderr);
+    let err = towride_err(
+        &[
+            "modes",
+            repo!("flex/hitch_crossbeam.toml"),
+            "--variant",
+            "11",
+        ],
+        2,
+    );
     assert!(
         err.contains(repo!("flex/hitch_crossbeam.toml")) && err.contains("no variant 11"),
         "{err}"
@@ -85,12 +74,7 @@ fn modes_text_and_bad_file_errors() {
 
 #[test]
 fn modes_reads_the_twist_beam_file() {
-    let out = towride(&["modes", repo!("flex/twist_beam.toml")]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let out = towride_ok(&["modes", repo!("flex/twist_beam.toml")]);
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(text.contains("arm_left") && text.contains("arm_right") && text.contains("selection"));
 }
@@ -116,19 +100,13 @@ fn modes_from_a_run_select_the_next_runs_modes() {
     let earlier_s = earlier.to_str().unwrap();
 
     // Side by side with the file's own selection.
-    let out = towride(&[
+    let v = towride_json(&[
         "modes",
         repo!("flex/hitch_crossbeam.toml"),
         "--from-run",
         earlier_s,
         "--json",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["run_based_modes"], serde_json::json!([7, 9, 10]));
     assert!(v["a_priori_modes"].as_array().unwrap().len() > 3);
 

@@ -1,17 +1,11 @@
 //! `towride provenance` as a user runs it: classes of the shipped files, and a number
 //! without a class found by file, line and key with exit code 1.
 
-use crate::towride;
+use crate::{towride, towride_json};
 
 #[test]
 fn provenance_lists_classes_and_fails_on_an_untagged_number() {
-    let out = towride(&["provenance", repo!("vehicles/fabia/hitch.toml"), "--json"]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let v = towride_json(&["provenance", repo!("vehicles/fabia/hitch.toml"), "--json"]);
     assert_eq!(v["schema_version"], 1);
     assert_eq!(v["untagged"], 0);
     let entries = v["files"][0]["entries"].as_array().unwrap();

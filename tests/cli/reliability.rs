@@ -147,16 +147,14 @@ fn a_plan_run_prints_one_json_document_and_writes_a_plan_table() {
         ),
     )
     .unwrap();
-    let out = towride(&[
+    // One document: serde_json refuses trailing documents.
+    let j = crate::towride_json(&[
         "run",
         plan.to_str().unwrap(),
         "--out",
         d.to_str().unwrap(),
         "--json",
     ]);
-    assert!(out.status.success(), "{}", stderr(&out));
-    // One document: serde_json refuses trailing documents.
-    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(j["schema_version"], 1);
     assert_eq!(j["status"], "completed");
     let cases = j["cases"].as_array().unwrap();
@@ -196,7 +194,7 @@ fn sweep_merge_refuses_missing_shards_and_speaks_json() {
         &["3 of the sweep's 6 cases are missing", "1, 3, 5"],
     );
     assert!(!merged.exists());
-    let o = towride(&[
+    let j = crate::towride_json(&[
         "sweep",
         "merge",
         s0.to_str().unwrap(),
@@ -205,8 +203,6 @@ fn sweep_merge_refuses_missing_shards_and_speaks_json() {
         merged.to_str().unwrap(),
         "--json",
     ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(j["schema_version"], 1);
     assert_eq!(
         (j["cases"].as_u64(), j["cases_total"].as_u64()),

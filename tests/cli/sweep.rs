@@ -2,7 +2,7 @@
 //! shards, checked against the pendulum's analytical peak link tension 3 m g (released
 //! from horizontal), whatever its length.
 
-use crate::towride;
+use crate::{towride, towride_json};
 
 fn table(path: &std::path::Path) -> Vec<Vec<String>> {
     let mut r = csv::Reader::from_path(path).unwrap();
@@ -19,13 +19,7 @@ fn sweep_runs_the_product_in_parallel_and_shards_merge_to_the_same_table() {
     let dir = std::env::temp_dir().join(format!("towride_sweep_{}", std::process::id()));
     let d = dir.to_str().unwrap();
     let f = repo!("scenes/examples/pendulum_sweep.toml");
-    let out = towride(&["sweep", f, "--out", d, "--jobs", "2", "--json"]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let j = towride_json(&["sweep", f, "--out", d, "--jobs", "2", "--json"]);
     assert_eq!(j["cases"], 6);
     assert_eq!(j["failed"], 0);
     let full = table(&dir.join("summary.csv"));

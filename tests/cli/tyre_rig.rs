@@ -1,11 +1,11 @@
 //! `towride tyre-rig` as a user runs it.
 
-use crate::towride;
+use crate::{towride_err, towride_json};
 
 #[test]
 fn tyre_rig_json_and_files() {
     let dir = std::env::temp_dir().join(format!("towride-rigcli-{}", std::process::id()));
-    let out = towride(&[
+    let v = towride_json(&[
         "tyre-rig",
         repo!("scenes/tyre_rigs/cleat_car_40kmh.toml"),
         "--json",
@@ -14,12 +14,6 @@ fn tyre_rig_json_and_files() {
         "--out",
         dir.to_str().unwrap(),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     for key in [
         "hub_fz_max_n",
         "hub_fx_min_n",
@@ -51,9 +45,7 @@ fn tyre_rig_bad_file_names_it() {
         "[tyre]\nfile = \"x.tir\"\nmodel = \"rigid-ring\"\n[road]\nfile = \"r.toml\"\n[rig]\nkind = \"cleat\"\n[output]\ndt_s = 1e-3\n",
     )
     .unwrap();
-    let out = towride(&["tyre-rig", f.to_str().unwrap()]);
-    assert_eq!(out.status.code(), Some(2));
-    let err = String::from_utf8_lossy(&out.stderr);
+    let err = towride_err(&["tyre-rig", f.to_str().unwrap()], 2);
     assert!(
         err.contains("bad.toml:6") && err.contains("speed_m_s"),
         "{err}"
