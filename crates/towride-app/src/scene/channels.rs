@@ -47,9 +47,9 @@ pub fn standard(v: &Vehicle) -> (Vec<Output>, Vec<Channel>) {
     out.push(named(
         "speed",
         Request::Marker {
-            marker: h.car_ref.index(),
+            marker: h.car_ref,
             quantity: MarkerQuantity::Velocity,
-            axes: Axes::Marker(h.car_ref.index()),
+            axes: Axes::Marker(h.car_ref),
         },
         &["speed", "", ""],
         1.0,
@@ -59,17 +59,17 @@ pub fn standard(v: &Vehicle) -> (Vec<Output>, Vec<Channel>) {
         Some((Link::Joint(joint), _)) => out.push(named(
             "hitch_f",
             Request::Joint {
-                joint: joint.index(),
+                joint,
                 quantity: JointQuantity::Force,
-                axes: Axes::Marker(h.car_ref.index()),
+                axes: Axes::Marker(h.car_ref),
             },
             &hitch,
             1.0,
         )),
-        Some((Link::Bushing(element), _)) => out.push(named(
+        Some((Link::Bushing(element, _), _)) => out.push(named(
             "hitch_f",
             Request::Element {
-                element: element.index(),
+                element,
                 quantity: ElementQuantity::Force,
             },
             &[hitch[0], hitch[1], hitch[2], "", "", ""],
@@ -81,9 +81,9 @@ pub fn standard(v: &Vehicle) -> (Vec<Output>, Vec<Channel>) {
         out.push(named(
             "trailer_a",
             Request::Marker {
-                marker: t.index(),
+                marker: t,
                 quantity: MarkerQuantity::Acceleration,
-                axes: Axes::Marker(t.index()),
+                axes: Axes::Marker(t),
             },
             &["trailer_ax", "", ""],
             1.0,
@@ -105,9 +105,9 @@ pub fn standard(v: &Vehicle) -> (Vec<Output>, Vec<Channel>) {
         out.push(named(
             &format!("acc_{}", s.name),
             Request::Marker {
-                marker: s.marker.index(),
+                marker: s.marker,
                 quantity: MarkerQuantity::Acceleration,
-                axes: Axes::Marker(s.marker.index()),
+                axes: Axes::Marker(s.marker),
             },
             &refs,
             1.0,
@@ -122,7 +122,7 @@ pub fn standard(v: &Vehicle) -> (Vec<Output>, Vec<Channel>) {
             out.push(named(
                 &name,
                 Request::Tyre {
-                    tyre: w.tyre.index(),
+                    tyre: w.tyre,
                     quantity: q,
                 },
                 &[name.as_str()],
@@ -136,7 +136,7 @@ pub fn standard(v: &Vehicle) -> (Vec<Output>, Vec<Channel>) {
         out.push(named(
             "hitch_eta",
             Request::Modal {
-                body: hh.body.index(),
+                body: hh.body,
                 quantity: ModalQuantity::Coordinates,
             },
             &refs,
@@ -145,14 +145,14 @@ pub fn standard(v: &Vehicle) -> (Vec<Output>, Vec<Channel>) {
         out.push(named(
             "hitch_strain_energy",
             Request::Modal {
-                body: hh.body.index(),
+                body: hh.body,
                 quantity: ModalQuantity::StrainEnergy,
             },
             &["hitch_strain_energy"],
             1.0,
         ));
         // The ball's elastic displacement relative to the brackets.
-        if let Some(md) = &v.model.bodies[hh.body.index()].modal {
+        if let Some(md) = &v.model.bodies[hh.body].modal {
             let reference: Vec<usize> = md
                 .data
                 .nodes
@@ -164,7 +164,7 @@ pub fn standard(v: &Vehicle) -> (Vec<Output>, Vec<Channel>) {
             out.push(named(
                 "hitch_deflection",
                 Request::Modal {
-                    body: hh.body.index(),
+                    body: hh.body,
                     quantity: ModalQuantity::Deflection {
                         node: hh.ball_node,
                         reference,

@@ -80,7 +80,7 @@ impl Simulator for VehicleSimulator {
                 .wheels
                 .iter()
                 .filter(|w| pair.contains(&w.name.as_str()))
-                .map(|w| m.bodies[w.body.index()].position[0])
+                .map(|w| m.bodies[w.body].position[0])
                 .collect();
             (xs.len() == 2).then(|| 0.5 * (xs[0] + xs[1]))
         };
