@@ -191,7 +191,7 @@ pub fn quantities(v: &Vehicle) -> Vec<Quantity> {
             ),
         ] {
             add(
-                format!("tyre_{n}_{key}"),
+                super::channels::tyre(n, key),
                 unit,
                 format!("wheel {n}: {what}"),
                 Kind::Tyre {

@@ -67,6 +67,7 @@ impl Builder {
             column: None,
             field,
             message,
+            kind: Default::default(),
         }
     }
 

@@ -358,7 +358,7 @@ fn check_run(src: &Source, r: &RunSpec) -> Result<(), InputError> {
     src.positive(&path!["run", "end_time_s"], r.end_time_s)?;
     src.positive(&path!["run", "sample_rate_hz"], r.sample_rate_hz)?;
     crate::input::bounds::budget::check(r.end_time_s, r.sample_rate_hz, 0)
-        .map_err(|m| src.error(&path!["run", "sample_rate_hz"], m))?;
+        .map_err(|e| src.error(&path!["run", "sample_rate_hz"], e.to_string()))?;
     Ok(())
 }
 
