@@ -70,6 +70,7 @@ pub fn run(a: &ModesArgs) -> CliResult {
             column: None,
             field: "--from-run".into(),
             message: String::new(),
+            kind: Default::default(),
         };
         let share = a.run_share.map_or(0.01, |p| p / 100.0);
         let run = towride_mbs::flex::feedback::from_run(dir, share, &at)?;

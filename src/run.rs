@@ -9,7 +9,7 @@ use clap::Args;
 use towride_app::job::{Job, RunResult, RunStatus};
 use towride_app::report::plan_run::PlanRun;
 use towride_app::scene::plan;
-use towride_app::scene::{self, Changes, SceneError};
+use towride_app::scene::{self, channels, Changes, SceneError};
 use towride_mbs::flex::feedback::RunModes;
 use towride_mbs::input::{Loader, Override};
 
@@ -66,6 +66,7 @@ pub fn run(a: &RunArgs) -> CliResult {
         column: None,
         field: "--modes-from".into(),
         message: String::new(),
+        kind: Default::default(),
     };
     let run_modes = match &a.modes_from {
         // Modal bodies with modes to select are a vehicle's: a mechanism file has none.
@@ -288,7 +289,7 @@ fn print_summary(r: &RunResult) {
     for (name, c) in s
         .channels
         .iter()
-        .filter(|(n, _)| !n.starts_with("hitch_eta_"))
+        .filter(|(n, _)| !n.starts_with(channels::HITCH_ETA_PREFIX))
     {
         println!(
             "  {name:<24} min {:>11.4e} at {:>7.4} s   max {:>11.4e} at {:>7.4} s  [{}]",

@@ -165,7 +165,7 @@ name = "v_dj"
 /// body of the built vehicle starts unrotated.
 fn design_position(s: &scene::Scene, name: &str) -> V {
     let m = s.model();
-    let mk = &m.markers[m.marker_index(name).unwrap()];
+    let mk = &m.markers[m.marker_by_name(name).unwrap()];
     match mk.body {
         None => mk.position,
         Some(b) => {

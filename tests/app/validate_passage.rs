@@ -177,7 +177,8 @@ fn no_visible_passage_is_an_error_not_an_answer() {
             &mut Vec::new(),
         )
         .map(|p| p.front_onset_s)
-        .expect_err("noise alone must not give a passage");
+        .expect_err("noise alone must not give a passage")
+        .to_string();
         assert!(
             e.contains("no obstacle passage visible") && e.contains("noise"),
             "{e}"

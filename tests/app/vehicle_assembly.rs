@@ -6,7 +6,7 @@
 use std::path::Path;
 
 use towride_app::vehicle::{self, Options, Vehicle};
-use towride_mbs::model::desc::Model;
+use towride_mbs::model::desc::{MarkerHandle, Model};
 use towride_mbs::model::math::{add, mv, rot, sub};
 use towride_mbs::tyre::TyreKind;
 
@@ -39,7 +39,7 @@ fn load(opts: &Options) -> Vehicle {
 }
 
 /// World position of marker `k` at the initial configuration.
-fn marker_world(m: &Model, k: usize) -> [f64; 3] {
+fn marker_world(m: &Model, k: MarkerHandle) -> [f64; 3] {
     let mk = &m.markers[k];
     match mk.body {
         None => mk.position,
@@ -183,7 +183,7 @@ fn right_side_mirrors_the_left_and_hardpoints_are_where_the_files_say() {
     let v = load(&Options::default());
     let m = &v.model;
     let mut pairs = 0;
-    for (k, mk) in m.markers.iter().enumerate() {
+    for (k, mk) in m.each_marker() {
         let Some((l, r)) = [("_fl", "_fr"), ("_rl", "_rr"), ("_tl", "_tr")]
             .into_iter()
             .find(|(l, _)| mk.name.contains(l))
@@ -192,7 +192,7 @@ fn right_side_mirrors_the_left_and_hardpoints_are_where_the_files_say() {
         };
         let right = mk.name.replace(l, r);
         let j = m
-            .marker_index(&right)
+            .marker_by_name(&right)
             .unwrap_or_else(|| panic!("no {right} for {}", mk.name));
         let (a, b) = (marker_world(m, k), marker_world(m, j));
         assert!(
@@ -232,7 +232,7 @@ fn right_side_mirrors_the_left_and_hardpoints_are_where_the_files_say() {
     // Hardpoints: vehicle coordinates of the files = world at x offset 0.
     let front = table(repo!("vehicles/fabia/front_mcpherson.toml"));
     let rear = table(repo!("vehicles/fabia/rear_twist_beam.toml"));
-    let at = |name: &str| marker_world(m, m.marker_index(name).unwrap());
+    let at = |name: &str| marker_world(m, m.marker_by_name(name).unwrap());
     let hp = |t: &toml::Table, k: &str| vec3(&t["hardpoints"][k]);
     let close = |a: [f64; 3], b: [f64; 3]| (0..3).all(|c| (a[c] - b[c]).abs() < 1e-12);
     assert!(close(
@@ -293,7 +293,7 @@ fn modal_hitch_carries_the_fe_mass_properties_for_every_variant() {
             .model
             .markers
             .iter()
-            .filter(|mk| mk.body == Some(h.body.index()) && mk.node.is_some())
+            .filter(|mk| mk.body == Some(h.body) && mk.node.is_some())
         {
             let n = &md.nodes[mk.node.unwrap()];
             for c in 0..3 {
@@ -327,10 +327,7 @@ fn load_cases_move_the_trailer_centre_of_mass_where_the_file_says() {
         for w in v.handles.wheels.iter().filter(|w| w.name.starts_with('t')) {
             let belt = v.model.tyres[w.tyre].tyre.params().belt_mass;
             m += belt;
-            s = add(
-                &s,
-                &marker_world(&v.model, w.centre.index()).map(|x| x * belt),
-            );
+            s = add(&s, &marker_world(&v.model, w.centre).map(|x| x * belt));
         }
         (m, sub(&s.map(|x| x / m), &place.translation))
     };

@@ -108,7 +108,7 @@ fn default_scene_runs_over_the_ramp() {
     model.outputs.push(Output::new(
         "tl",
         Request::Marker {
-            marker: tl.centre.index(),
+            marker: tl.centre,
             quantity: MarkerQuantity::Acceleration,
             axes: Axes::World,
         },

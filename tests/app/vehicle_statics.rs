@@ -87,9 +87,7 @@ fn car_rests_on_its_design_loads_at_its_design_ride_heights() {
             .find(|x| &x.name == w)
             .unwrap()
             .centre;
-        let h = |q: &[f64]| {
-            sys.marker_frame(q, mk.index()).origin[2] - sys.marker_frame(q, wc.index()).origin[2]
-        };
+        let h = |q: &[f64]| sys.marker_frame(q, *mk).origin[2] - sys.marker_frame(q, wc).origin[2];
         let (now, design) = (h(q), h(&q0));
         assert!(
             (now - design).abs() < 1e-3,
@@ -142,13 +140,13 @@ fn trailer_nose_load_follows_each_load_case() {
         let mut axle = 0.0;
         for w in &wheels {
             let belt = v.model.tyres[w.tyre].tyre.params().belt_mass;
-            let x = sys.marker_frame(q, w.centre.index()).origin[0];
+            let x = sys.marker_frame(q, w.centre).origin[0];
             m += belt;
             mx += belt * x;
             axle += x / wheels.len() as f64;
         }
         let ball = sys
-            .marker_frame(q, v.model.marker_index("ball_coupling.i").unwrap())
+            .marker_frame(q, v.model.marker_by_name("ball_coupling.i").unwrap())
             .origin[0];
         let want = m * g * (mx / m - axle) / (ball - axle);
         let chans = channels_of(&sys.model);

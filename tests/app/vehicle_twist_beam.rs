@@ -15,7 +15,8 @@ use towride_mbs::flex::modes::static_solution;
 use towride_mbs::flex::{FlexBody, ModalData, Options};
 use towride_mbs::input::{Loader, Override};
 use towride_mbs::model::desc::{
-    Applied, Body, Coupling, Force, Joint, JointKind, Marker, Modal, Model,
+    Applied, Body, BodyHandle, Coupling, Force, Joint, JointKind, Marker, MarkerHandle, Modal,
+    Model,
 };
 use towride_mbs::model::function::TimeFunction;
 use towride_mbs::model::statics::equilibrium;
@@ -58,7 +59,7 @@ fn held_and_twisted(md: &ModalData, held: usize, twisted: usize, t: f64) -> Mode
     };
     let marker = |name: &str, body: Option<usize>, position, node| Marker {
         name: name.into(),
-        body,
+        body: body.map(BodyHandle::new),
         position,
         axes: EYE,
         node,
@@ -75,12 +76,12 @@ fn held_and_twisted(md: &ModalData, held: usize, twisted: usize, t: f64) -> Mode
     m.joints.push(Joint {
         name: "weld".into(),
         kind: JointKind::Fixed,
-        i: 0,
-        j: 1,
+        i: MarkerHandle::new(0),
+        j: MarkerHandle::new(1),
     });
     m.forces.push(Force::Applied(Applied {
         name: "twist".into(),
-        i: 2,
+        i: MarkerHandle::new(2),
         force: [None, None, None],
         torque: [None, Some(TimeFunction::Constant { value: t }), None],
         in_marker_axes: false,
@@ -156,7 +157,7 @@ fn cross_member_twists_as_the_full_fe_model_and_the_rigid_torsion_element() {
             torque,
         ));
         let st = equilibrium(&sys, 0.0, &opts).unwrap();
-        let r = sys.marker_frame(&st.y[..sys.nq], 2).axes;
+        let r = sys.marker_frame(&st.y[..sys.nq], MarkerHandle::new(2)).axes;
         let angle = r[0][2].atan2(r[0][0]);
         k_modal.push(torque / angle);
         println!(
@@ -231,8 +232,7 @@ fn ride_heights(v: &Vehicle, sys: &System, y: &[f64]) -> Vec<(String, f64)> {
         .iter()
         .map(|(w, mk)| {
             let wc = v.handles.wheels.iter().find(|x| &x.name == w).unwrap();
-            let h = sys.marker_frame(q, mk.index()).origin[2]
-                - sys.marker_frame(q, wc.centre.index()).origin[2];
+            let h = sys.marker_frame(q, *mk).origin[2] - sys.marker_frame(q, wc.centre).origin[2];
             (w.clone(), h)
         })
         .collect()
@@ -315,13 +315,7 @@ fn flexible_scene_runs_over_the_ramp_like_the_rigid_one() {
     }
     let (flex_job, flex) = &runs[1];
     let cm = flex_job.scene.as_ref().unwrap().vehicle.handles.bodies["cross_member"];
-    let eta = &flex
-        .samples
-        .modal
-        .iter()
-        .find(|(b, _)| *b == cm.index())
-        .unwrap()
-        .1;
+    let eta = &flex.samples.modal.iter().find(|(b, _)| *b == cm).unwrap().1;
     let eta_peak = eta
         .iter()
         .flat_map(|r| r.iter())

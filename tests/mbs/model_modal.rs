@@ -8,8 +8,8 @@ use std::path::Path;
 use towride_mbs::flex::modes::{constrained_eigen, frequency_hz, static_solution};
 use towride_mbs::flex::{FlexBody, ModalData, Options};
 use towride_mbs::model::desc::{
-    Applied, Axes, Body, Coupling, Force, Joint, JointKind, Marker, MarkerQuantity, Modal, Model,
-    Output, Request,
+    Applied, Axes, Body, BodyHandle, Coupling, Force, Joint, JointKind, Marker, MarkerHandle,
+    MarkerQuantity, Modal, Model, Output, Request,
 };
 use towride_mbs::model::function::TimeFunction;
 use towride_mbs::model::run::simulate;
@@ -66,7 +66,7 @@ fn held(md: ModalData, load: Option<[Option<TimeFunction>; 3]>, coupling: Coupli
         let p = md.nodes[idx].position_m;
         m.markers.push(Marker {
             name: name.into(),
-            body: Some(0),
+            body: Some(BodyHandle::new(0)),
             position: [p[0] - com[0], p[1] - com[1], p[2] - com[2]],
             axes: EYE,
             node: Some(idx),
@@ -83,14 +83,14 @@ fn held(md: ModalData, load: Option<[Option<TimeFunction>; 3]>, coupling: Coupli
         m.joints.push(Joint {
             name: (*name).into(),
             kind: JointKind::Fixed,
-            i: 2 * k,
-            j: 2 * k + 1,
+            i: MarkerHandle::new(2 * k),
+            j: MarkerHandle::new(2 * k + 1),
         });
     }
     if let Some(f) = load {
         m.forces.push(Force::Applied(Applied {
             name: "ball load".into(),
-            i: 4,
+            i: MarkerHandle::new(4),
             force: f,
             torque: [None, None, None],
             in_marker_axes: false,
@@ -99,7 +99,7 @@ fn held(md: ModalData, load: Option<[Option<TimeFunction>; 3]>, coupling: Coupli
     m.outputs.push(Output::new(
         "ball",
         Request::Marker {
-            marker: 4,
+            marker: MarkerHandle::new(4),
             quantity: MarkerQuantity::Position,
             axes: Axes::World,
         },
@@ -144,7 +144,7 @@ fn modal_hitch_in_the_multibody_model_deflects_and_rings_as_the_full_fe_model() 
         let sys = System::new(model(&b.modal, Some(load), coupling));
         let st = equilibrium(&sys, 0.0, &opts).unwrap();
         let p0 = b.modal.node("ball").unwrap().position_m;
-        let ball_marker = 4;
+        let ball_marker = MarkerHandle::new(4);
         let got = sys.marker_frame(&st.y[..sys.nq], ball_marker).origin[d] - p0[d];
         println!(
             "{coupling:?}: ball deflection under {} N along axis {d}: full FE {want:.6e} m, modal body in the multibody model {got:.6e} m ({:+.3} %)",

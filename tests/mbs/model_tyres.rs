@@ -6,8 +6,8 @@
 use std::path::Path;
 
 use towride_mbs::model::desc::{
-    Axes, Body, Joint, JointKind, Marker, MarkerQuantity, Model, Motion, MotionDof, Output,
-    Request, TyreElem,
+    Axes, Body, BodyHandle, Joint, JointHandle, JointKind, Marker, MarkerHandle, MarkerQuantity,
+    Model, Motion, MotionDof, Output, Request, TyreElem,
 };
 use towride_mbs::model::function::TimeFunction;
 use towride_mbs::model::run::simulate;
@@ -39,7 +39,7 @@ fn body(name: &str, mass: f64, iyy: f64, at: [f64; 3], speed: f64) -> Body {
 fn marker(name: &str, body: Option<usize>, position: [f64; 3], axes: [[f64; 3]; 3]) -> Marker {
     Marker {
         name: name.into(),
-        body,
+        body: body.map(BodyHandle::new),
         position,
         axes,
         node: None,
@@ -82,8 +82,8 @@ fn quarter_car(
     let joint = |name: &str, kind, i, j| Joint {
         name: name.into(),
         kind,
-        i,
-        j,
+        i: MarkerHandle::new(i),
+        j: MarkerHandle::new(j),
     };
     m.joints
         .push(joint("carriage", JointKind::Translational, 1, 0));
@@ -91,21 +91,21 @@ fn quarter_car(
     m.joints.push(joint("bearing", JointKind::Revolute, 5, 4));
     m.motions.push(Motion {
         name: "speed".into(),
-        joint: 0,
+        joint: JointHandle::new(0),
         dof: MotionDof::Translation,
         function: TimeFunction::Constant { value: speed },
         is_velocity: true,
     });
     m.tyres.push(TyreElem {
         name: "tyre".into(),
-        marker: 6,
+        marker: MarkerHandle::new(6),
         tyre: tyre.clone(),
     });
     m.road = Some(road.clone());
     m.outputs.push(Output::new(
         "wheel",
         Request::Marker {
-            marker: 6,
+            marker: MarkerHandle::new(6),
             quantity: MarkerQuantity::Position,
             axes: Axes::World,
         },

@@ -13,12 +13,13 @@
 //! | road and tyre | [`RoadError`] | `towride_mbs::road` |
 //! | the integrator | [`SolverError`] | `towride_solver` |
 //! | scenes, plans, jobs, sweeps | [`SceneError`] | here |
-//! | validation against measurements | [`ValidateError`] | here |
+//! | validation against measurements | [`ValidateError`], [`OnsetError`], [`PassageError`] | here |
 //! | figures and reports | [`ReportError`] | here |
 
 use std::path::PathBuf;
 
 pub use towride_mbs::flex::FlexError;
+pub use towride_mbs::input::bounds::budget::BudgetError;
 pub use towride_mbs::input::InputError;
 pub use towride_mbs::model::ModelError;
 pub use towride_mbs::road::RoadError;
@@ -127,14 +128,14 @@ pub enum SceneError {
     },
     /// A run that would hold more samples than the memory limit allows
     /// (`input::bounds::budget`).
-    #[error("{}: field `{field}`: {message}", file.display())]
+    #[error("{}: field `{field}`: {budget}", file.display())]
     TooLarge {
         /// The input file of the run.
         file: PathBuf,
         /// The run settings that set its size.
         field: String,
         /// Rows and memory against the limits.
-        message: String,
+        budget: BudgetError,
     },
     /// A case or group asked for by name that does not exist.
     #[error("{0}")]
@@ -181,6 +182,62 @@ pub enum ValidateError {
         path: std::path::PathBuf,
         /// What the system said.
         source: std::io::Error,
+    },
+}
+
+/// Why no onset was found in an envelope (`validate::passage`).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum OnsetError {
+    /// The search window holds no samples.
+    #[error("no samples between {lo:.3} s and {hi:.3} s")]
+    EmptyWindow {
+        /// Start of the window [s].
+        lo: f64,
+        /// End of the window [s].
+        hi: f64,
+    },
+    /// The largest event does not stand out of the noise.
+    #[error(
+        "the largest event ({peak:.3} m/s^2 at {peak_s:.3} s) stands only {snr:.1} times above the noise ({noise:.3} m/s^2); {snr_min} needed"
+    )]
+    BelowNoise {
+        /// The envelope's peak in the window [m/s^2].
+        peak: f64,
+        /// Its time [s].
+        peak_s: f64,
+        /// Peak over noise.
+        snr: f64,
+        /// The noise: the envelope's median [m/s^2].
+        noise: f64,
+        /// The ratio needed.
+        snr_min: f64,
+    },
+    /// The event began before the window: its onset is not in it.
+    #[error("the event at {peak_s:.3} s runs into the start of the search window ({lo:.3} s)")]
+    RunsIntoWindow {
+        /// Time of the event's peak [s].
+        peak_s: f64,
+        /// Start of the window [s].
+        lo: f64,
+    },
+    /// None of the front axle's unsprung channels is recorded.
+    #[error("no front-axle unsprung channel among {front:?}")]
+    NoChannel {
+        /// The channels looked for.
+        front: Vec<String>,
+    },
+}
+
+/// Why the obstacle passage was not found in the signals (`validate::passage`).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum PassageError {
+    /// The front axle's event is not visible.
+    #[error("no obstacle passage visible in the front unsprung channels {front:?}: {onset}")]
+    NotVisible {
+        /// The front axle's channels.
+        front: Vec<String>,
+        /// Why no onset was found in them.
+        onset: OnsetError,
     },
 }
 

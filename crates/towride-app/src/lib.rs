@@ -44,11 +44,12 @@
 //! ```
 //! use std::path::Path;
 //! use towride_app::prelude::*;
+//! use towride_app::scene::channels::HITCH_FX;
 //!
 //! let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/default.toml");
 //! let run = Job::from_file(&scene, &Loader::new())?.run(&Silent)?;
-//! let peak = run.peak("hitch_fx").expect("a scene has the hitch_fx channel");
-//! println!("hitch_fx peak {peak:.1} N at {:.3} s", run.summary.channels["hitch_fx"].t_peak);
+//! let peak = run.peak(HITCH_FX).expect("a scene has the hitch_fx channel");
+//! println!("hitch_fx peak {peak:.1} N at {:.3} s", run.summary.channels[HITCH_FX].t_peak);
 //! assert!(run.completed() && (3e3..1e4).contains(&peak.abs()));
 //! # Ok::<(), towride_app::Error>(())
 //! ```

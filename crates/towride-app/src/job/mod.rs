@@ -9,11 +9,12 @@
 //! ```no_run
 //! use std::path::Path;
 //! use towride_app::prelude::*;
+//! use towride_app::scene::channels::HITCH_FX;
 //!
 //! # fn main() -> Result<(), towride_app::Error> {
 //! let job = Job::from_file(Path::new("scenes/default.toml"), &Loader::new())?;
 //! let run = job.run(&Silent)?;
-//! println!("hitch_fx peak {:.1} N", run.peak("hitch_fx").unwrap_or(f64::NAN));
+//! println!("hitch_fx peak {:.1} N", run.peak(HITCH_FX).unwrap_or(f64::NAN));
 //! # Ok(())
 //! # }
 //! ```
@@ -277,7 +278,7 @@ impl Job {
             columns,
         )
         .map(|_| ())
-        .map_err(|message| {
+        .map_err(|budget| {
             scene::SceneError::TooLarge {
                 file: self.file.clone(),
                 field: if self.scene.is_some() {
@@ -285,7 +286,7 @@ impl Job {
                 } else {
                     "run.end_time_s, run.sample_rate_hz".into()
                 },
-                message,
+                budget,
             }
             .into()
         })

@@ -6,6 +6,7 @@ use std::collections::BTreeMap;
 use serde::Serialize;
 
 use super::{Job, StartState};
+use crate::scene::channels;
 use crate::vehicle::Design;
 use towride_mbs::model::desc::Accelerations;
 use towride_mbs::model::energy::{select_by_energy, strain_shares, BodyEnergy};
@@ -330,8 +331,8 @@ impl RunSummary {
                 })
                 .collect(),
             hitch_force: samples
-                .channel("hitch_fx")
-                .and_then(|y| super::ringing::ringing("hitch_fx", &samples.times, &y)),
+                .channel(channels::HITCH_FX)
+                .and_then(|y| super::ringing::ringing(channels::HITCH_FX, &samples.times, &y)),
             channels: channels(samples),
             outputs_csv: None,
             plots: None,
@@ -403,11 +404,7 @@ fn channels(s: &Samples) -> BTreeMap<String, ChannelSummary> {
 pub fn lift_off(s: &Samples) -> Vec<LiftOff> {
     let mut out = Vec::new();
     for (c, ch) in s.channels.iter().enumerate() {
-        let Some(w) = ch
-            .name
-            .strip_prefix("tyre_")
-            .and_then(|n| n.strip_suffix("_contact"))
-        else {
+        let Some(w) = channels::tyre_wheel(&ch.name, channels::TYRE_CONTACT) else {
             continue;
         };
         let mut start: Option<f64> = None;

@@ -8,6 +8,7 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 
 use super::figure::{render, Figure, Panel, Style, Trace};
+use crate::scene::channels;
 use crate::Error;
 use towride_mbs::input::csv_table;
 
@@ -192,7 +193,12 @@ pub fn compare(runs: &[Run]) -> Comparison {
 /// The channels the PNG overlays: the hitch force and trailer acceleration when the
 /// runs are scenes, else the first four.
 fn figure_channels(c: &Comparison) -> Vec<String> {
-    let key = ["hitch_fx", "hitch_fz", "trailer_ax", "acc_hitch_z"];
+    let key = [
+        channels::HITCH_FX.to_string(),
+        channels::HITCH_FZ.to_string(),
+        channels::TRAILER_AX.to_string(),
+        channels::acc("hitch", "z"),
+    ];
     let some: Vec<String> = key
         .iter()
         .filter(|k| c.channels.iter().any(|n| n == *k))

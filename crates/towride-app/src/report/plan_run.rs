@@ -78,7 +78,7 @@ impl PlanRun {
     /// Records `case`, run into `out` with result `r` (`None`: not run).
     pub fn push(&mut self, case: &Case, out: &Path, r: Option<&RunResult>) {
         let s = r.map(|r| &r.summary);
-        let hitch = s.and_then(|s| s.channels.get("hitch_fx"));
+        let hitch = s.and_then(|s| s.channels.get(crate::scene::channels::HITCH_FX));
         let status = match s.map(|s| s.status) {
             None => "not_run",
             Some(RunStatus::Completed) => "completed",

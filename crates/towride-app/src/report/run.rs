@@ -4,6 +4,7 @@ use std::path::Path;
 
 use super::figure::{render, Figure, Panel, Style, Trace};
 use super::ReportError;
+use crate::scene::channels;
 use towride_mbs::model::run::Samples;
 
 /// Left/right pairs by the last part of a channel name: the colour index of the pair
@@ -63,44 +64,47 @@ pub fn run_panels(res: &Samples) -> Vec<Panel> {
         ..Panel::new(title, "time [s]", y)
     };
     let acc = "acceleration [m/s²]";
+    // The vehicles' sensors at the wheels and on the body: `acc_wheel_*`, `acc_body_*`.
+    let wheel_sensors = format!("{}wheel_", channels::ACC_PREFIX);
+    let body_sensors = format!("{}body_", channels::ACC_PREFIX);
     let panels = vec![
         panel(
             "hitch force on the car",
             "force [N]",
-            series(&|n| n == "hitch_fx" || n == "hitch_fz"),
+            series(&|n| n == channels::HITCH_FX || n == channels::HITCH_FZ),
         ),
-        panel("trailer box", acc, series(&|n| n == "trailer_ax")),
+        panel("trailer box", acc, series(&|n| n == channels::TRAILER_AX)),
         panel(
             "tyre normal forces",
             "force [N]",
-            series(&|n| n.starts_with("tyre_") && n.ends_with("_fz")),
+            series(&|n| channels::is_tyre(n, channels::TYRE_FZ)),
         ),
         panel(
             "crossbeam strain energy",
             "energy [J]",
-            series(&|n| n == "hitch_strain_energy"),
+            series(&|n| n == channels::HITCH_STRAIN_ENERGY),
         ),
         panel(
             "vertical accelerations at the wheels",
             acc,
-            series(&|n| n.starts_with("acc_wheel_") && n.ends_with("_z")),
+            series(&|n| n.starts_with(&wheel_sensors) && n.ends_with("_z")),
         ),
         panel(
             "vertical accelerations on the car body",
             acc,
-            series(&|n| n.starts_with("acc_body_") && n.ends_with("_z")),
+            series(&|n| n.starts_with(&body_sensors) && n.ends_with("_z")),
         ),
         panel(
             "vertical accelerations at the hitch and drawbar",
             acc,
             series(&|n| {
-                n.starts_with("acc_")
+                n.starts_with(channels::ACC_PREFIX)
                     && n.ends_with("_z")
-                    && !n.starts_with("acc_wheel_")
-                    && !n.starts_with("acc_body_")
+                    && !n.starts_with(&wheel_sensors)
+                    && !n.starts_with(&body_sensors)
             }),
         ),
-        panel("speed", "speed [m/s]", series(&|n| n == "speed")),
+        panel("speed", "speed [m/s]", series(&|n| n == channels::SPEED)),
     ];
     panels
         .into_iter()

@@ -116,22 +116,21 @@ pub fn inertia_box(mass: f64, inertia: &[[f64; 3]; 3]) -> ([f64; 3], [f64; 4]) {
 fn geometry(out: &mut String, sys: &System, x_range: (f64, f64)) {
     let m = &sys.model;
     // Markers something acts on: joints, force elements, tyres.
-    let mut used = vec![false; m.markers.len()];
+    let mut used = std::collections::HashSet::new();
     for j in &m.joints {
-        used[j.i] = true;
-        used[j.j] = true;
+        used.insert(j.i);
+        used.insert(j.j);
     }
     for f in &m.forces {
         let (i, j) = f.markers();
-        used[i] = true;
-        if let Some(j) = j {
-            used[j] = true;
-        }
+        used.insert(i);
+        used.extend(j);
     }
     for t in &m.tyres {
-        used[t.marker] = true;
+        used.insert(t.marker);
     }
-    let wheel_of = |b: usize| m.tyres.iter().any(|t| m.markers[t.marker].body == Some(b));
+    // Bodies are numbered as the system numbers them (their JSON index, `qo`, `nm`).
+    let wheel_of = |b: usize| m.tyres.iter().any(|t| sys.body_of(t.marker) == Some(b));
     out.push_str("{\"bodies\":[");
     for (b, body) in m.bodies.iter().enumerate() {
         if b > 0 {
@@ -173,11 +172,15 @@ fn geometry(out: &mut String, sys: &System, x_range: (f64, f64)) {
     }
     // Markers: body (-1 ground), position in body axes, the FE node it moves with.
     out.push_str("],\"markers\":[");
-    for (k, mk) in m.markers.iter().enumerate() {
-        if k > 0 {
+    for (n, (k, mk)) in m.each_marker().enumerate() {
+        if n > 0 {
             out.push(',');
         }
-        let _ = write!(out, "{{\"b\":{},\"p\":", mk.body.map_or(-1, |b| b as i64));
+        let _ = write!(
+            out,
+            "{{\"b\":{},\"p\":",
+            sys.body_of(k).map_or(-1, |b| b as i64)
+        );
         vec3(out, mk.position);
         let node = mk.node.and_then(|_| {
             let md = m.bodies[mk.body?].modal.as_ref()?;
@@ -187,7 +190,7 @@ fn geometry(out: &mut String, sys: &System, x_range: (f64, f64)) {
             out,
             ",\"node\":{},\"used\":{}}}",
             node.map_or(-1, |n| n as i64),
-            used[k]
+            used.contains(&k)
         );
     }
     // Force elements between two markers on different bodies: springs, dampers,
@@ -207,7 +210,8 @@ fn geometry(out: &mut String, sys: &System, x_range: (f64, f64)) {
             string(out, f.name());
             out.push_str(",\"kind\":");
             string(out, f.kind());
-            let _ = write!(out, ",\"i\":{i},\"j\":{j}}}");
+            // Markers by their index in the JSON's marker list.
+            let _ = write!(out, ",\"i\":{},\"j\":{}}}", i.index(), j.index());
         }
     }
     out.push_str("],\"tyres\":[");
@@ -219,7 +223,8 @@ fn geometry(out: &mut String, sys: &System, x_range: (f64, f64)) {
         let axes = m.markers[t.marker].axes;
         out.push_str("{\"name\":");
         string(out, &t.name);
-        let _ = write!(out, ",\"marker\":{},\"radius\":", t.marker);
+        // The marker by its index in the JSON's marker list.
+        let _ = write!(out, ",\"marker\":{},\"radius\":", t.marker.index());
         n6(out, p.r0);
         out.push_str(",\"width\":");
         n6(out, p.width);

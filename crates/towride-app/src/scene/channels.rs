@@ -23,6 +23,71 @@ use towride_mbs::model::desc::{
 };
 use towride_mbs::model::output::{channels_of, component_count};
 
+// The fixed channels' names, defined once: the library and the command line read the
+// channels by these.
+
+/// The car body's speed along its x [m/s].
+pub const SPEED: &str = "speed";
+/// The drawbar's force on the car along the car body's x [N].
+pub const HITCH_FX: &str = "hitch_fx";
+/// The drawbar's force on the car along the car body's y [N].
+pub const HITCH_FY: &str = "hitch_fy";
+/// The drawbar's force on the car along the car body's z [N].
+pub const HITCH_FZ: &str = "hitch_fz";
+/// The trailer box's acceleration along its x [m/s^2].
+pub const TRAILER_AX: &str = "trailer_ax";
+/// The crossbeam's strain energy [J].
+pub const HITCH_STRAIN_ENERGY: &str = "hitch_strain_energy";
+/// The ball's elastic displacement relative to the brackets along the hitch's x, y, z
+/// [m].
+pub const HITCH_DEFLECTION: [&str; 3] = [
+    "hitch_deflection_x",
+    "hitch_deflection_y",
+    "hitch_deflection_z",
+];
+/// Start of the crossbeam's modal coordinates, `hitch_eta_<k>`.
+pub const HITCH_ETA_PREFIX: &str = "hitch_eta_";
+/// Start of the acceleration sensors' channels, `acc_<sensor>_<axis>`.
+pub const ACC_PREFIX: &str = "acc_";
+/// Start of the tyres' channels, `tyre_<wheel>_<quantity>`.
+pub const TYRE_PREFIX: &str = "tyre_";
+/// The tyre quantity of the contact normal force [N].
+pub const TYRE_FZ: &str = "fz";
+/// The tyre quantity of contact: 1 in contact, 0 in flight.
+pub const TYRE_CONTACT: &str = "contact";
+
+/// The crossbeam's modal coordinate `k` (1..): `hitch_eta_<k>`.
+pub fn hitch_eta(k: usize) -> String {
+    format!("{HITCH_ETA_PREFIX}{k}")
+}
+
+/// An acceleration sensor's channel along `axis` (x, y or z): `acc_<sensor>_<axis>`.
+pub fn acc(sensor: &str, axis: &str) -> String {
+    format!("{ACC_PREFIX}{sensor}_{axis}")
+}
+
+/// A tyre's channel of `quantity` ([`TYRE_FZ`], [`TYRE_CONTACT`], ...):
+/// `tyre_<wheel>_<quantity>`.
+pub fn tyre(wheel: &str, quantity: &str) -> String {
+    format!("{TYRE_PREFIX}{wheel}_{quantity}")
+}
+
+/// True for a channel named like a tyre's channel of `quantity`.
+pub fn is_tyre(channel: &str, quantity: &str) -> bool {
+    channel.starts_with(TYRE_PREFIX)
+        && channel
+            .strip_suffix(quantity)
+            .is_some_and(|c| c.ends_with('_'))
+}
+
+/// The wheel of a tyre's channel of `quantity` (`tyre_<wheel>_<quantity>`).
+pub fn tyre_wheel<'a>(channel: &'a str, quantity: &str) -> Option<&'a str> {
+    channel
+        .strip_prefix(TYRE_PREFIX)?
+        .strip_suffix(quantity)?
+        .strip_suffix('_')
+}
+
 /// One channel: its fixed name and unit.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Channel {
@@ -45,31 +110,31 @@ pub fn standard(v: &Vehicle) -> (Vec<Output>, Vec<Channel>) {
     let h = &v.handles;
     let mut out = Vec::new();
     out.push(named(
-        "speed",
+        SPEED,
         Request::Marker {
-            marker: h.car_ref.index(),
+            marker: h.car_ref,
             quantity: MarkerQuantity::Velocity,
-            axes: Axes::Marker(h.car_ref.index()),
+            axes: Axes::Marker(h.car_ref),
         },
-        &["speed", "", ""],
+        &[SPEED, "", ""],
         1.0,
     ));
-    let hitch = ["hitch_fx", "hitch_fy", "hitch_fz"];
+    let hitch = [HITCH_FX, HITCH_FY, HITCH_FZ];
     match h.ball {
         Some((Link::Joint(joint), _)) => out.push(named(
             "hitch_f",
             Request::Joint {
-                joint: joint.index(),
+                joint,
                 quantity: JointQuantity::Force,
-                axes: Axes::Marker(h.car_ref.index()),
+                axes: Axes::Marker(h.car_ref),
             },
             &hitch,
             1.0,
         )),
-        Some((Link::Bushing(element), _)) => out.push(named(
+        Some((Link::Bushing(element, _), _)) => out.push(named(
             "hitch_f",
             Request::Element {
-                element: element.index(),
+                element,
                 quantity: ElementQuantity::Force,
             },
             &[hitch[0], hitch[1], hitch[2], "", "", ""],
@@ -81,11 +146,11 @@ pub fn standard(v: &Vehicle) -> (Vec<Output>, Vec<Channel>) {
         out.push(named(
             "trailer_a",
             Request::Marker {
-                marker: t.index(),
+                marker: t,
                 quantity: MarkerQuantity::Acceleration,
-                axes: Axes::Marker(t.index()),
+                axes: Axes::Marker(t),
             },
-            &["trailer_ax", "", ""],
+            &[TRAILER_AX, "", ""],
             1.0,
         ));
     }
@@ -93,21 +158,15 @@ pub fn standard(v: &Vehicle) -> (Vec<Output>, Vec<Channel>) {
         let names: Vec<String> = ["x", "y", "z"]
             .iter()
             .zip(s.axes)
-            .map(|(a, on)| {
-                if on {
-                    format!("acc_{}_{a}", s.name)
-                } else {
-                    String::new()
-                }
-            })
+            .map(|(a, on)| if on { acc(&s.name, a) } else { String::new() })
             .collect();
         let refs: Vec<&str> = names.iter().map(|s| s.as_str()).collect();
         out.push(named(
-            &format!("acc_{}", s.name),
+            &format!("{ACC_PREFIX}{}", s.name),
             Request::Marker {
-                marker: s.marker.index(),
+                marker: s.marker,
                 quantity: MarkerQuantity::Acceleration,
-                axes: Axes::Marker(s.marker.index()),
+                axes: Axes::Marker(s.marker),
             },
             &refs,
             1.0,
@@ -115,14 +174,14 @@ pub fn standard(v: &Vehicle) -> (Vec<Output>, Vec<Channel>) {
     }
     for w in &h.wheels {
         for (q, suffix) in [
-            (TyreQuantity::NormalForce, "fz"),
-            (TyreQuantity::Contact, "contact"),
+            (TyreQuantity::NormalForce, TYRE_FZ),
+            (TyreQuantity::Contact, TYRE_CONTACT),
         ] {
-            let name = format!("tyre_{}_{suffix}", w.name);
+            let name = tyre(&w.name, suffix);
             out.push(named(
                 &name,
                 Request::Tyre {
-                    tyre: w.tyre.index(),
+                    tyre: w.tyre,
                     quantity: q,
                 },
                 &[name.as_str()],
@@ -131,28 +190,28 @@ pub fn standard(v: &Vehicle) -> (Vec<Output>, Vec<Channel>) {
         }
     }
     if let Some(hh) = &h.hitch {
-        let names: Vec<String> = (1..=hh.modes).map(|k| format!("hitch_eta_{k}")).collect();
+        let names: Vec<String> = (1..=hh.modes).map(hitch_eta).collect();
         let refs: Vec<&str> = names.iter().map(|s| s.as_str()).collect();
         out.push(named(
             "hitch_eta",
             Request::Modal {
-                body: hh.body.index(),
+                body: hh.body,
                 quantity: ModalQuantity::Coordinates,
             },
             &refs,
             1.0,
         ));
         out.push(named(
-            "hitch_strain_energy",
+            HITCH_STRAIN_ENERGY,
             Request::Modal {
-                body: hh.body.index(),
+                body: hh.body,
                 quantity: ModalQuantity::StrainEnergy,
             },
-            &["hitch_strain_energy"],
+            &[HITCH_STRAIN_ENERGY],
             1.0,
         ));
         // The ball's elastic displacement relative to the brackets.
-        if let Some(md) = &v.model.bodies[hh.body.index()].modal {
+        if let Some(md) = &v.model.bodies[hh.body].modal {
             let reference: Vec<usize> = md
                 .data
                 .nodes
@@ -164,17 +223,13 @@ pub fn standard(v: &Vehicle) -> (Vec<Output>, Vec<Channel>) {
             out.push(named(
                 "hitch_deflection",
                 Request::Modal {
-                    body: hh.body.index(),
+                    body: hh.body,
                     quantity: ModalQuantity::Deflection {
                         node: hh.ball_node,
                         reference,
                     },
                 },
-                &[
-                    "hitch_deflection_x",
-                    "hitch_deflection_y",
-                    "hitch_deflection_z",
-                ],
+                &HITCH_DEFLECTION,
                 1.0,
             ));
         }

@@ -55,7 +55,7 @@ use crate::vehicle::sensors::{self, SensorSpec};
 use crate::vehicle::{self, build::Builder, Options, Vehicle};
 use towride_mbs::flex::feedback::RunModes;
 use towride_mbs::input::Origin;
-use towride_mbs::input::{InputError, Loader, Override, Source};
+use towride_mbs::input::{InputError, InputErrorKind, Loader, Override, Source};
 use towride_mbs::model::builder::ModelBuilder;
 use towride_mbs::model::elements::JointBushing;
 use towride_mbs::model::{Model, System};
@@ -344,7 +344,7 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
         )?,
     };
     towride_mbs::input::bounds::budget::check(duration, sample_rate, 0)
-        .map_err(|m| src.error(&path!["run", "sample_rate_hz"], m))?;
+        .map_err(|e| src.error(&path!["run", "sample_rate_hz"], e.to_string()))?;
     // Which [solver] keys the file itself sets (the parsed options carry defaults).
     let raw: Option<toml::Table> = src.text().parse().ok();
     let solver_sets = |key: &str| {
@@ -425,15 +425,13 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
     let mut v = vehicle::load(&vehicle_file, &opts, &loader).map_err(|e| {
         // A variant the hitch's flexible body lacks is the scene's mistake when the scene
         // chose it: blame `scene.hitch_variant`, not the flexible-body file.
-        match (o.hitch_variant, f.scene.hitch_variant) {
-            (None, Some(n))
-                if e.field == "variant" && e.message.starts_with(&format!("no variant {n}:")) =>
-            {
-                src.error(
+        match (o.hitch_variant, f.scene.hitch_variant, &e.kind) {
+            (None, Some(n), InputErrorKind::NoVariant { number, .. }) if *number == n => src
+                .error(
                     &path!["scene", "hitch_variant"],
                     format!("{} ({})", e.message, e.file.display()),
                 )
-            }
+                .with_kind(e.kind.clone()),
             _ => e,
         }
     })?;

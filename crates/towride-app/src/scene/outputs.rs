@@ -35,7 +35,9 @@ use serde::Serialize;
 use super::Channel;
 use crate::vehicle::Vehicle;
 use towride_mbs::input::{InputError, Source};
-use towride_mbs::model::builder::{Link, MarkerHandle, ModelBuilder};
+use towride_mbs::model::builder::{
+    BodyHandle, ElementHandle, Link, MarkerHandle, ModelBuilder, TyreHandle,
+};
 use towride_mbs::model::desc::{
     BodyQuantity, ElementQuantity, LinePart, Output, RelativeQuantity, Request, TyreQuantity,
 };
@@ -66,24 +68,21 @@ pub struct Quantity {
 #[derive(Clone, Debug)]
 enum Kind {
     /// Wheel (index into the handles' wheels) against the body above it.
-    Travel {
-        wheel: usize,
-        velocity: bool,
-    },
+    Travel { wheel: usize, velocity: bool },
     Line {
-        element: usize,
+        element: ElementHandle,
         part: LinePart,
     },
     Tyre {
-        tyre: usize,
+        tyre: TyreHandle,
         quantity: TyreQuantity,
     },
     Body {
-        body: usize,
+        body: BodyHandle,
         quantity: BodyQuantity,
     },
     Element {
-        element: usize,
+        element: ElementHandle,
         quantity: ElementQuantity,
     },
 }
@@ -192,23 +191,23 @@ pub fn quantities(v: &Vehicle) -> Vec<Quantity> {
             ),
         ] {
             add(
-                format!("tyre_{n}_{key}"),
+                super::channels::tyre(n, key),
                 unit,
                 format!("wheel {n}: {what}"),
                 Kind::Tyre {
-                    tyre: w.tyre.index(),
+                    tyre: w.tyre,
                     quantity: q,
                 },
             );
         }
     }
-    if let Some((Link::Bushing(e), _)) = h.ball {
+    if let Some((Link::Bushing(e, _), _)) = h.ball {
         add(
             "hitch_ball_deflection".into(),
             "m, rad",
             "ball coupling bushing: deflection per direction (one channel each)".into(),
             Kind::Element {
-                element: e.index(),
+                element: e,
                 quantity: ElementQuantity::Deflection,
             },
         );
@@ -246,7 +245,7 @@ pub fn quantities(v: &Vehicle) -> Vec<Quantity> {
                 unit,
                 format!("{who}: {what}"),
                 Kind::Body {
-                    body: b.index(),
+                    body: b,
                     quantity: q,
                 },
             );
@@ -257,7 +256,7 @@ pub fn quantities(v: &Vehicle) -> Vec<Quantity> {
 
 /// The spring-damper line element of wheel `w` that holds `part`: `spring_<w>` for the
 /// spring, `damper_<w>` for the damper, whichever has it for a stop.
-fn line_with<'a>(m: &'a Model, w: &str, part: LinePart) -> Option<(usize, &'a str)> {
+fn line_with<'a>(m: &'a Model, w: &str, part: LinePart) -> Option<(ElementHandle, &'a str)> {
     let cands: &[&str] = match part {
         LinePart::Spring => &["spring"],
         LinePart::Damper => &["damper"],
@@ -265,7 +264,7 @@ fn line_with<'a>(m: &'a Model, w: &str, part: LinePart) -> Option<(usize, &'a st
     };
     for c in cands {
         let name = format!("{c}_{w}");
-        let Some(k) = m.forces.iter().position(|f| f.name() == name) else {
+        let Some(k) = m.element_by_name(&name) else {
             continue;
         };
         let Force::Spring(s) = &m.forces[k] else {
@@ -285,20 +284,20 @@ fn line_with<'a>(m: &'a Model, w: &str, part: LinePart) -> Option<(usize, &'a st
 
 /// The sprung body wheel `k` is measured against: the car body for the car's wheels
 /// (their `ride_<w>` markers), the trailer box for the trailer's.
-fn reference_body(v: &Vehicle, k: usize) -> Option<usize> {
+fn reference_body(v: &Vehicle, k: usize) -> Option<BodyHandle> {
     let w = &v.handles.wheels[k];
     if v.handles.ride.iter().any(|(n, _)| *n == w.name) {
-        return Some(v.handles.car_body.index());
+        return Some(v.handles.car_body);
     }
     let tb = v.handles.trailer_body?;
     // A trailer wheel: built in the trailer's subsystem (placed where the trailer is),
     // whatever it is called.
-    let place = v.handles.body_place.get(w.body.index())?;
-    (Some(*place) == v.handles.trailer_place).then_some(tb.index())
+    let place = v.handles.place_of(w.body)?;
+    (Some(place) == v.handles.trailer_place).then_some(tb)
 }
 
 /// Initial world position of marker `k` and its world axes.
-fn initial_frame(m: &Model, k: usize) -> ([f64; 3], [[f64; 3]; 3]) {
+fn initial_frame(m: &Model, k: MarkerHandle) -> ([f64; 3], [[f64; 3]; 3]) {
     let mk = &m.markers[k];
     match mk.body {
         None => (mk.position, mk.axes),
@@ -314,23 +313,23 @@ fn initial_frame(m: &Model, k: usize) -> ([f64; 3], [[f64; 3]; 3]) {
 
 /// The marker above wheel `k` on its sprung body: the `ride_<w>` marker, or one added at
 /// the wheel centre's design position on the trailer box (body axes).
-fn reference_marker(v: &mut Vehicle, k: usize) -> Option<usize> {
+fn reference_marker(v: &mut Vehicle, k: usize) -> Option<MarkerHandle> {
     let w = v.handles.wheels[k].clone();
     if let Some((_, mk)) = v.handles.ride.iter().find(|(n, _)| *n == w.name) {
-        return Some(mk.index());
+        return Some(*mk);
     }
     let body = reference_body(v, k)?;
     let name = format!("ride_{}", w.name);
-    if let Some(i) = v.model.marker_index(&name) {
+    if let Some(i) = v.model.marker_by_name(&name) {
         return Some(i);
     }
-    let (p, _) = initial_frame(&v.model, w.centre.index());
+    let (p, _) = initial_frame(&v.model, w.centre);
     let axes = rot(&v.model.bodies[body].orientation);
     let mut b = ModelBuilder::from_model(std::mem::take(&mut v.model));
     let body_handle = v.handles.trailer_body?;
-    let made: Option<MarkerHandle> = b.world_marker(&name, Some(body_handle), p, axes).ok();
+    let made = b.world_marker(&name, Some(body_handle), p, axes).ok();
     v.model = b.finish();
-    made.map(|m| m.index())
+    made
 }
 
 /// The output of named quantity `q` (adds a reference marker when one is needed).
@@ -338,7 +337,7 @@ fn output_for(v: &mut Vehicle, q: &Quantity, name: &str) -> Option<Output> {
     let request = match q.kind {
         Kind::Travel { wheel, velocity } => {
             let j = reference_marker(v, wheel)?;
-            let i = v.handles.wheels[wheel].centre.index();
+            let i = v.handles.wheels[wheel].centre;
             let (pi, _) = initial_frame(&v.model, i);
             let (pj, aj) = initial_frame(&v.model, j);
             Request::Relative {
@@ -411,9 +410,7 @@ pub fn requested(
         } else {
             let joints = v
                 .model
-                .joints
-                .iter()
-                .enumerate()
+                .each_joint()
                 .map(|(i, j)| (j.name.clone(), i))
                 .collect();
             output_of(src, &v.model, k, o, &joints)?

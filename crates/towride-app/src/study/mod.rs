@@ -10,6 +10,7 @@ pub mod stress;
 
 use crate::error::{Error, Result};
 use crate::job::RunResult;
+use crate::scene::channels::{ACC_PREFIX, HITCH_FX};
 use crate::signal::butterworth::Butterworth;
 
 /// RMS of the difference of two equally sampled signals, relative to the RMS of `b`.
@@ -55,13 +56,13 @@ impl Reference {
     /// The key outputs of the reference run `r`.
     pub fn of(r: &RunResult) -> Reference {
         Reference {
-            peak: r.peak("hitch_fx").unwrap_or(f64::NAN),
-            hitch: r.channel("hitch_fx").unwrap_or_default(),
+            peak: r.peak(HITCH_FX).unwrap_or(f64::NAN),
+            hitch: r.channel(HITCH_FX).unwrap_or_default(),
             sensors: r
                 .samples
                 .channels
                 .iter()
-                .filter(|c| c.name.starts_with("acc_"))
+                .filter(|c| c.name.starts_with(ACC_PREFIX))
                 .map(|c| (c.name.clone(), r.channel(&c.name).unwrap_or_default()))
                 .collect(),
             band: None,
@@ -104,8 +105,8 @@ impl Reference {
 
     /// Peak, peak error, hitch RMS error and mean sensor RMS error of run `r`.
     pub fn errors(&self, r: &RunResult) -> Errors {
-        let peak = r.peak("hitch_fx").unwrap_or(f64::NAN);
-        let hitch_rms = rel_rms(&r.channel("hitch_fx").unwrap_or_default(), &self.hitch);
+        let peak = r.peak(HITCH_FX).unwrap_or(f64::NAN);
+        let hitch_rms = rel_rms(&r.channel(HITCH_FX).unwrap_or_default(), &self.hitch);
         let sensors: Vec<f64> = self
             .sensors
             .iter()

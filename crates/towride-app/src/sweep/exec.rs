@@ -17,7 +17,7 @@ use rayon::prelude::*;
 use super::{Case, Sweep};
 use crate::error::{Error, Result};
 use crate::job::{Job, RunResult};
-use crate::scene::SceneError;
+use crate::scene::{channels, SceneError};
 use towride_mbs::input::Loader;
 use towride_mbs::progress::Progress;
 
@@ -169,27 +169,24 @@ pub fn figures(r: &RunResult) -> Figures {
         out.push(("steps".into(), s.solver.steps as f64));
         return out;
     }
-    for n in ["hitch_fx", "hitch_fy", "hitch_fz"] {
+    for n in [channels::HITCH_FX, channels::HITCH_FY, channels::HITCH_FZ] {
         if let Some(c) = s.channels.get(n) {
             out.push((format!("{n} peak [N]"), c.peak));
         }
     }
     for (name, c) in &s.channels {
-        if name.starts_with("acc_") || name == "trailer_ax" {
+        if name.starts_with(channels::ACC_PREFIX) || name == channels::TRAILER_AX {
             out.push((format!("{name} peak [m/s^2]"), c.peak.abs()));
         }
     }
-    if let (Some(x), Some(y), Some(z)) = (
-        r.channel("hitch_deflection_x"),
-        r.channel("hitch_deflection_y"),
-        r.channel("hitch_deflection_z"),
-    ) {
+    let [dx, dy, dz] = channels::HITCH_DEFLECTION;
+    if let (Some(x), Some(y), Some(z)) = (r.channel(dx), r.channel(dy), r.channel(dz)) {
         let d = (0..x.len()).fold(0.0f64, |m, k| {
             m.max((x[k] * x[k] + y[k] * y[k] + z[k] * z[k]).sqrt())
         });
         out.push(("crossbeam peak deflection [m]".into(), d));
     }
-    if let Some(c) = s.channels.get("hitch_strain_energy") {
+    if let Some(c) = s.channels.get(channels::HITCH_STRAIN_ENERGY) {
         out.push(("crossbeam peak strain energy [J]".into(), c.peak.abs()));
     }
     out.push(("steps".into(), s.solver.steps as f64));

@@ -14,6 +14,7 @@ use serde::Serialize;
 
 use crate::report::figure::{render, Figure, Panel, Style, Trace, PALETTE};
 use crate::report::html::string;
+use crate::scene::channels;
 use crate::sweep::cases::{case_dir, cases_dir};
 use crate::Error;
 use towride_mbs::input::csv_table;
@@ -160,15 +161,15 @@ pub fn x_parameter(t: &Table) -> Option<usize> {
 /// The figures the PNG shows: the hitch force, trailer and crossbeam peaks of a vehicle
 /// sweep, else the first four that differ between cases (run wall time aside).
 pub fn key_figures(t: &Table) -> Vec<usize> {
-    const KEY: [&str; 6] = [
-        "hitch_fx peak [N]",
-        "hitch_fz peak [N]",
-        "trailer_ax peak [m/s^2]",
-        "acc_hitch_z peak [m/s^2]",
-        "crossbeam peak deflection [m]",
-        "crossbeam peak strain energy [J]",
+    let key = [
+        format!("{} peak [N]", channels::HITCH_FX),
+        format!("{} peak [N]", channels::HITCH_FZ),
+        format!("{} peak [m/s^2]", channels::TRAILER_AX),
+        format!("{} peak [m/s^2]", channels::acc("hitch", "z")),
+        "crossbeam peak deflection [m]".to_string(),
+        "crossbeam peak strain energy [J]".to_string(),
     ];
-    let some: Vec<usize> = KEY
+    let some: Vec<usize> = key
         .iter()
         .filter_map(|k| t.figures.iter().position(|f| f == k))
         .collect();

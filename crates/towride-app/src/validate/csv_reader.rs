@@ -80,6 +80,7 @@ pub(super) fn err(
         column,
         field: field.to_string(),
         message: msg,
+        kind: Default::default(),
     }
 }
 

@@ -21,6 +21,7 @@ use super::measurement::flat_top_range;
 use super::timebase::TimeBase;
 use super::units::{time_factor, SpeedUnit, Unit};
 use super::G_MPS2;
+use crate::scene::channels;
 
 /// A vertical channel whose mean at rest lies this close to 1 g reads gravity [g].
 const GRAVITY_TOL_G: f64 = 0.1;
@@ -310,7 +311,7 @@ fn map_channel(name: &str, sensors: &[(String, [bool; 3])]) -> Result<String, St
         })
         .min_by_key(|(s, _)| s.split('_').count());
     match best {
-        Some((s, _)) => Ok(format!("acc_{s}_{}", ["x", "y", "z"][axis])),
+        Some((s, _)) => Ok(channels::acc(s, ["x", "y", "z"][axis])),
         None => Err(format!(
             "no sensor of the scene measures {} with {need:?} in its name",
             ["x", "y", "z"][axis]

@@ -20,6 +20,7 @@ use std::collections::BTreeMap;
 use serde::Serialize;
 
 use super::descriptor::PassageSpec;
+pub use crate::error::{OnsetError, PassageError};
 use crate::signal::butterworth::interp;
 
 /// The front axle's envelope peak must stand this many times above its median.
@@ -226,12 +227,12 @@ pub fn onset(
     hi: f64,
     noise: &[f64],
     snr_min: f64,
-) -> Result<Onset, String> {
+) -> Result<Onset, OnsetError> {
     let idx: Vec<usize> = (0..env.len())
         .filter(|&k| t[k] >= lo && t[k] <= hi)
         .collect();
     let (Some(&first), Some(_)) = (idx.first(), idx.last()) else {
-        return Err(format!("no samples between {lo:.3} s and {hi:.3} s"));
+        return Err(OnsetError::EmptyWindow { lo, hi });
     };
     let peak = idx
         .iter()
@@ -241,10 +242,13 @@ pub fn onset(
     let n0 = median(noise).max(1e-300);
     let snr = env[peak] / n0;
     if snr.is_nan() || snr < snr_min {
-        return Err(format!(
-            "the largest event ({:.3} m/s^2 at {:.3} s) stands only {snr:.1} times above the noise ({n0:.3} m/s^2); {snr_min} needed",
-            env[peak], t[peak]
-        ));
+        return Err(OnsetError::BelowNoise {
+            peak: env[peak],
+            peak_s: t[peak],
+            snr,
+            noise: n0,
+            snr_min,
+        });
     }
     let thr = (4.0 * n0).max(0.05 * env[peak]);
     let mut above = peak;
@@ -258,10 +262,10 @@ pub fn onset(
         }
     }
     if k == first && env[first] > thr {
-        return Err(format!(
-            "the event at {:.3} s runs into the start of the search window ({lo:.3} s)",
-            t[peak]
-        ));
+        return Err(OnsetError::RunsIntoWindow {
+            peak_s: t[peak],
+            lo,
+        });
     }
     let time_s = if above > 0 && env[above] > env[above - 1] {
         let a = above - 1;
@@ -310,10 +314,12 @@ pub fn front_onset(
     channels: &BTreeMap<String, Vec<f64>>,
     front: &[String],
     window: Option<[f64; 2]>,
-) -> Result<Onset, String> {
+) -> Result<Onset, OnsetError> {
     let ch = slices(channels, front);
     if ch.is_empty() || t.len() < 10 {
-        return Err(format!("no front-axle unsprung channel among {front:?}"));
+        return Err(OnsetError::NoChannel {
+            front: front.to_vec(),
+        });
     }
     let dt = (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64;
     let env = envelope(&ch, dt);
@@ -331,12 +337,12 @@ pub fn detect(
     axles: (Option<f64>, Option<f64>),
     window: Option<[f64; 2]>,
     notes: &mut Vec<String>,
-) -> Result<Passage, String> {
-    let front = front_onset(t, channels, &sets.front, window).map_err(|e| {
-        format!(
-            "no obstacle passage visible in the front unsprung channels {:?}: {e}",
-            sets.front
-        )
+) -> Result<Passage, PassageError> {
+    let front = front_onset(t, channels, &sets.front, window).map_err(|onset| {
+        PassageError::NotVisible {
+            front: sets.front.clone(),
+            onset,
+        }
     })?;
     let dt = (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64;
     let x0 = track.position(front.time_s);

@@ -18,6 +18,7 @@ use std::path::{Path, PathBuf};
 use super::descriptor::{AcqFilter, Unit};
 use super::filter::acquire;
 use super::Simulator;
+use crate::scene::channels::ACC_PREFIX;
 
 /// The documented sensor model; the defaults are docs/validation.md's values (37 ms
 /// trigger delay, speedometer +3 %, gain +5 %, 0.05 m/s^2 noise).
@@ -185,7 +186,7 @@ pub fn make_synthetic(
             .map_or(s.gain_error_pct, |c| c.1);
         1.0 + pct / 100.0
     };
-    let column = |n: &str| n.strip_prefix("acc_").unwrap_or(n).to_string();
+    let column = |n: &str| n.strip_prefix(ACC_PREFIX).unwrap_or(n).to_string();
     let injected = format!(
         "trigger delay {} ms, speedometer +{} %, gain error +{} %, noise {} m/s^2 RMS, foil jitter {} ms RMS, {}th-order {} Hz Butterworth, {} Hz, seed {}",
         s.trigger_delay_s * 1e3, s.speed_error_pct, s.gain_error_pct, s.noise_rms_mps2,

@@ -8,6 +8,7 @@ use std::path::Path;
 use super::ValidateError;
 use super::{SimChannels, Simulator};
 use crate::job::Job;
+use crate::scene::channels::ACC_PREFIX;
 use crate::scene::Changes;
 use towride_mbs::input::Loader;
 use towride_mbs::progress::Silent;
@@ -53,7 +54,7 @@ impl Simulator for VehicleSimulator {
             .channels
             .iter()
             .enumerate()
-            .filter(|(_, ch)| ch.name.starts_with("acc_"))
+            .filter(|(_, ch)| ch.name.starts_with(ACC_PREFIX))
             .map(|(c, ch)| (ch.name.clone(), res.rows.iter().map(|r| r[c]).collect()))
             .collect();
         Ok(SimChannels {
@@ -80,7 +81,7 @@ impl Simulator for VehicleSimulator {
                 .wheels
                 .iter()
                 .filter(|w| pair.contains(&w.name.as_str()))
-                .map(|w| m.bodies[w.body.index()].position[0])
+                .map(|w| m.bodies[w.body].position[0])
                 .collect();
             (xs.len() == 2).then(|| 0.5 * (xs[0] + xs[1]))
         };

@@ -387,7 +387,7 @@ pub(crate) fn finish(
         + handles
             .wheels
             .iter()
-            .map(|w| wheel::tyre_own_mass(&model.tyres[w.tyre.index()].tyre))
+            .map(|w| wheel::tyre_own_mass(&model.tyres[w.tyre].tyre))
             .sum::<f64>();
     Vehicle {
         model,
@@ -405,10 +405,7 @@ fn masses(m: &Model, place: &Placement, axles: &[&Vec<wheel::WheelHandle>]) -> V
         .map(|b| (b.mass, sub(&b.position, &place.translation)))
         .collect();
     for w in axles.iter().flat_map(|a| a.iter()) {
-        parts.push((
-            wheel::tyre_own_mass(&m.tyres[w.tyre.index()].tyre),
-            w.design_centre,
-        ));
+        parts.push((wheel::tyre_own_mass(&m.tyres[w.tyre].tyre), w.design_centre));
     }
     parts
 }

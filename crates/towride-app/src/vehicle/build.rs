@@ -67,6 +67,7 @@ impl Builder {
             column: None,
             field,
             message,
+            kind: Default::default(),
         }
     }
 
@@ -121,16 +122,23 @@ impl Builder {
         preload: [f64; 6],
     ) -> Result<ElementHandle, InputError> {
         self.mb
-            .bushing(BushingLine {
-                name: name.into(),
-                body_i: bi,
-                body_j: bj,
-                point: p,
-                axes: *axes,
-                stiffness: laws.stiffness.clone(),
-                damping: laws.damping.clone(),
-                preload,
-            })
+            .bushing(bushing_line(name, bi, bj, p, axes, laws, preload))
+            .map_err(|e| self.refused(e))
+    }
+
+    /// A bushing without preload linking two bodies as a joint would (a mount that is a
+    /// bushing or a fixed joint), as the [`Link`] to pin to a modal node.
+    pub fn bushing_link(
+        &mut self,
+        name: &str,
+        bi: Option<BodyHandle>,
+        bj: Option<BodyHandle>,
+        p: V,
+        axes: &Axes,
+        laws: &BushingLaws,
+    ) -> Result<Link, InputError> {
+        self.mb
+            .bushing_link(bushing_line(name, bi, bj, p, axes, laws, [0.0; 6]))
             .map_err(|e| self.refused(e))
     }
 
@@ -159,5 +167,27 @@ impl Builder {
                 damper,
             })
             .map_err(|e| self.refused(e))
+    }
+}
+
+/// The bushing a template asks for, in the model builder's terms.
+fn bushing_line(
+    name: &str,
+    bi: Option<BodyHandle>,
+    bj: Option<BodyHandle>,
+    p: V,
+    axes: &Axes,
+    laws: &BushingLaws,
+    preload: [f64; 6],
+) -> BushingLine {
+    BushingLine {
+        name: name.into(),
+        body_i: bi,
+        body_j: bj,
+        point: p,
+        axes: *axes,
+        stiffness: laws.stiffness.clone(),
+        damping: laws.damping.clone(),
+        preload,
     }
 }

@@ -66,7 +66,7 @@ pub fn finish(b: &mut Builder, c: Corner, load: f64) -> Result<CornerDesign, Inp
             (rate, Some(free))
         }
         Preloaded::Torsion { force, rate } => {
-            if let Force::Bushing(bu) = &mut b.model_mut().forces[force.index()] {
+            if let Force::Bushing(bu) = &mut b.model_mut().forces[force] {
                 bu.preload[5] = p;
             }
             (rate, None)

@@ -60,11 +60,11 @@ pub fn build(
                 format!("no wheel '{name}' (the car has {})", known.join(", ")),
             )
         })?;
-        driven.push((w.centre.index(), w.carrier_centre.index()));
+        driven.push((w.centre, w.carrier_centre));
     }
     Ok(SpeedControl {
         name: "driveline".into(),
-        sensor: sensor.index(),
+        sensor,
         target: TimeFunction::Constant { value: speed },
         kp,
         ki,

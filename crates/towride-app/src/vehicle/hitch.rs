@@ -253,15 +253,7 @@ pub fn build(
                 )
             })?
         } else {
-            Link::Bushing(b.bushing(
-                &name,
-                Some(hb),
-                Some(body),
-                p,
-                &bushing.axes,
-                &bushing,
-                [0.0; 6],
-            )?)
+            b.bushing_link(&name, Some(hb), Some(body), p, &bushing.axes, &bushing)?
         };
         modal_body::pin(b, link, true, n);
     }

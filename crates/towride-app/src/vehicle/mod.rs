@@ -164,6 +164,14 @@ pub struct Handles {
     pub body_place: Vec<Placement>,
 }
 
+impl Handles {
+    /// The placement of body `b`'s subsystem.
+    pub fn place_of(&self, b: BodyHandle) -> Option<Placement> {
+        // `body_place` is a table in the model's body order.
+        self.body_place.get(b.index()).copied()
+    }
+}
+
 /// What the design statics found (no solver involved).
 #[derive(Clone, Debug, Serialize)]
 pub struct Design {

@@ -12,7 +12,7 @@ use towride_mbs::flex::SelectionIn;
 use towride_mbs::flex::{FlexBody, FlexError, Mesh, ModalData, Options, Rule};
 use towride_mbs::input::{InputError, Seg, Source};
 use towride_mbs::model::builder::BodyHandle;
-use towride_mbs::model::desc::{Coupling, Modal};
+use towride_mbs::model::desc::{Coupling, Modal, TwoMarkers};
 use towride_mbs::model::math::add;
 
 /// The selected modes of the FE model `fe` (`variant`, None for the base sections); its
@@ -134,13 +134,13 @@ pub fn add_body(
         inertia: data.inertia_com_kg_m2,
     };
     let k = b.body(name, &mass)?;
-    b.model_mut().bodies[k.index()].modal = Some(Box::new(Modal { data, coupling }));
+    b.model_mut().bodies[k].modal = Some(Box::new(Modal { data, coupling }));
     Ok(k)
 }
 
 /// Position of node `n` of the modal body `body` in subsystem coordinates.
 pub fn node_position(b: &Builder, body: BodyHandle, origin: V, n: usize) -> V {
-    let data = &b.model().bodies[body.index()]
+    let data = &b.model().bodies[body]
         .modal
         .as_ref()
         .expect("a modal body")
@@ -151,18 +151,6 @@ pub fn node_position(b: &Builder, body: BodyHandle, origin: V, n: usize) -> V {
 /// Moves the modal body's marker of `link` (its I marker when `on_i`, else its J marker)
 /// onto node `n`, so the joint or bushing acts there and follows the node's deformation.
 pub fn pin(b: &mut Builder, link: Link, on_i: bool, n: usize) {
-    let m = b.model();
-    let (i, j) = match link {
-        Link::Joint(k) => {
-            let jt = &m.joints[k.index()];
-            (jt.i, Some(jt.j))
-        }
-        Link::Bushing(k) => m.forces[k.index()].markers(),
-    };
-    let marker = if on_i {
-        i
-    } else {
-        j.expect("a link has two markers")
-    };
-    b.model_mut().markers[marker].node = Some(n);
+    let TwoMarkers { i, j } = link.markers(b.model());
+    b.mb.pin_to_node(if on_i { i } else { j }, n);
 }

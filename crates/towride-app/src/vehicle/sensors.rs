@@ -85,18 +85,17 @@ pub fn add(
             return Err(src.error(&at("axes"), "name at least one axis"));
         }
         let name = format!("sensor_{}", s.name);
-        let place = h.body_place[body.index()];
+        let place = h
+            .place_of(body)
+            .expect("the bodies named in the handles are placed");
         let marker = match (&s.node, &s.position_m) {
             (Some(node), None) => {
-                let modal = b.model().bodies[body.index()]
-                    .modal
-                    .as_ref()
-                    .ok_or_else(|| {
-                        src.error(
-                            &at("node"),
-                            format!("body '{}' is rigid: give position_m", s.body),
-                        )
-                    })?;
+                let modal = b.model().bodies[body].modal.as_ref().ok_or_else(|| {
+                    src.error(
+                        &at("node"),
+                        format!("body '{}' is rigid: give position_m", s.body),
+                    )
+                })?;
                 let n = modal
                     .data
                     .nodes
@@ -109,8 +108,7 @@ pub fn add(
                 let cm = modal.data.com_m;
                 // Node position relative to the body's centre of mass, in world axes.
                 let rel = place.vector(towride_mbs::model::math::sub(&pos, &cm));
-                let world =
-                    towride_mbs::model::math::add(&b.model().bodies[body.index()].position, &rel);
+                let world = towride_mbs::model::math::add(&b.model().bodies[body].position, &rel);
                 let k =
                     b.mb.world_marker(&name, Some(body), world, place.rotation)
                         .map_err(|e| src.locate(&at("name"), e.into_field()))?;

@@ -8,7 +8,7 @@ use std::path::Path;
 
 use serde::Deserialize;
 
-use super::build::{Builder, Link};
+use super::build::Builder;
 use super::geom::{mirror, norm, V, Z_ALONG_Y};
 use super::modal_body;
 use super::props::{at, point, BushingLaws, BushingProps, Mass, MassProps};
@@ -186,15 +186,7 @@ pub fn join(
             }
             Mount::Bushing(laws) => {
                 let laws = laws.side(k == 1);
-                Link::Bushing(b.bushing(
-                    &name,
-                    Some(body),
-                    Some(arms[k]),
-                    p,
-                    &laws.axes,
-                    &laws,
-                    [0.0; 6],
-                )?)
+                b.bushing_link(&name, Some(body), Some(arms[k]), p, &laws.axes, &laws)?
             }
         };
         modal_body::pin(b, link, true, n);

@@ -139,12 +139,12 @@ pub fn set_speed(model: &mut Model, wheels: &[WheelHandle], speed: f64) {
         body.angular_velocity = [0.0; 3];
     }
     for w in wheels {
-        let p = model.tyres[w.tyre.index()].tyre.params().clone();
+        let p = model.tyres[w.tyre].tyre.params().clone();
         let rho = p.r0 - w.design_centre[2];
         let mut omega = speed / p.r0;
         for _ in 0..50 {
             omega = speed / p.rolling_radius(rho, omega);
         }
-        model.bodies[w.body.index()].angular_velocity = [0.0, omega, 0.0];
+        model.bodies[w.body].angular_velocity = [0.0, omega, 0.0];
     }
 }

@@ -13,7 +13,7 @@ use super::input::{FlexFile, SectionDims, SectionIn, ShapeIn};
 use super::material::Material;
 use super::section::Section;
 use super::selection::Rule;
-use crate::input::{InputError, Seg, Source};
+use crate::input::{InputError, InputErrorKind, Seg, Source};
 use crate::path;
 
 /// Fixed-interface modes kept when the file does not say.
@@ -293,7 +293,9 @@ fn build(src: &Source, f: &FlexFile, variant: Option<u32>) -> Result<Mesh, Input
                     s.sort_unstable();
                     format!("the file defines {s:?}")
                 };
-                return Err(src.error(&path!["variant"], format!("no variant {n}: {have}")));
+                return Err(src
+                    .error(&path!["variant"], format!("no variant {n}: {have}"))
+                    .with_kind(InputErrorKind::NoVariant { number: n }));
             }
         },
     };

@@ -424,6 +424,7 @@ pub fn argument(option: &str, bound: &Bound, value: f64) -> Result<f64, super::I
         column: None,
         field: option.to_string(),
         message: e.message,
+        kind: Default::default(),
     })
 }
 
@@ -438,27 +439,63 @@ pub mod budget {
     /// Most output rows (samples) of one run.
     pub const MAX_ROWS: f64 = 2.0e7;
     /// Most bytes of sampled output of one run (1 GiB).
-    pub const MAX_BYTES: f64 = 1024.0 * 1024.0 * 1024.0;
+    pub const MAX_BYTES: f64 = GIB;
+
+    /// A run whose samples would not fit the limits.
+    #[derive(Clone, Debug, PartialEq, thiserror::Error)]
+    pub enum BudgetError {
+        /// More samples than [`MAX_ROWS`].
+        #[error(
+            "{duration:e} s at {rate:e} Hz would keep {rows:.3e} samples, above the limit \
+             of {max:e} (shorten the run or lower the sample rate)",
+            max = MAX_ROWS
+        )]
+        TooManyRows {
+            /// Duration of the run [s].
+            duration: f64,
+            /// Sample rate [Hz].
+            rate: f64,
+            /// Samples it would keep.
+            rows: f64,
+        },
+        /// More bytes than [`MAX_BYTES`].
+        #[error(
+            "{rows:.3e} samples of {columns} channels would take {gib:.1} GiB, above the \
+             limit of {max:.0} GiB (lower the sample rate or the outputs)",
+            gib = .bytes / MAX_BYTES,
+            max = MAX_BYTES / GIB
+        )]
+        TooManyBytes {
+            /// Samples it would keep.
+            rows: f64,
+            /// Values per sample.
+            columns: usize,
+            /// Bytes they would take.
+            bytes: f64,
+        },
+    }
+
+    const GIB: f64 = 1024.0 * 1024.0 * 1024.0;
 
     /// Rows and bytes of a run of `duration` [s] sampled at `rate` [Hz] with `columns`
     /// values per row, or why it is refused.
-    pub fn check(duration: f64, rate: f64, columns: usize) -> Result<(f64, f64), String> {
+    pub fn check(duration: f64, rate: f64, columns: usize) -> Result<(f64, f64), BudgetError> {
         let rows = (duration * rate).round() + 1.0;
         // A row is its values plus the time and the Vec's own header.
         let bytes = rows * (8.0 * (columns as f64 + 1.0) + 24.0);
         if !rows.is_finite() || rows > MAX_ROWS {
-            return Err(format!(
-                "{duration:e} s at {rate:e} Hz would keep {rows:.3e} samples, above the limit \
-                 of {MAX_ROWS:e} (shorten the run or lower the sample rate)"
-            ));
+            return Err(BudgetError::TooManyRows {
+                duration,
+                rate,
+                rows,
+            });
         }
         if bytes > MAX_BYTES {
-            return Err(format!(
-                "{rows:.3e} samples of {columns} channels would take {:.1} GiB, above the \
-                 limit of {:.0} GiB (lower the sample rate or the outputs)",
-                bytes / MAX_BYTES,
-                1.0
-            ));
+            return Err(BudgetError::TooManyBytes {
+                rows,
+                columns,
+                bytes,
+            });
         }
         Ok((rows, bytes))
     }

@@ -141,5 +141,6 @@ pub fn error(file: &Path, line: Option<usize>, field: &str, message: String) -> 
         column: None,
         field: field.to_string(),
         message,
+        kind: Default::default(),
     }
 }

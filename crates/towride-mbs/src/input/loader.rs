@@ -188,5 +188,6 @@ pub fn read_text(path: &Path) -> Result<String, InputError> {
         column: None,
         field: String::new(),
         message: format!("cannot read: {e}"),
+        kind: Default::default(),
     })
 }

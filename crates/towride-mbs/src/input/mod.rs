@@ -35,6 +35,29 @@ pub struct InputError {
     pub field: String,
     /// What is wrong, in words.
     pub message: String,
+    /// What is wrong, for a caller that acts on it (most errors are only shown).
+    pub kind: InputErrorKind,
+}
+
+/// What an [`InputError`] is about, where a caller acts on more than its message.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub enum InputErrorKind {
+    /// Anything else: the message says it.
+    #[default]
+    Other,
+    /// A flexible-body file lacks the variant asked for (the message lists those it
+    /// defines).
+    NoVariant {
+        /// The variant asked for.
+        number: u32,
+    },
+}
+
+impl InputError {
+    /// The same error, of kind `kind`.
+    pub fn with_kind(self, kind: InputErrorKind) -> InputError {
+        InputError { kind, ..self }
+    }
 }
 
 impl fmt::Display for InputError {
@@ -234,6 +257,7 @@ impl Source {
                     column,
                     field: line.map_or(String::new(), |l| syntax_field(&text, l)),
                     message: format!("TOML syntax: {}", e.message()),
+                    kind: Default::default(),
                 })
             }
         }
@@ -395,6 +419,7 @@ impl Source {
             column,
             field,
             message: e.message().trim().to_string(),
+            kind: Default::default(),
         }
     }
 
@@ -411,6 +436,7 @@ impl Source {
             column,
             field: path_string(path),
             message: message.into(),
+            kind: Default::default(),
         }
     }
 

@@ -93,6 +93,7 @@ impl Origin {
                 column: None,
                 field: format!("--set {a}"),
                 message,
+                kind: Default::default(),
             },
             Origin::Program(w) => InputError {
                 file: "towride".into(),
@@ -100,6 +101,7 @@ impl Origin {
                 column: None,
                 field: w.clone(),
                 message,
+                kind: Default::default(),
             },
         }
     }
@@ -136,6 +138,7 @@ pub(crate) fn apply_toml(
         column: None,
         field: String::new(),
         message: format!("TOML syntax (reading it to apply overrides): {e}"),
+        kind: Default::default(),
     })?;
     for e in entries {
         let o = &e.ov;

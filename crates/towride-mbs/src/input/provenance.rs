@@ -172,6 +172,7 @@ pub fn survey(paths: &[std::path::PathBuf]) -> Result<Survey, InputError> {
                 column: None,
                 field: String::new(),
                 message: format!("cannot read the folder: {e}"),
+                kind: Default::default(),
             })?
             .filter_map(|e| e.ok().map(|e| e.path()))
             .collect();
@@ -290,6 +291,7 @@ fn scan_toml(path: &Path, text: &str) -> Result<Scan, InputError> {
             column,
             field: String::new(),
             message: format!("TOML syntax: {}", e.message()),
+            kind: Default::default(),
         }
     })?;
     let lines: Vec<&str> = text.lines().collect();

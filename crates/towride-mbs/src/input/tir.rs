@@ -85,6 +85,7 @@ impl TirFile {
             column: Some(column),
             field,
             message,
+            kind: Default::default(),
         };
         let mut sections: HashMap<String, Section> = HashMap::new();
         let mut current: Option<String> = None;
@@ -269,6 +270,7 @@ impl TirFile {
             column,
             field: format!("{section}.{key}"),
             message: message.into(),
+            kind: Default::default(),
         }
     }
 

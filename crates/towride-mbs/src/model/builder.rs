@@ -25,8 +25,10 @@
 use std::collections::HashSet;
 
 use super::desc::{
-    Body, Joint, JointKind, Marker, Model, Motion, MotionDof, Output, SpeedControl, TyreElem,
+    Body, Joint, JointKind, Marker, Model, Motion, MotionDof, Output, SpeedControl, TwoMarkers,
+    TyreElem,
 };
+pub use super::desc::{BodyHandle, ElementHandle, JointHandle, MarkerHandle, TyreHandle};
 use super::elements::law::{finite, positive};
 use super::elements::{
     Applied, Bushing, FieldError, Force, JointBushing, Law, RotSpring, SpringDamper, Stop,
@@ -43,49 +45,24 @@ pub type Axes = [[f64; 3]; 3];
 /// The identity frame.
 pub const IDENTITY: Axes = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 
-macro_rules! handle {
-    ($(#[$doc:meta])* $name:ident) => {
-        $(#[$doc])*
-        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-        pub struct $name(pub(crate) usize);
-
-        impl $name {
-            /// The index in the model's list.
-            pub fn index(self) -> usize {
-                self.0
-            }
-        }
-    };
-}
-
-handle!(
-    /// A body of the model (`Model::bodies`).
-    BodyHandle
-);
-handle!(
-    /// A marker (`Model::markers`).
-    MarkerHandle
-);
-handle!(
-    /// An ideal joint (`Model::joints`).
-    JointHandle
-);
-handle!(
-    /// A force element (`Model::forces`).
-    ElementHandle
-);
-handle!(
-    /// A tyre (`Model::tyres`).
-    TyreHandle
-);
-
-/// What an ideal joint became.
+/// What an ideal joint became: either way a link between two markers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Link {
     /// The ideal joint.
     Joint(JointHandle),
-    /// The bushing that replaces it.
-    Bushing(ElementHandle),
+    /// The bushing that replaces it, and its markers (kept here, as the element list
+    /// does not say which kind of element a handle names).
+    Bushing(ElementHandle, TwoMarkers),
+}
+
+impl Link {
+    /// Markers I and J of the joint or bushing.
+    pub fn markers(self, model: &Model) -> TwoMarkers {
+        match self {
+            Link::Joint(k) => model.joints[k].markers(),
+            Link::Bushing(_, markers) => markers,
+        }
+    }
 }
 
 /// A rigid placement of subsystem coordinates in the world: p_world = R p + t.
@@ -424,25 +401,17 @@ impl ModelBuilder {
 
     /// The marker named `name`.
     pub fn marker_by_name(&self, name: &str) -> Option<MarkerHandle> {
-        self.model.marker_index(name).map(MarkerHandle)
+        self.model.marker_by_name(name)
     }
 
     /// The joint named `name` (an ideal joint, not one replaced by a bushing).
     pub fn joint_by_name(&self, name: &str) -> Option<JointHandle> {
-        self.model
-            .joints
-            .iter()
-            .position(|j| j.name == name)
-            .map(JointHandle)
+        self.model.joint_by_name(name)
     }
 
     /// The element named `name`.
     pub fn element_by_name(&self, name: &str) -> Option<ElementHandle> {
-        self.model
-            .forces
-            .iter()
-            .position(|f| f.name() == name)
-            .map(ElementHandle)
+        self.model.element_by_name(name)
     }
 
     /// Axes from a z axis (default world z) and an optional x axis; errors at `z_axis`
@@ -526,13 +495,13 @@ impl ModelBuilder {
         let (r, a) = match body {
             None => ([0.0; 3], IDENTITY),
             Some(k) => (
-                self.model.bodies[k.0].position,
-                rot(&self.model.bodies[k.0].orientation),
+                self.model.bodies[k].position,
+                rot(&self.model.bodies[k].orientation),
             ),
         };
         self.model.markers.push(Marker {
             name: name.to_string(),
-            body: body.map(|b| b.0),
+            body,
             position: mtv(&a, &sub(&point, &r)),
             axes: mm(&transpose(&a), &axes_world),
             node: None,
@@ -549,14 +518,14 @@ impl ModelBuilder {
         p: V,
     ) -> Result<MarkerHandle, ModelError> {
         let k = self.marker(name, Some(body), p, &IDENTITY)?;
-        self.model.markers[k.0].node = Some(node);
+        self.model.markers[k].node = Some(node);
         Ok(k)
     }
 
     /// Moves marker `m` onto node `node` of its modal body, so what acts there follows
     /// the node's deformation.
     pub fn pin_to_node(&mut self, m: MarkerHandle, node: usize) {
-        self.model.markers[m.0].node = Some(node);
+        self.model.markers[m].node = Some(node);
     }
 
     /// An ideal joint of `kind` at `p` (axes: z = joint axis; universal: z = pin on
@@ -596,8 +565,8 @@ impl ModelBuilder {
             &item,
             Force::Bushing(Bushing {
                 name: name.to_string(),
-                i: mi.0,
-                j: mj.0,
+                i: mi,
+                j: mj,
                 stiffness: std::array::from_fn(|a| law(a, jb.stiffness_n_m, jb.stiffness_n_m_rad)),
                 damping: std::array::from_fn(|a| law(a, jb.damping_n_s_m, jb.damping_n_m_s_rad)),
                 preload: [0.0; 6],
@@ -605,7 +574,7 @@ impl ModelBuilder {
             }),
         )?;
         self.joint_names.insert(name.to_string());
-        Ok(Link::Bushing(e))
+        Ok(Link::Bushing(e, TwoMarkers { i: mi, j: mj }))
     }
 
     /// An ideal joint that is never replaced: a spinning wheel's bearing (a bushing
@@ -635,8 +604,8 @@ impl ModelBuilder {
         self.model.joints.push(Joint {
             name: name.to_string(),
             kind,
-            i: mi.0,
-            j: mj.0,
+            i: mi,
+            j: mj,
         });
         self.joint_names.insert(name.to_string());
         Ok(Link::Joint(JointHandle(self.model.joints.len() - 1)))
@@ -689,20 +658,35 @@ impl ModelBuilder {
 
     /// A rubber bushing.
     pub fn bushing(&mut self, l: BushingLine) -> Result<ElementHandle, ModelError> {
+        Ok(self.bushing_between(l)?.0)
+    }
+
+    /// A rubber bushing linking two bodies as a joint would (its markers named in the
+    /// [`Link`]).
+    pub fn bushing_link(&mut self, l: BushingLine) -> Result<Link, ModelError> {
+        let (e, markers) = self.bushing_between(l)?;
+        Ok(Link::Bushing(e, markers))
+    }
+
+    fn bushing_between(
+        &mut self,
+        l: BushingLine,
+    ) -> Result<(ElementHandle, TwoMarkers), ModelError> {
         let item = format!("bushing '{}'", l.name);
         let (mi, mj) = self.pair(&item, &l.name, [l.body_i, l.body_j], l.point, &l.axes)?;
-        self.add_force(
+        let e = self.add_force(
             &item,
             Force::Bushing(Bushing {
                 name: l.name,
-                i: mi.0,
-                j: mj.0,
+                i: mi,
+                j: mj,
                 stiffness: l.stiffness,
                 damping: l.damping,
                 preload: l.preload,
                 replaces: None,
             }),
-        )
+        )?;
+        Ok((e, TwoMarkers { i: mi, j: mj }))
     }
 
     /// A spring-damper along the line between two points.
@@ -727,8 +711,8 @@ impl ModelBuilder {
             &item,
             Force::Spring(SpringDamper {
                 name: l.name,
-                i: mi.0,
-                j: mj.0,
+                i: mi,
+                j: mj,
                 free_length: l.free_length,
                 preload: l.preload,
                 spring: l.spring,
@@ -747,8 +731,8 @@ impl ModelBuilder {
             &item,
             Force::Rot(RotSpring {
                 name: l.name,
-                i: mi.0,
-                j: mj.0,
+                i: mi,
+                j: mj,
                 free_angle: l.free_angle,
                 preload: l.preload,
                 spring: l.spring,
@@ -772,7 +756,7 @@ impl ModelBuilder {
             &item,
             Force::Applied(Applied {
                 name: l.name,
-                i: mi.0,
+                i: mi,
                 force: l.force,
                 torque: l.torque,
                 in_marker_axes: l.in_marker_axes,
@@ -804,7 +788,7 @@ impl ModelBuilder {
         is_velocity: bool,
     ) -> Result<(), ModelError> {
         let item = format!("motion '{name}'");
-        let kind = self.model.joints[joint.0].kind;
+        let kind = self.model.joints[joint].kind;
         let dof = match (dof, kind) {
             (Some(MotionDof::Rotation), JointKind::Revolute | JointKind::Cylindrical) => {
                 MotionDof::Rotation
@@ -840,7 +824,7 @@ impl ModelBuilder {
         })?;
         self.model.motions.push(Motion {
             name: name.to_string(),
-            joint: joint.0,
+            joint,
             dof,
             function,
             is_velocity,
@@ -857,7 +841,7 @@ impl ModelBuilder {
     ) -> TyreHandle {
         self.model.tyres.push(TyreElem {
             name: name.to_string(),
-            marker: marker.0,
+            marker,
             tyre,
         });
         TyreHandle(self.model.tyres.len() - 1)
@@ -949,27 +933,3 @@ impl ModelError {
         }
     }
 }
-
-macro_rules! index_by_handle {
-    ($handle:ty, $item:ty) => {
-        impl std::ops::Index<$handle> for Vec<$item> {
-            type Output = $item;
-            fn index(&self, h: $handle) -> &$item {
-                &self[h.0]
-            }
-        }
-
-        impl std::ops::IndexMut<$handle> for Vec<$item> {
-            fn index_mut(&mut self, h: $handle) -> &mut $item {
-                &mut self[h.0]
-            }
-        }
-    };
-}
-
-// The model's lists indexed by their typed handles (`model.bodies[handle]`).
-index_by_handle!(BodyHandle, Body);
-index_by_handle!(MarkerHandle, Marker);
-index_by_handle!(JointHandle, Joint);
-index_by_handle!(ElementHandle, Force);
-index_by_handle!(TyreHandle, TyreElem);

@@ -7,11 +7,71 @@
 
 pub use super::elements::{
     Applied, Bushing, Force, JointBushing, Law, LawSpec, RotSpring, SpringDamper, Stop, StopSpec,
+    TwoMarkers,
 };
 use super::function::TimeFunction;
 
-/// Body index, `None` for ground.
-pub type BodyId = Option<usize>;
+macro_rules! handle {
+    ($(#[$doc:meta])* $name:ident for $item:ty) => {
+        $(#[$doc])*
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+        pub struct $name(pub(crate) usize);
+
+        impl $name {
+            /// The handle of entry `index` of the model's list, for a model written out
+            /// by hand (the builder hands handles out otherwise).
+            pub const fn new(index: usize) -> $name {
+                $name(index)
+            }
+
+            /// The index in the model's list: for what needs a plain number (a column
+            /// of the system's unknowns, an index in a JSON array); the model's lists
+            /// are indexed by the handle itself.
+            pub fn index(self) -> usize {
+                self.0
+            }
+        }
+
+        impl std::ops::Index<$name> for Vec<$item> {
+            type Output = $item;
+            fn index(&self, h: $name) -> &$item {
+                &self[h.0]
+            }
+        }
+
+        impl std::ops::IndexMut<$name> for Vec<$item> {
+            fn index_mut(&mut self, h: $name) -> &mut $item {
+                &mut self[h.0]
+            }
+        }
+    };
+}
+
+// The typed references between the model's parts: the builder hands them out, the
+// model stores them, and its lists are indexed by them (`model.bodies[handle]`).
+handle!(
+    /// A body of the model (`Model::bodies`).
+    BodyHandle for Body
+);
+handle!(
+    /// A marker (`Model::markers`).
+    MarkerHandle for Marker
+);
+handle!(
+    /// An ideal joint (`Model::joints`).
+    JointHandle for Joint
+);
+handle!(
+    /// A force element (`Model::forces`).
+    ElementHandle for Force
+);
+handle!(
+    /// A tyre (`Model::tyres`).
+    TyreHandle for TyreElem
+);
+
+/// A body, `None` for ground.
+pub type BodyId = Option<BodyHandle>;
 
 /// A rigid or modal body with its initial state.
 #[derive(Clone, Debug)]
@@ -182,10 +242,20 @@ pub struct Joint {
     pub name: String,
     /// Which relative motions the joint removes.
     pub kind: JointKind,
-    /// Marker I, on the moving body (index into `Model::markers`).
-    pub i: usize,
-    /// Marker J, on the reference body (index into `Model::markers`).
-    pub j: usize,
+    /// Marker I, on the moving body.
+    pub i: MarkerHandle,
+    /// Marker J, on the reference body.
+    pub j: MarkerHandle,
+}
+
+impl Joint {
+    /// Markers I and J.
+    pub fn markers(&self) -> TwoMarkers {
+        TwoMarkers {
+            i: self.i,
+            j: self.j,
+        }
+    }
 }
 
 /// What a motion prescribes: the joint's translation along or rotation about J's z.
@@ -203,8 +273,8 @@ pub enum MotionDof {
 pub struct Motion {
     /// Unique motion name.
     pub name: String,
-    /// The driven joint (index into `Model::joints`).
-    pub joint: usize,
+    /// The driven joint.
+    pub joint: JointHandle,
     /// Which of the joint's free coordinates is driven.
     pub dof: MotionDof,
     /// The prescribed displacement s(t) [m or rad], or velocity when `is_velocity` [m/s or
@@ -231,8 +301,8 @@ impl Motion {
 pub enum Axes {
     /// World axes.
     World,
-    /// The axes of a marker (index into `Model::markers`).
-    Marker(usize),
+    /// The axes of a marker.
+    Marker(MarkerHandle),
 }
 
 /// What a marker output reports (three components, in the output's axes).
@@ -342,22 +412,22 @@ pub enum ModalQuantity {
 pub enum Request {
     /// A tyre's contact quantity.
     Tyre {
-        /// The tyre (index into `Model::tyres`).
-        tyre: usize,
+        /// The tyre.
+        tyre: TyreHandle,
         /// Which quantity.
         quantity: TyreQuantity,
     },
     /// A modal body's elastic state.
     Modal {
-        /// The modal body (index into `Model::bodies`).
-        body: usize,
+        /// The modal body.
+        body: BodyHandle,
         /// Which quantity.
         quantity: ModalQuantity,
     },
     /// A marker's kinematics.
     Marker {
-        /// The marker (index into `Model::markers`).
-        marker: usize,
+        /// The marker.
+        marker: MarkerHandle,
         /// Which quantity.
         quantity: MarkerQuantity,
         /// Axes the vector is resolved in.
@@ -365,8 +435,8 @@ pub enum Request {
     },
     /// A joint's reaction or free coordinate.
     Joint {
-        /// The joint (index into `Model::joints`).
-        joint: usize,
+        /// The joint.
+        joint: JointHandle,
         /// Which quantity.
         quantity: JointQuantity,
         /// Axes the vector is resolved in.
@@ -374,26 +444,26 @@ pub enum Request {
     },
     /// A force element's measures.
     Element {
-        /// The element (index into `Model::forces`).
-        element: usize,
+        /// The element.
+        element: ElementHandle,
         /// Which quantity.
         quantity: ElementQuantity,
     },
     /// One law's share of a spring-damper line's force, positive pushing the ends apart
     /// (compression in a suspension spring or strut) [N].
     LinePart {
-        /// The spring-damper element (index into `Model::forces`).
-        element: usize,
+        /// The spring-damper element.
+        element: ElementHandle,
         /// Which law.
         part: LinePart,
     },
     /// One component of marker I's origin relative to marker J's, in J's axes, less
     /// `offset` (or its rate).
     Relative {
-        /// Marker I (index into `Model::markers`).
-        i: usize,
-        /// Marker J (index into `Model::markers`).
-        j: usize,
+        /// Marker I.
+        i: MarkerHandle,
+        /// Marker J.
+        j: MarkerHandle,
         /// Component 0, 1, 2 (x, y, z of J).
         axis: usize,
         /// Position or velocity.
@@ -403,8 +473,8 @@ pub enum Request {
     },
     /// A body's heave, pitch or roll at its centre of mass.
     Body {
-        /// The body (index into `Model::bodies`).
-        body: usize,
+        /// The body.
+        body: BodyHandle,
         /// Which quantity.
         quantity: BodyQuantity,
         /// Reference height of the centre of mass [m] (heave is measured from it).
@@ -445,8 +515,8 @@ impl Output {
 pub struct TyreElem {
     /// Unique tyre name.
     pub name: String,
-    /// Wheel-centre marker on the rim body (index into `Model::markers`).
-    pub marker: usize,
+    /// Wheel-centre marker on the rim body.
+    pub marker: MarkerHandle,
     /// The tyre model with its parameters.
     pub tyre: crate::tyre::Tyre,
 }
@@ -458,7 +528,7 @@ pub struct SpeedControl {
     /// Unique controller name.
     pub name: String,
     /// Marker whose velocity along its own x axis is held (the car body, x forward).
-    pub sensor: usize,
+    pub sensor: MarkerHandle,
     /// Set speed of time [m/s].
     pub target: TimeFunction,
     /// Proportional gain [N m / (m/s)] on the total drive torque.
@@ -470,7 +540,7 @@ pub struct SpeedControl {
     /// Driven wheels: (wheel-centre marker on the wheel, y axis = spin axis; marker on the
     /// carrier that takes the reaction, e.g. the knuckle). Torque +T/n about the wheel
     /// marker's y axis on the wheel, -T/n on the carrier.
-    pub wheels: Vec<(usize, usize)>,
+    pub wheels: Vec<(MarkerHandle, MarkerHandle)>,
 }
 
 /// Where sampled accelerations and joint reactions come from.
@@ -526,8 +596,67 @@ impl Model {
         }
     }
 
-    /// Index of the marker called `name`.
-    pub fn marker_index(&self, name: &str) -> Option<usize> {
-        self.markers.iter().position(|m| m.name == name)
+    /// The marker called `name`.
+    pub fn marker_by_name(&self, name: &str) -> Option<MarkerHandle> {
+        self.markers
+            .iter()
+            .position(|m| m.name == name)
+            .map(MarkerHandle)
+    }
+
+    /// The joint called `name` (an ideal joint, not one replaced by a bushing).
+    pub fn joint_by_name(&self, name: &str) -> Option<JointHandle> {
+        self.joints
+            .iter()
+            .position(|j| j.name == name)
+            .map(JointHandle)
+    }
+
+    /// The force element called `name`.
+    pub fn element_by_name(&self, name: &str) -> Option<ElementHandle> {
+        self.forces
+            .iter()
+            .position(|f| f.name() == name)
+            .map(ElementHandle)
+    }
+
+    /// Every body with its handle, in order.
+    pub fn each_body(&self) -> impl Iterator<Item = (BodyHandle, &Body)> {
+        self.bodies
+            .iter()
+            .enumerate()
+            .map(|(k, b)| (BodyHandle(k), b))
+    }
+
+    /// Every marker with its handle, in order.
+    pub fn each_marker(&self) -> impl Iterator<Item = (MarkerHandle, &Marker)> {
+        self.markers
+            .iter()
+            .enumerate()
+            .map(|(k, m)| (MarkerHandle(k), m))
+    }
+
+    /// Every ideal joint with its handle, in order.
+    pub fn each_joint(&self) -> impl Iterator<Item = (JointHandle, &Joint)> {
+        self.joints
+            .iter()
+            .enumerate()
+            .map(|(k, j)| (JointHandle(k), j))
+    }
+
+    /// Every force element with its handle, in order.
+    pub fn each_element(&self) -> impl Iterator<Item = (ElementHandle, &Force)> {
+        self.forces
+            .iter()
+            .enumerate()
+            .map(|(k, f)| (ElementHandle(k), f))
+    }
+
+    /// Every tyre with its handle, in order.
+    pub fn each_tyre(&self) -> impl Iterator<Item = (TyreHandle, &TyreElem)> {
+        self.tyres
+            .iter()
+            .enumerate()
+            .map(|(k, t)| (TyreHandle(k), t))
     }
 }

@@ -6,7 +6,7 @@
 use nalgebra::DMatrix;
 use serde::Serialize;
 
-use super::desc::Force;
+use super::desc::{Force, MarkerHandle};
 use super::linear::{linearise, Linearisation};
 use super::system::System;
 use towride_solver::problem::JacobianSink;
@@ -283,7 +283,7 @@ fn bushing_frequencies(sys: &System) -> Vec<BushingFrequency> {
                 continue;
             }
             let dir = [fj.axes[0][a % 3], fj.axes[1][a % 3], fj.axes[2][a % 3]];
-            let inertia_of = |mk: usize| -> f64 {
+            let inertia_of = |mk: MarkerHandle| -> f64 {
                 let Some(bi) = m.markers[mk].body else {
                     return f64::INFINITY;
                 };

@@ -133,7 +133,7 @@ pub fn naming_groups(sys: &System) -> Vec<(String, Vec<usize>, bool)> {
     let m = &sys.model;
     let nb = m.bodies.len();
     let wheel: Vec<bool> = (0..nb)
-        .map(|b| m.tyres.iter().any(|t| m.markers[t.marker].body == Some(b)))
+        .map(|b| m.tyres.iter().any(|t| sys.body_of(t.marker) == Some(b)))
         .collect();
     let heaviest_wheel = (0..nb)
         .filter(|&b| wheel[b])
@@ -154,7 +154,7 @@ pub fn naming_groups(sys: &System) -> Vec<(String, Vec<usize>, bool)> {
         .map(|j| (j.i, Some(j.j)))
         .chain(m.forces.iter().map(|f| f.markers()));
     for (i, j) in pairs {
-        if let (Some(a), Some(b)) = (m.markers[i].body, j.and_then(|j| m.markers[j].body)) {
+        if let (Some(a), Some(b)) = (sys.body_of(i), j.and_then(|j| sys.body_of(j))) {
             if a != b && light(a) && light(b) {
                 let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
                 parent[ra] = rb;
@@ -528,7 +528,7 @@ fn element_stiffness(sys: &System, t: f64, y: &[f64]) -> Vec<(String, DMatrix<f6
     let v = &y[ov..ol];
     let nv = sys.nv;
     let mut out = Vec::new();
-    for fe in 0..sys.n_forces() {
+    for (fe, _) in sys.model.each_element() {
         let name = sys.force_name(fe);
         let load = |q: &[f64]| -> Vec<f64> {
             let (bs, gl, _) = sys.force_eval(fe, t, q, v);

@@ -2,8 +2,9 @@
 //! from a solver state (y, y') and laid out as named channels with units.
 
 use super::desc::{
-    Accelerations, Axes, BodyQuantity, ElementQuantity, JointQuantity, LinePart, MarkerQuantity,
-    ModalQuantity, Model, MotionDof, Output, RelativeQuantity, Request, TyreQuantity,
+    Accelerations, Axes, BodyQuantity, ElementQuantity, JointHandle, JointQuantity, LinePart,
+    MarkerHandle, MarkerQuantity, ModalQuantity, Model, MotionDof, Output, RelativeQuantity,
+    Request, TyreQuantity,
 };
 use super::elements::Force;
 use super::joint::joint_coordinate;
@@ -212,7 +213,7 @@ pub fn evaluate(sys: &System, t: f64, y: &[f64], yp: &[f64]) -> Vec<f64> {
                 axes,
             } => {
                 let mk = &m.markers[*marker];
-                let w = match mk.body {
+                let w = match sys.body_of(*marker) {
                     None if *quantity == MarkerQuantity::Position => mk.position,
                     None => [0.0; 3],
                     Some(b) => marker_kinematics(sys, *marker, b, *quantity, q, v, vd),
@@ -282,7 +283,7 @@ pub fn evaluate(sys: &System, t: f64, y: &[f64], yp: &[f64]) -> Vec<f64> {
                 out.push(match quantity {
                     RelativeQuantity::Position => mtv(&fj.axes, &d)[*axis] - offset,
                     RelativeQuantity::Velocity => {
-                        let kin = |k: usize, what| match m.markers[k].body {
+                        let kin = |k: MarkerHandle, what| match sys.body_of(k) {
                             Some(b) => marker_kinematics(sys, k, b, what, q, v, &yp[ov..ol]),
                             None => [0.0; 3],
                         };
@@ -300,7 +301,8 @@ pub fn evaluate(sys: &System, t: f64, y: &[f64], yp: &[f64]) -> Vec<f64> {
                 quantity,
                 z_ref,
             } => {
-                let (r, p) = sys.pose(q, *body);
+                // The body's number in the system's layout of the unknowns.
+                let (r, p) = sys.pose(q, body.index());
                 let a = rot(&p);
                 out.push(match quantity {
                     BodyQuantity::Heave => r[2] - z_ref,
@@ -309,11 +311,14 @@ pub fn evaluate(sys: &System, t: f64, y: &[f64], yp: &[f64]) -> Vec<f64> {
                 });
             }
             Request::Modal { body, quantity } => {
-                let o0 = sys.qo[*body] + 7;
-                let eta = &q[o0..o0 + sys.nm[*body]];
+                // The body's number in the system's layout of the unknowns: its modal
+                // coordinates are columns of q.
+                let k = body.index();
+                let o0 = sys.qo[k] + 7;
+                let eta = &q[o0..o0 + sys.nm[k]];
                 match quantity {
                     ModalQuantity::Coordinates => out.extend_from_slice(eta),
-                    ModalQuantity::StrainEnergy => out.push(sys.strain_energy(*body, q).0),
+                    ModalQuantity::StrainEnergy => out.push(sys.strain_energy(k, q).0),
                     ModalQuantity::Deflection { node, reference } => {
                         let md = &m.bodies[*body].modal.as_ref().expect("modal body").data;
                         let disp = |n: usize| -> [f64; 3] {
@@ -376,9 +381,15 @@ fn line_part(f: &Force, part: LinePart, x: f64, rate: f64) -> f64 {
 
 /// Reaction force (world) on joint `jk`'s I body at marker I, and torque about marker I,
 /// from the multipliers of the joint and of any motion acting on it.
-pub fn reaction(sys: &System, jk: usize, t: f64, q: &[f64], lam: &[f64]) -> ([f64; 3], [f64; 3]) {
+pub fn reaction(
+    sys: &System,
+    jk: JointHandle,
+    t: f64,
+    q: &[f64],
+    lam: &[f64],
+) -> ([f64; 3], [f64; 3]) {
     let j = &sys.model.joints[jk];
-    let Some(bi) = sys.model.markers[j.i].body else {
+    let Some(bi) = sys.body_of(j.i) else {
         return ([0.0; 3], [0.0; 3]);
     };
     let mut gen = [0.0; 6];
@@ -414,7 +425,7 @@ pub fn reaction(sys: &System, jk: usize, t: f64, q: &[f64], lam: &[f64]) -> ([f6
 /// with J' v differentiated numerically along the motion.
 fn marker_kinematics(
     sys: &System,
-    mk: usize,
+    mk: MarkerHandle,
     b: usize,
     quantity: MarkerQuantity,
     q: &[f64],

@@ -3,6 +3,7 @@
 
 use std::time::Instant;
 
+use super::desc::BodyHandle;
 use super::ic::{initial_state, AssemblyReport};
 use super::output::{channels, evaluate, ChannelInfo};
 use super::system::System;
@@ -33,7 +34,7 @@ pub struct Samples {
     /// Final solver state (t, y, y'), for follow-up analyses.
     pub last: Option<(f64, Vec<f64>, Vec<f64>)>,
     /// Modal coordinates of every modal body at every sample: (body, rows[k][mode]).
-    pub modal: Vec<(usize, Vec<Vec<f64>>)>,
+    pub modal: Vec<(BodyHandle, Vec<Vec<f64>>)>,
     /// Where the wall time went.
     pub phases: Phases,
     /// Body poses for the report's animation, when asked for.
@@ -108,9 +109,11 @@ pub fn simulate_with_poses(
         error: None,
         interrupted: None,
         last: None,
-        modal: (0..sys.nb())
-            .filter(|&b| sys.nm[b] > 0)
-            .map(|b| (b, Vec::new()))
+        modal: sys
+            .model
+            .each_body()
+            .filter(|(_, b)| b.modal.as_ref().is_some_and(|m| !m.data.modes.is_empty()))
+            .map(|(b, _)| (b, Vec::new()))
             .collect(),
         phases: Phases::default(),
         poses: None,
@@ -241,8 +244,10 @@ fn reach<P: DaeProblem + ?Sized>(bdf: &mut Integrator<'_, P>, t: f64) -> Result<
 
 fn record_modal(sys: &System, res: &mut Samples, y: &[f64]) {
     for (b, rows) in &mut res.modal {
-        let o = sys.qo[*b] + 7;
-        rows.push(y[o..o + sys.nm[*b]].to_vec());
+        // The body's number in the system's layout: its modal coordinates are columns of y.
+        let k = b.index();
+        let o = sys.qo[k] + 7;
+        rows.push(y[o..o + sys.nm[k]].to_vec());
     }
 }
 

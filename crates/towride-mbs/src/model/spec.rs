@@ -13,8 +13,8 @@ use serde::Deserialize;
 
 use super::builder::{BodyDesc, ModelBuilder};
 use super::desc::{
-    Accelerations, Axes, ElementQuantity, JointKind, JointQuantity, MarkerQuantity, Model,
-    MotionDof, Output, Request,
+    Accelerations, Axes, ElementQuantity, JointHandle, JointKind, JointQuantity, MarkerQuantity,
+    Model, MotionDof, Output, Request,
 };
 use super::elements;
 pub use super::elements::JointBushing;
@@ -341,12 +341,8 @@ pub fn build(src: &Source, f: File) -> Result<Mechanism, InputError> {
     }
     let mut m = b.finish();
     m.accelerations = f.run.accelerations;
-    let joints: std::collections::HashMap<String, usize> = m
-        .joints
-        .iter()
-        .enumerate()
-        .map(|(k, j)| (j.name.clone(), k))
-        .collect();
+    let joints: std::collections::HashMap<String, JointHandle> =
+        m.each_joint().map(|(k, j)| (j.name.clone(), k)).collect();
     for (k, o) in f.output.iter().enumerate() {
         let out = output_of(src, &m, k, o, &joints)?;
         m.outputs.push(out);
@@ -362,7 +358,7 @@ fn check_run(src: &Source, r: &RunSpec) -> Result<(), InputError> {
     src.positive(&path!["run", "end_time_s"], r.end_time_s)?;
     src.positive(&path!["run", "sample_rate_hz"], r.sample_rate_hz)?;
     crate::input::bounds::budget::check(r.end_time_s, r.sample_rate_hz, 0)
-        .map_err(|m| src.error(&path!["run", "sample_rate_hz"], m))?;
+        .map_err(|e| src.error(&path!["run", "sample_rate_hz"], e.to_string()))?;
     Ok(())
 }
 
@@ -374,12 +370,12 @@ pub fn output_of(
     m: &Model,
     k: usize,
     o: &OutputSpec,
-    joints: &std::collections::HashMap<String, usize>,
+    joints: &std::collections::HashMap<String, JointHandle>,
 ) -> Result<Output, InputError> {
     let p = |x: &str| path!["output", k, x];
     let axes = match o.axes.as_deref() {
         None | Some("world") => Axes::World,
-        Some(name) => Axes::Marker(m.marker_index(name).ok_or_else(|| {
+        Some(name) => Axes::Marker(m.marker_by_name(name).ok_or_else(|| {
             src.error(
                 &p("axes"),
                 format!(
@@ -401,7 +397,7 @@ pub fn output_of(
     };
     let (request, default_name) = match (&o.marker, &o.joint, &o.element) {
         (Some(mk), None, None) => {
-            let marker = m.marker_index(mk).ok_or_else(|| {
+            let marker = m.marker_by_name(mk).ok_or_else(|| {
                 src.error(
                     &p("marker"),
                     format!(
@@ -456,7 +452,7 @@ pub fn output_of(
             )
         }
         (None, None, Some(e)) => {
-            let element = m.forces.iter().position(|f| f.name() == e).ok_or_else(|| {
+            let element = m.element_by_name(e).ok_or_else(|| {
                 src.error(
                     &p("element"),
                     format!(

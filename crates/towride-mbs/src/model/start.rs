@@ -100,8 +100,8 @@ pub fn at_speed(
     for e in &flat.ext {
         let ExtKind::Tyre(k) = e.kind else { continue };
         let te = &flat.model.tyres[k];
-        let b = flat.model.markers[te.marker]
-            .body
+        let b = flat
+            .body_of(te.marker)
             .ok_or_else(|| ModelError::Start("tyre on ground".into()))?;
         let c = flat.marker_frame(&q, te.marker);
         let spin_axis = [c.axes[0][1], c.axes[1][1], c.axes[2][1]];

@@ -249,6 +249,7 @@ pub fn run(file: &Path, s: &Settings, out: &Path, progress: &dyn Progress) -> Re
                             column: None,
                             field: "vehicle.case".into(),
                             message: format!("no case with hitch_modes = {k}"),
+                            kind: Default::default(),
                         })
                     })
             })

@@ -128,8 +128,8 @@ pub fn ladder(link: &Link, n: usize, angle: f64, gravity: [f64; 3]) -> Result<Mo
 
 /// The position of `marker` and the reaction of `joint` (world axes).
 fn outputs(b: &mut ModelBuilder, marker: &str, joint: &str) {
-    let m = b.marker_by_name(marker).map(|h| h.index());
-    let j = b.joint_by_name(joint).map(|h| h.index());
+    let m = b.marker_by_name(marker);
+    let j = b.joint_by_name(joint);
     if let Some(marker) = m {
         b.output(Output::new(
             "tip",

@@ -223,6 +223,7 @@ pub fn parameters(s: &Settings) -> Result<(Vec<Param>, Vec<String>)> {
                 "no stiffness, damping or mass value in the groups {groups:?} of {}",
                 s.file.display()
             ),
+            kind: Default::default(),
         }
         .into());
     }

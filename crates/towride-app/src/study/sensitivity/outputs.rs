@@ -6,6 +6,7 @@
 
 use crate::error::Result;
 use crate::job::{Job, RunResult};
+use crate::scene::channels::{acc, ACC_PREFIX, HITCH_FX};
 use crate::signal::butterworth::Butterworth;
 use towride_mbs::input::InputError;
 
@@ -56,19 +57,21 @@ impl OutputSpec {
 /// peak in the 100 Hz band. `None` for a model without a hitch (name them).
 pub fn defaults(channels: &[(String, String)]) -> Option<Vec<String>> {
     let has = |n: &str| channels.iter().any(|c| c.0 == n);
-    if !has("hitch_fx") {
+    if !has(HITCH_FX) {
         return None;
     }
-    let mut v: Vec<String> = ["hitch_fx.peak", "hitch_fx.rms", "hitch_fx.freq"]
-        .map(String::from)
+    let mut v: Vec<String> = ["peak", "rms", "freq"]
+        .map(|m| format!("{HITCH_FX}.{m}"))
         .to_vec();
-    if has("acc_trailer_drawbar_z") {
-        v.push("acc_trailer_drawbar_z.peak".into());
+    // The trailer's drawbar sensor.
+    let drawbar = acc("trailer_drawbar", "z");
+    if has(&drawbar) {
+        v.push(format!("{drawbar}.peak"));
     }
     v.extend(
         channels
             .iter()
-            .filter(|c| c.0.starts_with("acc_"))
+            .filter(|c| c.0.starts_with(ACC_PREFIX))
             .map(|c| format!("{}.peak100", c.0)),
     );
     Some(v)
@@ -86,6 +89,7 @@ pub fn resolve(names: &[String], job: &Job) -> Result<Vec<OutputSpec>> {
         column: None,
         field: format!("--outputs {n}"),
         message: m,
+        kind: Default::default(),
     };
     let names = if names.is_empty() {
         defaults(&channels).ok_or_else(|| {

@@ -432,6 +432,7 @@ pub fn named(all: &[Param], names: &[String]) -> Result<Vec<Param>, InputError> 
             column: None,
             field: format!("--params {n}"),
             message: m,
+            kind: Default::default(),
         };
         let (file, path) = n.rsplit_once(':').ok_or_else(|| {
             bad("write FILE:PATH, e.g. hitch.toml:bracket_bushing.stiffness_n_m".into())

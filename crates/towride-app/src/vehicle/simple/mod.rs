@@ -936,7 +936,7 @@ fn driveline(
     }
     Ok(SpeedControl {
         name: "driveline".into(),
-        sensor: car_ref.index(),
+        sensor: car_ref,
         target: TimeFunction::Constant { value: speed },
         kp,
         ki,
@@ -944,7 +944,7 @@ fn driveline(
         wheels: wheels
             .iter()
             .filter(|w| names.contains(&w.name.as_str()))
-            .map(|w| (w.centre.index(), w.carrier_centre.index()))
+            .map(|w| (w.centre, w.carrier_centre))
             .collect(),
     })
 }

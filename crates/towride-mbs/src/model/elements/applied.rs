@@ -4,7 +4,7 @@
 use serde::Deserialize;
 
 use super::{ElementLoad, FieldError, ForceElement, Frame, Measure, SIX};
-use crate::model::builder::{AppliedLine, ModelBuilder};
+use crate::model::builder::{AppliedLine, MarkerHandle, ModelBuilder};
 use crate::model::dual::Scalar;
 use crate::model::function::TimeFunction;
 use crate::model::math::{cst3, mvc, V3};
@@ -15,7 +15,7 @@ pub struct Applied {
     /// Name, unique among the elements.
     pub name: String,
     /// The marker loaded.
-    pub i: usize,
+    pub i: MarkerHandle,
     /// Force components [N] (`None`: zero).
     pub force: [Option<TimeFunction>; 3],
     /// Torque components [N m].
@@ -27,17 +27,14 @@ pub struct Applied {
 impl ForceElement for Applied {
     const TABLE: &'static str = "force";
     type Spec = AppliedSpec;
+    type Markers = MarkerHandle;
 
     fn name(&self) -> &str {
         &self.name
     }
 
-    fn markers(&self) -> (usize, Option<usize>) {
-        (self.i, None)
-    }
-
-    fn markers_mut(&mut self) -> (&mut usize, Option<&mut usize>) {
-        (&mut self.i, None)
+    fn markers(&self) -> MarkerHandle {
+        self.i
     }
 
     fn check(&self) -> Result<(), FieldError> {
@@ -51,7 +48,7 @@ impl ForceElement for Applied {
         Ok(())
     }
 
-    fn load<S: Scalar>(&self, t: f64, i: &Frame<S>, _j: Option<&Frame<S>>) -> ElementLoad<S> {
+    fn load<S: Scalar>(&self, t: f64, i: &Frame<S>) -> ElementLoad<S> {
         let comp = |fs: &[Option<TimeFunction>; 3]| -> V3<S> {
             let local: [f64; 3] =
                 std::array::from_fn(|c| fs[c].as_ref().map_or(0.0, |f| f.eval(t).0));

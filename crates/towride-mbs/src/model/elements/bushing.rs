@@ -4,8 +4,8 @@
 use serde::Deserialize;
 
 use super::law::{finite, Law, LawSpec};
-use super::{ElementLoad, FieldError, ForceElement, Frame, Measure, SIX};
-use crate::model::builder::{BushingLine, ModelBuilder};
+use super::{ElementLoad, FieldError, ForceElement, Frame, Measure, TwoMarkers, SIX};
+use crate::model::builder::{BushingLine, MarkerHandle, ModelBuilder};
 use crate::model::dual::Scalar;
 use crate::model::math::{mtv, mv, qmul, rotation_vector, sub};
 
@@ -15,9 +15,9 @@ pub struct Bushing {
     /// Name, unique among the elements.
     pub name: String,
     /// Marker I.
-    pub i: usize,
+    pub i: MarkerHandle,
     /// Marker J (its axes are the bushing's).
-    pub j: usize,
+    pub j: MarkerHandle,
     /// Per direction x, y, z, rx, ry, rz [N/m or N m/rad].
     pub stiffness: [Law; 6],
     /// Per direction [N s/m or N m s/rad].
@@ -31,17 +31,17 @@ pub struct Bushing {
 impl ForceElement for Bushing {
     const TABLE: &'static str = "bushing";
     type Spec = BushingSpec;
+    type Markers = TwoMarkers;
 
     fn name(&self) -> &str {
         &self.name
     }
 
-    fn markers(&self) -> (usize, Option<usize>) {
-        (self.i, Some(self.j))
-    }
-
-    fn markers_mut(&mut self) -> (&mut usize, Option<&mut usize>) {
-        (&mut self.i, Some(&mut self.j))
+    fn markers(&self) -> TwoMarkers {
+        TwoMarkers {
+            i: self.i,
+            j: self.j,
+        }
     }
 
     fn check(&self) -> Result<(), FieldError> {
@@ -56,8 +56,8 @@ impl ForceElement for Bushing {
         Ok(())
     }
 
-    fn load<S: Scalar>(&self, _t: f64, i: &Frame<S>, j: Option<&Frame<S>>) -> ElementLoad<S> {
-        let ((i, qi), (j, qj)) = (i, j.expect("a bushing has two markers"));
+    fn load<S: Scalar>(&self, _t: f64, (i, j): (&Frame<S>, &Frame<S>)) -> ElementLoad<S> {
+        let ((i, qi), (j, qj)) = (i, j);
         let d = mtv(&j.axes, &sub(&i.origin, &j.origin));
         // Relative rotation of I in J: q_J^-1 q_I (the marker quaternions include the body's).
         let qrel = qmul(&[qj[0], -qj[1], -qj[2], -qj[3]], qi);

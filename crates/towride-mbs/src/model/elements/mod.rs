@@ -4,11 +4,13 @@
 //! `force_elements!`, declares and registers them: adding an element is its own file
 //! plus one line there (see `docs/architecture.md`).
 //!
-//! An element sees its marker frames as [`Dual`]s with one direction, the time
-//! derivative along the motion, so a deflection and its rate come from one expression
-//! (the rate of a bushing's rotation vector is its exact time derivative, not the
-//! relative angular velocity). It returns the force on marker I's body applied at I's
-//! origin plus a torque, world axes; the J body gets the opposite.
+//! An element acts on one marker or between two, as its type says ([`Markers`]): its
+//! `load` receives one frame per marker, both frames of a two-marker element by type.
+//! It sees them as [`Dual`]s with one direction, the time derivative along the motion,
+//! so a deflection and its rate come from one expression (the rate of a bushing's
+//! rotation vector is its exact time derivative, not the relative angular velocity). It
+//! returns the force on marker I's body applied at I's origin plus a torque, world axes;
+//! the J body gets the opposite.
 
 pub mod law;
 
@@ -17,6 +19,7 @@ pub use law::{JointBushing, Law, LawSpec, Stop, StopSpec};
 use serde::de::DeserializeOwned;
 
 use super::builder::ModelBuilder;
+use super::desc::MarkerHandle;
 use super::dual::{Dual, Scalar};
 use super::joint::MFrame;
 use super::math::{cross, mtv, sub, Q4, V3};
@@ -79,24 +82,96 @@ impl Measure {
     }
 }
 
+/// The two markers of an element acting between them: a spring's ends, a bushing's I
+/// and J.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TwoMarkers {
+    /// Marker I: the element's load is the load on its body.
+    pub i: MarkerHandle,
+    /// Marker J: its body takes the opposite load.
+    pub j: MarkerHandle,
+}
+
+/// The markers of a force element, as its type says: one ([`MarkerHandle`], a load on
+/// one body) or two ([`TwoMarkers`]). Whatever goes per marker has the same shape
+/// ([`Markers::Each`]): a two-marker element's `load` receives `(&Frame, &Frame)`.
+pub trait Markers: Copy + std::fmt::Debug {
+    /// One `T` per marker: `T` for one marker, `(T, T)` for I and J.
+    type Each<T>;
+    /// Marker I and, for two markers, J: every element's markers walked alike (the
+    /// system's layout, the bodies an element links).
+    fn pair(self) -> (MarkerHandle, Option<MarkerHandle>);
+    /// `f` of each marker and its side (0: I, 1: J).
+    fn each<T>(self, f: impl FnMut(MarkerHandle, usize) -> T) -> Self::Each<T>;
+    /// The values by reference.
+    fn each_ref<T>(each: &Self::Each<T>) -> Self::Each<&T>;
+    /// Marker I's value.
+    fn first<T>(each: Self::Each<T>) -> T;
+}
+
+impl Markers for MarkerHandle {
+    type Each<T> = T;
+
+    fn pair(self) -> (MarkerHandle, Option<MarkerHandle>) {
+        (self, None)
+    }
+
+    fn each<T>(self, mut f: impl FnMut(MarkerHandle, usize) -> T) -> T {
+        f(self, 0)
+    }
+
+    fn each_ref<T>(each: &T) -> &T {
+        each
+    }
+
+    fn first<T>(each: T) -> T {
+        each
+    }
+}
+
+impl Markers for TwoMarkers {
+    type Each<T> = (T, T);
+
+    fn pair(self) -> (MarkerHandle, Option<MarkerHandle>) {
+        (self.i, Some(self.j))
+    }
+
+    fn each<T>(self, mut f: impl FnMut(MarkerHandle, usize) -> T) -> (T, T) {
+        (f(self.i, 0), f(self.j, 1))
+    }
+
+    fn each_ref<T>(each: &(T, T)) -> (&T, &T) {
+        (&each.0, &each.1)
+    }
+
+    fn first<T>(each: (T, T)) -> T {
+        each.0
+    }
+}
+
 /// What every force element provides.
 pub trait ForceElement: Clone + std::fmt::Debug {
     /// The table of a mechanism file that lists elements of this kind (`spring`, ...).
     const TABLE: &'static str;
     /// How the mechanism file writes one element.
     type Spec: DeserializeOwned;
+    /// Its markers: [`MarkerHandle`] for a load on one marker, [`TwoMarkers`] for an
+    /// element between two.
+    type Markers: Markers;
 
     /// The element's name.
     fn name(&self) -> &str;
-    /// Marker I and, for two-marker elements, marker J.
-    fn markers(&self) -> (usize, Option<usize>);
-    /// The same, for moving a marker onto a modal node.
-    fn markers_mut(&mut self) -> (&mut usize, Option<&mut usize>);
+    /// Its markers.
+    fn markers(&self) -> Self::Markers;
     /// Checks the parameters; errors name the field as the file keys do.
     fn check(&self) -> Result<(), FieldError>;
-    /// Load and measures at time `t` given the marker frames (`j` is `None` for a
-    /// one-marker element).
-    fn load<S: Scalar>(&self, t: f64, i: &Frame<S>, j: Option<&Frame<S>>) -> ElementLoad<S>;
+    /// Load and measures at time `t` given the frame of each marker: `&Frame` for one
+    /// marker, `(&Frame, &Frame)` for I and J.
+    fn load<S: Scalar>(
+        &self,
+        t: f64,
+        frames: <Self::Markers as Markers>::Each<&Frame<S>>,
+    ) -> ElementLoad<S>;
     /// The measured directions, in the order of [`ElementLoad::measures`].
     fn measures(&self) -> Vec<Measure>;
     /// Adds one element written in a mechanism file; errors name the field below the
@@ -150,20 +225,29 @@ macro_rules! force_elements {
                 match self { $(Force::$variant(_) => <$ty as ForceElement>::TABLE,)* }
             }
             /// Marker I and, for two-marker elements, marker J.
-            pub fn markers(&self) -> (usize, Option<usize>) {
-                match self { $(Force::$variant(e) => e.markers(),)* }
-            }
-            /// The same, mutable.
-            pub fn markers_mut(&mut self) -> (&mut usize, Option<&mut usize>) {
-                match self { $(Force::$variant(e) => e.markers_mut(),)* }
+            pub fn markers(&self) -> (MarkerHandle, Option<MarkerHandle>) {
+                match self { $(Force::$variant(e) => e.markers().pair(),)* }
             }
             /// Checks the parameters.
             pub fn check(&self) -> Result<(), FieldError> {
                 match self { $(Force::$variant(e) => e.check(),)* }
             }
-            /// Load and measures.
-            pub fn load<S: Scalar>(&self, t: f64, i: &Frame<S>, j: Option<&Frame<S>>) -> ElementLoad<S> {
-                match self { $(Force::$variant(e) => e.load(t, i, j),)* }
+            /// Load and measures at time `t`, the frame of each of the element's markers
+            /// made by `frame` (given the marker and its side, 0: I, 1: J); returns them
+            /// with marker I's frame.
+            pub fn load<S: Scalar>(
+                &self,
+                t: f64,
+                frame: impl FnMut(MarkerHandle, usize) -> Frame<S>,
+            ) -> (ElementLoad<S>, Frame<S>) {
+                match self {
+                    $(Force::$variant(e) => {
+                        type M = <$ty as ForceElement>::Markers;
+                        let frames = e.markers().each(frame);
+                        let load = e.load(t, M::each_ref(&frames));
+                        (load, M::first(frames))
+                    })*
+                }
             }
             /// The measured directions.
             pub fn measures(&self) -> Vec<Measure> {

@@ -4,8 +4,8 @@ use serde::Deserialize;
 
 use super::law::{finite, Law, LawSpec};
 use super::spring::zero_law;
-use super::{ElementLoad, FieldError, ForceElement, Frame, Measure};
-use crate::model::builder::{ModelBuilder, RotLine};
+use super::{ElementLoad, FieldError, ForceElement, Frame, Measure, TwoMarkers};
+use crate::model::builder::{MarkerHandle, ModelBuilder, RotLine};
 use crate::model::dual::Scalar;
 use crate::model::math::{col, dot, scale, V3};
 
@@ -16,9 +16,9 @@ pub struct RotSpring {
     /// Name, unique among the elements.
     pub name: String,
     /// Marker I.
-    pub i: usize,
+    pub i: MarkerHandle,
     /// Marker J (its z axis is the spring's axis).
-    pub j: usize,
+    pub j: MarkerHandle,
     /// Angle at which the spring is relaxed [rad].
     pub free_angle: f64,
     /// Torque at the free angle [N m].
@@ -32,17 +32,17 @@ pub struct RotSpring {
 impl ForceElement for RotSpring {
     const TABLE: &'static str = "rotational_spring";
     type Spec = RotSpringSpec;
+    type Markers = TwoMarkers;
 
     fn name(&self) -> &str {
         &self.name
     }
 
-    fn markers(&self) -> (usize, Option<usize>) {
-        (self.i, Some(self.j))
-    }
-
-    fn markers_mut(&mut self) -> (&mut usize, Option<&mut usize>) {
-        (&mut self.i, Some(&mut self.j))
+    fn markers(&self) -> TwoMarkers {
+        TwoMarkers {
+            i: self.i,
+            j: self.j,
+        }
     }
 
     fn check(&self) -> Result<(), FieldError> {
@@ -51,8 +51,8 @@ impl ForceElement for RotSpring {
         Ok(())
     }
 
-    fn load<S: Scalar>(&self, _t: f64, i: &Frame<S>, j: Option<&Frame<S>>) -> ElementLoad<S> {
-        let (i, j) = (&i.0, &j.expect("a rotational spring has two markers").0);
+    fn load<S: Scalar>(&self, _t: f64, (i, j): (&Frame<S>, &Frame<S>)) -> ElementLoad<S> {
+        let (i, j) = (&i.0, &j.0);
         let xi = col(&i.axes, 0);
         let angle = dot(&xi, &col(&j.axes, 1)).atan2(dot(&xi, &col(&j.axes, 0)));
         let x = angle.v - self.free_angle;

@@ -4,8 +4,8 @@
 use serde::Deserialize;
 
 use super::law::{finite, positive, Law, LawSpec, StopSpec};
-use super::{ElementLoad, FieldError, ForceElement, Frame, Measure};
-use crate::model::builder::{ModelBuilder, SpringLine};
+use super::{ElementLoad, FieldError, ForceElement, Frame, Measure, TwoMarkers};
+use crate::model::builder::{MarkerHandle, ModelBuilder, SpringLine};
 use crate::model::dual::Scalar;
 use crate::model::math::{dot, scale, sub};
 
@@ -15,9 +15,9 @@ pub struct SpringDamper {
     /// Name, unique among the elements.
     pub name: String,
     /// Marker I (its origin is one end).
-    pub i: usize,
+    pub i: MarkerHandle,
     /// Marker J (its origin is the other end).
-    pub j: usize,
+    pub j: MarkerHandle,
     /// Length at which the spring is relaxed [m].
     pub free_length: f64,
     /// Repulsive force at the free length [N].
@@ -35,17 +35,17 @@ pub struct SpringDamper {
 impl ForceElement for SpringDamper {
     const TABLE: &'static str = "spring";
     type Spec = SpringSpec;
+    type Markers = TwoMarkers;
 
     fn name(&self) -> &str {
         &self.name
     }
 
-    fn markers(&self) -> (usize, Option<usize>) {
-        (self.i, Some(self.j))
-    }
-
-    fn markers_mut(&mut self) -> (&mut usize, Option<&mut usize>) {
-        (&mut self.i, Some(&mut self.j))
+    fn markers(&self) -> TwoMarkers {
+        TwoMarkers {
+            i: self.i,
+            j: self.j,
+        }
     }
 
     fn check(&self) -> Result<(), FieldError> {
@@ -54,8 +54,8 @@ impl ForceElement for SpringDamper {
         Ok(())
     }
 
-    fn load<S: Scalar>(&self, _t: f64, i: &Frame<S>, j: Option<&Frame<S>>) -> ElementLoad<S> {
-        let (i, j) = (&i.0, &j.expect("a spring has two markers").0);
+    fn load<S: Scalar>(&self, _t: f64, (i, j): (&Frame<S>, &Frame<S>)) -> ElementLoad<S> {
+        let (i, j) = (&i.0, &j.0);
         let d = sub(&i.origin, &j.origin);
         let l = dot(&d, &d).sqrt();
         let x = l.v - self.free_length;

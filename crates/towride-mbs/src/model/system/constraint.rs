@@ -12,7 +12,7 @@
 //! the constraint acceleration term is differentiated numerically along the motion.
 
 use super::{ConElem, ConRow, ConstraintSet, Owner, System};
-use crate::model::desc::MotionDof;
+use crate::model::desc::{MarkerHandle, MotionDof};
 use crate::model::dual::{Dual, Scalar};
 use crate::model::joint::{motion_value, row_value, MFrame, Row};
 use crate::model::math::{
@@ -154,14 +154,19 @@ impl System {
     }
 
     /// Marker frame from a body pose in any scalar (rigid markers).
-    pub(super) fn frame_of<T: Scalar>(&self, k: usize, r: &V3<T>, p: &Q4<T>) -> MFrame<T> {
+    pub(super) fn frame_of<T: Scalar>(&self, k: MarkerHandle, r: &V3<T>, p: &Q4<T>) -> MFrame<T> {
         self.rigid_frame(k, r, p).0
     }
 
     /// [`System::frame_of`] with the body's rotation matrix A and the marker origin
     /// relative to the centre of mass, A s (world): what maps a frame motion to the
     /// body's virtual translation and rotation ([`rigid_b`]).
-    fn rigid_frame<T: Scalar>(&self, k: usize, r: &V3<T>, p: &Q4<T>) -> (MFrame<T>, M3<T>, V3<T>) {
+    fn rigid_frame<T: Scalar>(
+        &self,
+        k: MarkerHandle,
+        r: &V3<T>,
+        p: &Q4<T>,
+    ) -> (MFrame<T>, M3<T>, V3<T>) {
         let mk = &self.model.markers[k];
         let a = rot(p);
         let rho = mvc(&a, &mk.position);
@@ -172,7 +177,7 @@ impl System {
         (f, a, rho)
     }
 
-    pub(super) fn ground_frame<T: Scalar>(&self, k: usize) -> MFrame<T> {
+    pub(super) fn ground_frame<T: Scalar>(&self, k: MarkerHandle) -> MFrame<T> {
         let mk = &self.model.markers[k];
         MFrame {
             origin: cst3(&mk.position),
@@ -195,7 +200,7 @@ impl System {
     }
 
     /// One side's marker frame (world) and the map of its motion to the side's unknowns.
-    fn side(&self, mk: usize, body: Option<usize>, q: &[f64]) -> (MFrame<f64>, SideMap) {
+    fn side(&self, mk: MarkerHandle, body: Option<usize>, q: &[f64]) -> (MFrame<f64>, SideMap) {
         match body {
             None => (self.ground_frame::<f64>(mk), SideMap::Ground),
             Some(_) if self.is_flex_marker(mk) => {
@@ -285,7 +290,7 @@ impl System {
         /// A side's frame, and its body's rotation and marker offset (rigid sides).
         type Side = (MFrame<Q15>, Option<(M3<Q15>, V3<Q15>)>);
         let bodies = self.bodies_of(e.mi, e.mj);
-        let side = |side: usize, mk: usize, b: Option<usize>| -> Side {
+        let side = |side: usize, mk: MarkerHandle, b: Option<usize>| -> Side {
             match b {
                 None => (self.ground_frame::<Q15>(mk), None),
                 Some(b) => {

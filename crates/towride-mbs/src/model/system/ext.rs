@@ -10,7 +10,7 @@
 use nalgebra::{Matrix3, Vector3};
 
 use super::System;
-use crate::model::desc::Model;
+use crate::model::desc::{MarkerHandle, Model, TyreHandle};
 use crate::tyre::WheelKinematics;
 use towride_solver::problem::VarKind;
 
@@ -18,8 +18,8 @@ use towride_solver::problem::VarKind;
 /// bodies'.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ExtKind {
-    /// Index into `Model::tyres`.
-    Tyre(usize),
+    /// A tyre.
+    Tyre(TyreHandle),
     /// Index into `Model::controls`.
     Control(usize),
 }
@@ -39,7 +39,7 @@ pub struct Ext {
 pub fn layout(model: &Model) -> (Vec<Ext>, usize) {
     let mut out = Vec::new();
     let mut off = 0;
-    for (k, t) in model.tyres.iter().enumerate() {
+    for (k, t) in model.each_tyre() {
         let n = t.tyre.n_states();
         out.push(Ext {
             kind: ExtKind::Tyre(k),
@@ -61,9 +61,9 @@ pub fn layout(model: &Model) -> (Vec<Ext>, usize) {
 
 impl System {
     /// Motion of the wheel marker `k` as a tyre sees it.
-    pub fn wheel_kinematics(&self, q: &[f64], v: &[f64], k: usize) -> WheelKinematics {
+    pub fn wheel_kinematics(&self, q: &[f64], v: &[f64], k: MarkerHandle) -> WheelKinematics {
         let ff = self.flex_frame(q, k);
-        let b = self.model.markers[k].body.expect("wheel marker on a body");
+        let b = self.body_of(k).expect("wheel marker on a body");
         let (vo, w) = ff.rates(&v[self.vo[b]..self.vo[b] + 6 + self.nm[b]]);
         let a = ff.axes;
         WheelKinematics {
@@ -77,15 +77,15 @@ impl System {
     /// Bodies whose unknowns extension element `e` reads or loads.
     pub fn ext_bodies(&self, e: &Ext) -> Vec<usize> {
         let mut out: Vec<usize> = match e.kind {
-            ExtKind::Tyre(k) => self.model.markers[self.model.tyres[k].marker]
-                .body
+            ExtKind::Tyre(k) => self
+                .body_of(self.model.tyres[k].marker)
                 .into_iter()
                 .collect(),
             ExtKind::Control(k) => {
                 let c = &self.model.controls[k];
                 std::iter::once(c.sensor)
                     .chain(c.wheels.iter().flat_map(|&(a, b)| [a, b]))
-                    .filter_map(|mk| self.model.markers[mk].body)
+                    .filter_map(|mk| self.body_of(mk))
                     .collect()
             }
         };
@@ -98,7 +98,7 @@ impl System {
     pub fn control_speed(&self, k: usize, q: &[f64], v: &[f64]) -> f64 {
         let c = &self.model.controls[k];
         let ff = self.flex_frame(q, c.sensor);
-        let b = self.model.markers[c.sensor].body.expect("sensor on a body");
+        let b = self.body_of(c.sensor).expect("sensor on a body");
         let (vo, _) = ff.rates(&v[self.vo[b]..self.vo[b] + 6 + self.nm[b]]);
         let x = [ff.axes[0][0], ff.axes[1][0], ff.axes[2][0]];
         vo[0] * x[0] + vo[1] * x[1] + vo[2] * x[2]
@@ -129,8 +129,8 @@ impl System {
         res: &mut [f64],
         f: &mut [f64],
     ) {
-        let mut add = |mk: usize, force: [f64; 3], torque: [f64; 3]| {
-            let Some(b) = self.model.markers[mk].body else {
+        let mut add = |mk: MarkerHandle, force: [f64; 3], torque: [f64; 3]| {
+            let Some(b) = self.body_of(mk) else {
                 return;
             };
             let ff = self.flex_frame(q, mk);

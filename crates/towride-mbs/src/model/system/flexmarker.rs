@@ -12,6 +12,7 @@
 //! rule (see `constraint.rs` and `forces.rs`).
 
 use super::System;
+use crate::model::desc::MarkerHandle;
 use crate::model::math::{cross, mm, mv, qmat, rot};
 
 /// World frame of a marker with its velocity Jacobian.
@@ -54,15 +55,15 @@ impl FlexFrame {
 
 impl System {
     /// True when marker `k` moves with a modal body's deformation.
-    pub fn is_flex_marker(&self, k: usize) -> bool {
+    pub fn is_flex_marker(&self, k: MarkerHandle) -> bool {
         self.model.markers[k].node.is_some()
     }
 
     /// World frame and velocity Jacobian of marker `k` (on a body) at positions `q`.
     /// Works for rigid markers too (no modal columns).
-    pub fn flex_frame(&self, q: &[f64], k: usize) -> FlexFrame {
+    pub fn flex_frame(&self, q: &[f64], k: MarkerHandle) -> FlexFrame {
         let mk = &self.model.markers[k];
-        let b = mk.body.expect("marker on a body");
+        let b = self.body_of(k).expect("marker on a body");
         let o = self.qo[b];
         let nm = self.nm[b];
         let p = [q[o + 3], q[o + 4], q[o + 5], q[o + 6]];

@@ -9,6 +9,7 @@
 
 use super::flexmarker::FlexFrame;
 use super::System;
+use crate::model::desc::{ElementHandle, MarkerHandle};
 use crate::model::dual::{Dual, Scalar};
 use crate::model::elements::{generalised, Rate};
 use crate::model::joint::MFrame;
@@ -25,8 +26,8 @@ type S26 = Dual<f64, 26>;
 
 impl System {
     /// True when force element `fe` touches a marker that moves with modal coordinates.
-    pub fn force_is_flex(&self, fe: usize) -> bool {
-        let (_, mi, mj) = self.felems[fe];
+    pub fn force_is_flex(&self, fe: ElementHandle) -> bool {
+        let (mi, mj) = self.model.forces[fe].markers();
         self.is_flex_marker(mi) || mj.is_some_and(|m| self.is_flex_marker(m))
     }
 
@@ -35,66 +36,58 @@ impl System {
     /// elements only). `q`, `v` are read for markers on modal bodies.
     fn force_generalised<S: Scalar>(
         &self,
-        fe: usize,
+        fe: ElementHandle,
         t: f64,
         pose: &dyn Fn(usize, usize) -> BodyPose<S>,
         q: &[f64],
         v: &[f64],
     ) -> ElementForces<S> {
-        let (k, mi, mj) = self.felems[fe];
-        let bi = self.model.markers[mi].body;
-        let bj = mj.and_then(|m| self.model.markers[m].body);
+        let element = &self.model.forces[fe];
+        let (mi, mj) = element.markers();
+        let bi = self.body_of(mi);
+        let bj = mj.and_then(|m| self.body_of(m));
         // The frame of a marker on a modal body comes with its velocity Jacobian, kept
-        // for mapping the load back.
-        let rate_frame =
-            |mk: usize, side: usize, b: Option<usize>| -> (RateFrame<S>, Option<FlexFrame>) {
-                let mq = self.mquat[mk];
-                match b {
-                    None => (
-                        (self.ground_frame::<Rate<S>>(mk), mq.map(Rate::<S>::cst)),
-                        None,
-                    ),
-                    Some(b) if self.is_flex_marker(mk) => {
-                        let ff = self.flex_frame(q, mk);
-                        let vb = &v[self.vo[b]..self.vo[b] + 6 + self.nm[b]];
-                        let (vo, w) = ff.rates(vb);
-                        let pq = quat_from_matrix(&ff.axes);
-                        let wl = crate::model::math::mtv(&ff.axes, &w);
-                        let pd = qdot(&pq, &wl);
-                        let r: V3<Rate<S>> = std::array::from_fn(|c| Rate {
-                            v: S::cst(ff.origin[c]),
-                            d: [S::cst(vo[c])],
-                        });
-                        let p: Q4<Rate<S>> = std::array::from_fn(|c| Rate {
-                            v: S::cst(pq[c]),
-                            d: [S::cst(pd[c])],
-                        });
-                        let a = rot(&p);
-                        ((MFrame { origin: r, axes: a }, p), Some(ff))
-                    }
-                    Some(b) => {
-                        let (r, p, u, w) = pose(b, side);
-                        let pd = qdot(&p, &w);
-                        let rr: V3<Rate<S>> = std::array::from_fn(|c| Rate { v: r[c], d: [u[c]] });
-                        let pp: Q4<Rate<S>> = std::array::from_fn(|c| Rate {
-                            v: p[c],
-                            d: [pd[c]],
-                        });
-                        let f = self.frame_of(mk, &rr, &pp);
-                        let mqs: Q4<Rate<S>> = mq.map(Rate::<S>::cst);
-                        ((f, qmul(&pp, &mqs)), None)
-                    }
+        // (per side) for mapping the load back.
+        let mut flex: [Option<FlexFrame>; 2] = [None, None];
+        let rate_frame = |mk: MarkerHandle, side: usize| -> RateFrame<S> {
+            let mq = self.marker_quat(mk);
+            match self.body_of(mk) {
+                None => (self.ground_frame::<Rate<S>>(mk), mq.map(Rate::<S>::cst)),
+                Some(b) if self.is_flex_marker(mk) => {
+                    let ff = self.flex_frame(q, mk);
+                    let vb = &v[self.vo[b]..self.vo[b] + 6 + self.nm[b]];
+                    let (vo, w) = ff.rates(vb);
+                    let pq = quat_from_matrix(&ff.axes);
+                    let wl = crate::model::math::mtv(&ff.axes, &w);
+                    let pd = qdot(&pq, &wl);
+                    let r: V3<Rate<S>> = std::array::from_fn(|c| Rate {
+                        v: S::cst(ff.origin[c]),
+                        d: [S::cst(vo[c])],
+                    });
+                    let p: Q4<Rate<S>> = std::array::from_fn(|c| Rate {
+                        v: S::cst(pq[c]),
+                        d: [S::cst(pd[c])],
+                    });
+                    let a = rot(&p);
+                    flex[side] = Some(ff);
+                    (MFrame { origin: r, axes: a }, p)
                 }
-            };
-        let (frame_i, ffi) = rate_frame(mi, 0, bi);
-        let (frame_j, ffj) = match mj {
-            Some(mj) => {
-                let (f, ff) = rate_frame(mj, 1, bj);
-                (Some(f), ff)
+                Some(b) => {
+                    let (r, p, u, w) = pose(b, side);
+                    let pd = qdot(&p, &w);
+                    let rr: V3<Rate<S>> = std::array::from_fn(|c| Rate { v: r[c], d: [u[c]] });
+                    let pp: Q4<Rate<S>> = std::array::from_fn(|c| Rate {
+                        v: p[c],
+                        d: [pd[c]],
+                    });
+                    let f = self.frame_of(mk, &rr, &pp);
+                    let mqs: Q4<Rate<S>> = mq.map(Rate::<S>::cst);
+                    (f, qmul(&pp, &mqs))
+                }
             }
-            None => (None, None),
         };
-        let l = self.model.forces[k].load(t, &frame_i, frame_j.as_ref());
+        let (l, frame_i) = element.load(t, rate_frame);
+        let [ffi, ffj] = flex;
         let (force, torque, measures) = (l.force, l.torque, l.measures);
         let fi = &frame_i.0;
         let p: V3<S> = fi.origin.map(|x| x.v);
@@ -136,7 +129,13 @@ impl System {
     }
 
     /// Element loads and measures at f64 (residual, outputs).
-    pub fn force_eval(&self, fe: usize, t: f64, q: &[f64], v: &[f64]) -> ElementForces<f64> {
+    pub fn force_eval(
+        &self,
+        fe: ElementHandle,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+    ) -> ElementForces<f64> {
         let pose = |b: usize, _side: usize| {
             let (r, p) = self.pose(q, b);
             let (u, w) = self.twist(v, b);
@@ -149,7 +148,7 @@ impl System {
     /// elements: see [`System::force_is_flex`]).
     pub fn force_eval_dual(
         &self,
-        fe: usize,
+        fe: ElementHandle,
         t: f64,
         q: &[f64],
         v: &[f64],
@@ -169,22 +168,14 @@ impl System {
     }
 
     /// Name of force element `fe`.
-    pub fn force_name(&self, fe: usize) -> String {
-        self.model.forces[self.felems[fe].0].name().to_string()
+    pub fn force_name(&self, fe: ElementHandle) -> String {
+        self.model.forces[fe].name().to_string()
     }
 
-    /// Number of force elements.
-    pub fn n_forces(&self) -> usize {
-        self.felems.len()
-    }
-
-    /// Bodies of force element `fe`.
-    pub fn force_bodies(&self, fe: usize) -> [Option<usize>; 2] {
-        let (_, mi, mj) = self.felems[fe];
-        [
-            self.model.markers[mi].body,
-            mj.and_then(|m| self.model.markers[m].body),
-        ]
+    /// Bodies of force element `fe` (numbered as [`System::body_of`]).
+    pub fn force_bodies(&self, fe: ElementHandle) -> [Option<usize>; 2] {
+        let (mi, mj) = self.model.forces[fe].markers();
+        [self.body_of(mi), mj.and_then(|m| self.body_of(m))]
     }
 
     /// Gravity, gyroscopic, elastic-modal and element loads: the generalised force vector
@@ -210,7 +201,7 @@ impl System {
                 self.modal_loads(k, m, q, v, &mut f);
             }
         }
-        for fe in 0..self.felems.len() {
+        for (fe, _) in self.model.each_element() {
             let (bs, gl, _) = self.force_eval(fe, t, q, v);
             for s in 0..2 {
                 if let Some(b) = bs[s] {

@@ -3,7 +3,7 @@
 //! elements on modal markers and for extension elements (tyres, controllers).
 
 use super::{ConElem, ConRow, Ext, Owner, System};
-use crate::model::desc::MotionDof;
+use crate::model::desc::{ElementHandle, MotionDof};
 use crate::model::math::{cst33, mvc, qmat};
 use towride_solver::problem::JacobianSink;
 
@@ -34,7 +34,7 @@ impl System {
         let pick = |x: f64| if structural { 1.0 } else { x };
         self.body_blocks(q, v, cj, jac, structural);
         // Force elements: -dQ/d(q, v).
-        for fe in 0..self.n_forces() {
+        for (fe, _) in self.model.each_element() {
             if self.force_is_flex(fe) {
                 self.fd_force(fe, t, q, v, jac, structural);
                 continue;
@@ -347,7 +347,7 @@ impl System {
     /// its bodies.
     fn fd_force(
         &self,
-        fe: usize,
+        fe: ElementHandle,
         t: f64,
         q: &[f64],
         v: &[f64],

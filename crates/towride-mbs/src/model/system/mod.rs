@@ -29,7 +29,7 @@
 
 use nalgebra::DMatrix;
 
-use super::desc::Model;
+use super::desc::{BodyHandle, JointHandle, MarkerHandle, Model};
 use super::joint::{rows, Row};
 use super::math::{cst33, mvc, qdot, quat_from_matrix, rot};
 use towride_solver::problem::{DaeProblem, JacobianSink, VarKind};
@@ -50,8 +50,8 @@ pub use forces::{BodyPose, ElementForces};
 /// Who owns a constraint row.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Owner {
-    /// A joint (index into `Model::joints`).
-    Joint(usize),
+    /// A joint.
+    Joint(JointHandle),
     /// A prescribed motion (index into `Model::motions`).
     Motion(usize),
 }
@@ -70,10 +70,10 @@ pub enum ConRow {
 pub struct ConElem {
     /// The joint or motion.
     pub owner: Owner,
-    /// Marker I (index into `Model::markers`).
-    pub mi: usize,
-    /// Marker J (index into `Model::markers`).
-    pub mj: usize,
+    /// Marker I.
+    pub mi: MarkerHandle,
+    /// Marker J.
+    pub mj: MarkerHandle,
     /// The element's constraint rows.
     pub rows: Vec<ConRow>,
     /// Global multiplier index of each row, `None` when the row was found redundant.
@@ -145,10 +145,8 @@ pub struct System {
     /// The sparse symmetric matrix B W B^T of the start and the outputs on large models
     /// (`model::normal`), symbolic analysis made once.
     pub(crate) normal: std::cell::RefCell<Option<towride_solver::linear::SparseCholesky>>,
-    /// Marker axes as quaternions (body frame), for bushings.
+    /// Marker axes as quaternions (body frame), for bushings; in `Model::markers` order.
     mquat: Vec<[f64; 4]>,
-    /// Force elements: (index in model.forces, marker i, marker j or None).
-    felems: Vec<(usize, usize, Option<usize>)>,
     /// Per body: the mass-matrix tensors of a modal body at the `full` coupling level.
     full: Vec<Option<full::FullTensors>>,
     /// The wheels whose frames a re-used iteration matrix follows (`transport.rs`).
@@ -161,7 +159,7 @@ impl System {
     /// [`super::redundancy`]).
     pub fn new(model: Model) -> System {
         let mut cons = Vec::new();
-        for (k, j) in model.joints.iter().enumerate() {
+        for (k, j) in model.each_joint() {
             let rs: Vec<ConRow> = rows(j.kind).iter().map(|r| ConRow::Prim(*r)).collect();
             cons.push(ConElem {
                 owner: Owner::Joint(k),
@@ -185,15 +183,6 @@ impl System {
             .markers
             .iter()
             .map(|m| quat_from_matrix(&m.axes))
-            .collect();
-        let felems = model
-            .forces
-            .iter()
-            .enumerate()
-            .map(|(k, f)| {
-                let (i, j) = f.markers();
-                (k, i, j)
-            })
             .collect();
         let (mut qo, mut vo, mut nm) = (Vec::new(), Vec::new(), Vec::new());
         let (mut nq, mut nv) = (0, 0);
@@ -223,7 +212,6 @@ impl System {
             accel: std::cell::RefCell::new(None),
             normal: std::cell::RefCell::new(None),
             mquat,
-            felems,
             full,
             spinning: Vec::new(),
         };
@@ -411,7 +399,7 @@ impl System {
     }
 
     /// World frame of marker `k` for given positions (f64).
-    pub fn marker_frame(&self, q: &[f64], k: usize) -> super::joint::MFrame<f64> {
+    pub fn marker_frame(&self, q: &[f64], k: MarkerHandle) -> super::joint::MFrame<f64> {
         let mk = &self.model.markers[k];
         match mk.body {
             None => super::joint::MFrame {
@@ -428,9 +416,23 @@ impl System {
         }
     }
 
-    /// The bodies (or ground) of an element's two markers.
-    pub fn bodies_of(&self, mi: usize, mj: usize) -> [Option<usize>; 2] {
-        [self.model.markers[mi].body, self.model.markers[mj].body]
+    /// The body (`None`: ground) of marker `k` as the system numbers bodies, the index of
+    /// its offsets in `qo`, `vo` and `nm`.
+    pub fn body_of(&self, k: MarkerHandle) -> Option<usize> {
+        // The one place a body handle becomes the system's body number: the equations
+        // lay the bodies out in the model's order.
+        self.model.markers[k].body.map(BodyHandle::index)
+    }
+
+    /// The bodies (or ground) of an element's two markers, numbered as [`System::body_of`].
+    pub fn bodies_of(&self, mi: MarkerHandle, mj: MarkerHandle) -> [Option<usize>; 2] {
+        [self.body_of(mi), self.body_of(mj)]
+    }
+
+    /// Marker `k`'s axes as a quaternion in its body's frame.
+    pub(crate) fn marker_quat(&self, k: MarkerHandle) -> [f64; 4] {
+        // A table in the model's marker order, built once at assembly.
+        self.mquat[k.index()]
     }
 
     /// Absolute tolerances per unknown for a run: 1e-6 m / 1e-6 (quaternions) / 1e-7 on

@@ -26,7 +26,7 @@ impl System {
             .model
             .tyres
             .iter()
-            .filter_map(|t| self.model.markers[t.marker].body)
+            .filter_map(|t| self.body_of(t.marker))
             .filter(|&b| self.nm[b] == 0)
             .collect();
         out.sort_unstable();
