@@ -197,6 +197,24 @@ fn the_registry_lists_the_simple_sets_axle_and_trailer() {
     for t in ["box_trailer", "lumped_trailer"] {
         assert!(trailers.contains(&t), "{trailers:?}");
     }
+    // A trailer template the registry lacks is refused with the ones it has.
+    let l = Loader::with_overrides(vec![towride_mbs::input::Override::program(
+        "fabia_trailer.toml",
+        "trailer.template",
+        "\"caravan\"",
+        "test",
+    )]);
+    let e = vehicle::load(
+        Path::new(repo!("vehicles/fabia_trailer.toml")),
+        &Options::default(),
+        &l,
+    )
+    .unwrap_err();
+    assert_eq!(e.field, "trailer.template", "{e}");
+    assert!(
+        e.message.contains("box_trailer") && e.message.contains("lumped_trailer"),
+        "{e}"
+    );
 }
 
 #[test]

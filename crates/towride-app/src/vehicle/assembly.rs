@@ -6,14 +6,14 @@
 use super::air;
 use super::axle::{Axle, AxleSlot};
 use super::build::Builder;
-use super::description::{BodySpec, Description, DrivelineSpec, HitchSpec};
+use super::description::{Assumed, BodySpec, Description, DrivelineSpec, HitchSpec};
 use super::design::{self, centre_of_mass, CornerDesign};
 use super::geom::{Placement, IDENTITY, V};
 use super::props::at;
 use super::trailer::TrailerSlot;
 use super::{
-    body, driveline, engine, hitch, sensors, simple, wheel, Design, Handles, Options,
-    TrailerDesign, Vehicle,
+    body, driveline, engine, hitch, sensors, wheel, Design, Handles, Options, TrailerDesign,
+    Vehicle,
 };
 use towride_mbs::input::{InputError, Loader};
 use towride_mbs::model::builder::{BodyHandle, MarkerHandle, ModelBuilder};
@@ -261,7 +261,7 @@ fn finish(
     wheels: Vec<wheel::WheelHandle>,
     speed: f64,
     mut design: Design,
-    assumed: Vec<simple::Assumed>,
+    assumed: Vec<Assumed>,
 ) -> Vehicle {
     wheel::set_speed(b.model_mut(), &wheels, speed);
     handles.wheels = wheels;

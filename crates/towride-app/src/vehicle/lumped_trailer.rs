@@ -119,21 +119,19 @@ fn read(src: &Source, file: &Path, case: Option<&str>) -> Result<Props, InputErr
         payloads.push(c.payload.as_ref().map(|m| m.check(src, &p)).transpose()?);
     }
     let k = match case {
-        None => None,
-        Some(name) => Some(
-            f.load_case
-                .iter()
-                .position(|c| c.name == name)
-                .ok_or_else(|| {
-                    let names: Vec<&str> = f.load_case.iter().map(|c| c.name.as_str()).collect();
-                    src.error(
-                        &path!["load_case"],
-                        format!("no load case '{name}' (cases: {})", names.join(", ")),
-                    )
-                })?,
-        ),
-    }
-    .or((!f.load_case.is_empty()).then_some(0));
+        Some(name) => {
+            let k = f.load_case.iter().position(|c| c.name == name);
+            Some(k.ok_or_else(|| {
+                let names: Vec<&str> = f.load_case.iter().map(|c| c.name.as_str()).collect();
+                src.error(
+                    &path!["load_case"],
+                    format!("no load case '{name}' (cases: {})", names.join(", ")),
+                )
+            })?)
+        }
+        // The first case when none is asked for, none when the file has none.
+        None => (!f.load_case.is_empty()).then_some(0),
+    };
     Ok(Props {
         coupling: point(src, &path!["trailer", "coupling_m"], &t.coupling_m)?,
         body: f.body.check(src, &path!["body"])?,

@@ -129,7 +129,8 @@ pub struct Vehicle {
     /// What the design statics found.
     pub design: Design,
     /// Values a compact (`simple`) vehicle file left to the defaults or derived from its
-    /// numbers; empty for an assembly file, which gives everything.
+    /// numbers, and values the design statics derived (air springs' pressures); empty
+    /// for an assembly file of coil springs and rubber, which gives everything.
     pub assumed: Vec<simple::Assumed>,
 }
 
