@@ -52,7 +52,7 @@ use serde::Deserialize;
 pub use channels::Channel;
 
 use crate::vehicle::sensors::{self, SensorSpec};
-use crate::vehicle::{self, build::Builder, Options, Vehicle};
+use crate::vehicle::{self, build::Builder, BallCoupling, CrossMember, Options, Vehicle};
 use towride_mbs::flex::feedback::RunModes;
 use towride_mbs::input::Origin;
 use towride_mbs::input::{InputError, InputErrorKind, Loader, Override, Source};
@@ -108,9 +108,9 @@ struct SceneSec {
     load_case: Option<String>,
     hitch_variant: Option<u32>,
     tyre_model: Option<TyreKind>,
-    ball_coupling: Option<String>,
+    ball_coupling: Option<BallCoupling>,
     joints_as_bushings: Option<JointBushing>,
-    rear_cross_member: Option<String>,
+    rear_cross_member: Option<CrossMember>,
     /// A run folder whose strain-energy shares select the modal bodies' modes.
     modes_from: Option<String>,
     /// The share a mode needs there (fraction; default 0.01).
@@ -371,22 +371,6 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
     solver
         .validate(1)
         .map_err(|e| src.error(&path!["solver"], e.to_string()))?;
-    if let Some(b) = &f.scene.ball_coupling {
-        if b != "spherical" && b != "bushing" {
-            return Err(src.error(
-                &path!["scene", "ball_coupling"],
-                format!("'{b}': use spherical or bushing"),
-            ));
-        }
-    }
-    if let Some(k) = &f.scene.rear_cross_member {
-        if k != "rigid" && k != "flexible" {
-            return Err(src.error(
-                &path!["scene", "rear_cross_member"],
-                format!("'{k}': use rigid or flexible"),
-            ));
-        }
-    }
     if let Some(jb) = &f.scene.joints_as_bushings {
         vehicle::props::joint_bushing(
             &src,
@@ -418,8 +402,8 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
         hitch_variant: o.hitch_variant.or(f.scene.hitch_variant),
         tyre_kind: f.scene.tyre_model,
         joints_as_bushings: f.scene.joints_as_bushings.clone(),
-        ball_coupling: f.scene.ball_coupling.clone(),
-        rear_cross_member: f.scene.rear_cross_member.clone(),
+        ball_coupling: f.scene.ball_coupling,
+        rear_cross_member: f.scene.rear_cross_member,
         run_modes,
     };
     let mut v = vehicle::load(&vehicle_file, &opts, &loader).map_err(|e| {

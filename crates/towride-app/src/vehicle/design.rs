@@ -16,6 +16,7 @@
 
 use serde::Serialize;
 
+use super::air::{AirSpec, AirSpring};
 use super::build::Builder;
 use super::geom::{distance, norm, V};
 use towride_mbs::input::InputError;
@@ -30,6 +31,12 @@ pub enum Preloaded {
     /// A bushing (index in `Model::forces`) whose torque about its z axis carries the
     /// load (a rubber torsion spring); rate of the torsion [N m/rad].
     Torsion { force: ElementHandle, rate: f64 },
+    /// A levelled air spring along `line`: its pressure follows from the preload, its
+    /// law from the gas ([`super::air`]).
+    Air {
+        line: Box<SpringLine>,
+        spring: AirSpec,
+    },
 }
 
 /// One corner of an axle: its mechanism rates and its load-carrying element.
@@ -42,45 +49,62 @@ pub struct Corner {
 }
 
 /// Sets the corner's element so it holds the design position under `load` [N]; returns
-/// what was found.
-pub fn finish(b: &mut Builder, c: Corner, load: f64) -> Result<CornerDesign, InputError> {
+/// what was found, and the air spring when the element is one (its pressure and volume
+/// are derived values).
+pub fn finish(
+    b: &mut Builder,
+    c: Corner,
+    load: f64,
+) -> Result<(CornerDesign, Option<AirSpring>), InputError> {
     let g = b.model().gravity;
     let p = preload(&c.rates, g, load);
     let mr = motion_ratio(&c.rates, g);
     let unsprung_kg = reduced_mass(&c.rates, g);
-    let (rate, free_length_m) = match c.element {
+    let complain = |message: String| InputError {
+        message,
+        ..c.complaint.clone()
+    };
+    let (element_rate, free_length_m, air) = match c.element {
         Preloaded::Coil { mut line, rate } => {
             let l = distance(&line.point_i, &line.point_j);
             // Linear coil: force = rate (free length - length), so the free length is
             // the design length plus the static compression.
             line.free_length = l + p / rate;
             if line.free_length <= 0.0 || p <= 0.0 {
-                let mut e = c.complaint;
-                e.message = format!("the spring would need {p:.1} N at its design length {l:.4} m (free length {:.4} m): check the hardpoints and loads", line.free_length);
-                return Err(e);
+                return Err(complain(format!("the spring would need {p:.1} N at its design length {l:.4} m (free length {:.4} m): check the hardpoints and loads", line.free_length)));
             }
             line.preload = 0.0;
             line.spring = Law::Linear(rate);
             let free = line.free_length;
             b.add(|m| m.spring(*line))?;
-            (rate, Some(free))
+            (rate, Some(free), None)
         }
         Preloaded::Torsion { force, rate } => {
             if let Force::Bushing(bu) = &mut b.model_mut().forces[force] {
                 bu.preload[5] = p;
             }
-            (rate, None)
+            (rate, None, None)
+        }
+        Preloaded::Air { mut line, spring } => {
+            let air = spring.levelled(p, mr).map_err(complain)?;
+            // The table holds the force less the preload, zero at the design length.
+            line.free_length = distance(&line.point_i, &line.point_j);
+            line.preload = p;
+            line.spring = spring.law(&air)?;
+            b.add(|m| m.spring(*line))?;
+            (air.rate(), None, Some(air))
         }
     };
-    Ok(CornerDesign {
+    let design = CornerDesign {
         wheel: c.wheel,
         load_n: load,
         preload: p,
         motion_ratio: mr,
-        wheel_rate_n_m: rate * mr * mr,
+        wheel_rate_n_m: element_rate * mr * mr,
         free_length_m,
         unsprung_kg,
-    })
+    };
+    Ok((design, air))
 }
 
 /// Rates of one corner's mechanism per unit of its coordinate (body held).

@@ -32,6 +32,42 @@ struct Control {
     driven_wheels: Vec<String>,
 }
 
+/// A speed controller's gains and driven wheels (a compact file's derived values).
+#[derive(Clone, Debug)]
+pub struct Gains {
+    /// Total drive torque per unit speed error [N m s/m].
+    pub proportional_n_m_s_per_m: f64,
+    /// Total drive torque per unit distance error [N m/m].
+    pub integral_n_m_per_m: f64,
+    /// Magnitude limit of the total drive torque [N m].
+    pub max_torque_n_m: f64,
+    /// Short names of the driven wheels.
+    pub driven_wheels: Vec<String>,
+}
+
+/// The speed controller of `g` holding `speed` [m/s], measured along x of the marker
+/// `sensor`, driving those of `wheels` that `g` names (in `wheels`' order).
+pub fn control(
+    g: &Gains,
+    sensor: MarkerHandle,
+    speed: f64,
+    wheels: &[WheelHandle],
+) -> SpeedControl {
+    SpeedControl {
+        name: "driveline".into(),
+        sensor,
+        target: TimeFunction::Constant { value: speed },
+        kp: g.proportional_n_m_s_per_m,
+        ki: g.integral_n_m_per_m,
+        max_torque: g.max_torque_n_m,
+        wheels: wheels
+            .iter()
+            .filter(|w| g.driven_wheels.contains(&w.name))
+            .map(|w| (w.centre, w.carrier_centre))
+            .collect(),
+    }
+}
+
 /// Reads `file`: a speed controller holding `speed` [m/s], measured along x of the
 /// marker `sensor`, driving the named `wheels`.
 pub fn build(

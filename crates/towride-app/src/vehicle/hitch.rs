@@ -25,7 +25,7 @@ use towride_mbs::path;
 struct File {
     hitch: Hitch,
     mounting: Mounting,
-    ball_coupling: BallCoupling,
+    ball_coupling: BallCouplingSec,
 }
 
 /// How each bracket is held on the body: the bolted joint in series with the body-side
@@ -105,23 +105,52 @@ struct Hitch {
     bracket_nodes: [String; 2],
     ball_node: String,
     sensor_node: String,
-    /// How the brackets are held: "bushing" (default, `[mounting]`) or "fixed"
-    /// (ideal fixed joints: the thesis's over-constrained variant, for stress tests).
+    /// How the brackets are held.
     #[serde(default)]
-    bracket_mount: Option<String>,
+    bracket_mount: BracketMount,
+}
+
+/// How the hitch's brackets are held on the body.
+#[derive(Deserialize, Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+enum BracketMount {
+    /// Bushings of the `[mounting]` table.
+    #[default]
+    Bushing,
+    /// Ideal fixed joints: the thesis's over-constrained variant, for stress tests.
+    Fixed,
 }
 
 #[derive(Deserialize, Debug)]
 #[serde(deny_unknown_fields)]
-struct BallCoupling {
-    /// "spherical" (ideal joint) or "bushing".
-    kind: String,
+struct BallCouplingSec {
+    kind: BallCoupling,
     /// The bushing used for kind = "bushing" (translations only: a ball passes no
     /// moments).
     bushing: Option<JointBushing>,
 }
 
-/// How the drawbar is coupled to the ball.
+/// How the drawbar is to be coupled to the ball: the hitch file's `ball_coupling.kind`,
+/// a scene's `ball_coupling`.
+#[derive(Deserialize, Clone, Copy, Debug, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum BallCoupling {
+    /// An ideal spherical joint.
+    Spherical,
+    /// The hitch file's stiff bushing.
+    Bushing,
+}
+
+impl std::fmt::Display for BallCoupling {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str(match self {
+            BallCoupling::Spherical => "spherical",
+            BallCoupling::Bushing => "bushing",
+        })
+    }
+}
+
+/// How the drawbar is coupled to the ball, as built.
 #[derive(Clone, Debug)]
 pub enum BallKind {
     /// An ideal spherical joint.
@@ -161,7 +190,7 @@ pub fn build(
     file: &Path,
     body: BodyHandle,
     variant: Option<u32>,
-    ball: Option<&str>,
+    ball: Option<BallCoupling>,
 ) -> Result<HitchHandle, InputError> {
     let src = b.read(file)?;
     let f: File = src.parse()?;
@@ -199,9 +228,9 @@ pub fn build(
         &h.sensor_node,
     )?;
     let bushing = f.mounting.laws(&src)?;
-    let ball_kind = match ball.unwrap_or(&f.ball_coupling.kind) {
-        "spherical" => BallKind::Spherical,
-        "bushing" => {
+    let ball_kind = match ball.unwrap_or(f.ball_coupling.kind) {
+        BallCoupling::Spherical => BallKind::Spherical,
+        BallCoupling::Bushing => {
             let jb = joint_bushing(
                 &src,
                 &path!["ball_coupling", "bushing"],
@@ -214,24 +243,9 @@ pub fn build(
                 )
             })?)
         }
-        other => {
-            return Err(src.error(
-                &path!["ball_coupling", "kind"],
-                format!("'{other}': use spherical or bushing"),
-            ))
-        }
     };
     let at = |p: &[f64; 3]| add(&origin, p);
-    let fixed = match h.bracket_mount.as_deref() {
-        None | Some("bushing") => false,
-        Some("fixed") => true,
-        Some(other) => {
-            return Err(src.error(
-                &path!["hitch", "bracket_mount"],
-                format!("is \"bushing\" or \"fixed\", not \"{other}\""),
-            ))
-        }
-    };
+    let fixed = h.bracket_mount == BracketMount::Fixed;
     let (ball, sensor) = (
         at(&data.nodes[ball_node].position_m),
         at(&data.nodes[sensor_node].position_m),
@@ -318,6 +332,39 @@ pub fn couple(
             modal_body::pin(b, link, false, h.ball_node);
             link
         }
+    };
+    Ok((link, kind))
+}
+
+/// A ball fixed on the car body at `ball` (car coordinates; no crossbeam: the `simple`
+/// vehicle files' hitch) coupled to the trailer body `drawbar` by a spherical joint, the
+/// builder placed in the car's coordinates. A model-wide switch of joints to bushings
+/// turns it into that bushing, the drawbar then I as in [`couple`].
+pub fn couple_on_body(
+    b: &mut Builder,
+    car_body: BodyHandle,
+    ball: V,
+    drawbar: BodyHandle,
+    joints_as_bushings: Option<&JointBushing>,
+) -> Result<(Link, BallKind), InputError> {
+    let (i, j) = match joints_as_bushings {
+        None => (car_body, drawbar),
+        Some(_) => (drawbar, car_body),
+    };
+    let link = b.add(|m| {
+        m.joint(
+            "ball_coupling",
+            JointKind::Spherical,
+            Some(i),
+            Some(j),
+            ball,
+            &IDENTITY,
+            None,
+        )
+    })?;
+    let kind = match joints_as_bushings {
+        None => BallKind::Spherical,
+        Some(jb) => BallKind::Bushing(jb.clone()),
     };
     Ok((link, kind))
 }

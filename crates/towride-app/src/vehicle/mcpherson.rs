@@ -14,7 +14,7 @@ use serde::Deserialize;
 
 use std::path::Path;
 
-use super::axle::{Axle, AxleSlot, AxleTemplate};
+use super::axle::{Axle, AxleData, AxleSlot, AxleTemplate};
 use super::build::Builder;
 use super::design::{Corner, CornerRates, Preloaded};
 use super::geom::{frame, norm, unit, V};
@@ -22,10 +22,10 @@ use super::props::{
     joints, point, stop, BushingLaws, BushingProps, DamperProps, JointsProps, Mass, MassProps,
     WheelProps,
 };
-use super::strut::{rates, Pts};
+use super::strut::{rates, StrutPoints};
 use super::wheel::{self, WheelHandle};
 use towride_mbs::input::{InputError, Source};
-use towride_mbs::model::builder::{BodyHandle, SpringLine};
+use towride_mbs::model::builder::SpringLine;
 use towride_mbs::model::desc::{JointKind, Law, Stop};
 use towride_mbs::model::elements::{JointBushing, StopSpec};
 use towride_mbs::model::math::{cross, scale, sub};
@@ -80,14 +80,25 @@ impl AxleTemplate for McPherson {
         "mcpherson"
     }
 
-    fn build(&self, b: &mut Builder, file: &Path, slot: &AxleSlot) -> Result<Axle, InputError> {
-        build(b, file, slot)
+    fn read(
+        &self,
+        b: &mut Builder,
+        file: &Path,
+        slot: &AxleSlot,
+    ) -> Result<Box<dyn AxleData>, InputError> {
+        let src = b.read(file)?;
+        if slot.cross_member.is_some() {
+            return Err(b.refused(towride_mbs::model::ModelError::Unsupported(
+                "the McPherson axle has no variants".into(),
+            )));
+        }
+        Ok(Box::new(read(src, slot.tyre)?))
     }
 }
 
 /// The property file, checked (left side).
 struct Props {
-    pts: Pts,
+    points: StrutPoints,
     knuckle: Mass,
     lca: Mass,
     rod: Mass,
@@ -102,24 +113,29 @@ struct Props {
     lca_rear: BushingLaws,
     top_mount: BushingLaws,
     joints: Option<JointBushing>,
+    /// Where the design statics complain about the spring.
+    spring_at: InputError,
+    /// The file (the kinematics locate a singular geometry in it).
+    src: Source,
 }
 
-fn read(src: &Source, tyre: &Tyre) -> Result<Props, InputError> {
+fn read(file: Source, tyre: &Tyre) -> Result<Props, InputError> {
+    let src = &file;
     let f: File = src.parse()?;
     let h = &f.hardpoints;
     let hp = |k: &str, v: &[f64; 3]| point(src, &path!["hardpoints", k], v);
-    let pts = Pts {
-        w: hp("wheel_centre_m", &h.wheel_centre_m)?,
-        af: hp("lower_arm_front_m", &h.lower_arm_front_m)?,
-        ar: hp("lower_arm_rear_m", &h.lower_arm_rear_m)?,
-        b: hp("ball_joint_m", &h.ball_joint_m)?,
-        l: hp("strut_lower_m", &h.strut_lower_m)?,
-        t: hp("strut_top_m", &h.strut_top_m)?,
-        q: hp("spring_seat_m", &h.spring_seat_m)?,
-        s: hp("tie_rod_inner_m", &h.tie_rod_inner_m)?,
-        r: hp("tie_rod_outer_m", &h.tie_rod_outer_m)?,
+    let pts = StrutPoints {
+        wheel_centre: hp("wheel_centre_m", &h.wheel_centre_m)?,
+        lower_arm_front: hp("lower_arm_front_m", &h.lower_arm_front_m)?,
+        lower_arm_rear: hp("lower_arm_rear_m", &h.lower_arm_rear_m)?,
+        ball_joint: hp("ball_joint_m", &h.ball_joint_m)?,
+        strut_lower: hp("strut_lower_m", &h.strut_lower_m)?,
+        strut_top: hp("strut_top_m", &h.strut_top_m)?,
+        spring_seat: hp("spring_seat_m", &h.spring_seat_m)?,
+        tie_rod_inner: hp("tie_rod_inner_m", &h.tie_rod_inner_m)?,
+        tie_rod_outer: hp("tie_rod_outer_m", &h.tie_rod_outer_m)?,
     };
-    if pts.w[1] <= 0.0 {
+    if pts.wheel_centre[1] <= 0.0 {
         return Err(src.error(
             &path!["hardpoints", "wheel_centre_m", 1],
             "give the left side (y > 0); the right side is mirrored",
@@ -128,9 +144,9 @@ fn read(src: &Source, tyre: &Tyre) -> Result<Props, InputError> {
     // Pairs of hardpoints that set an axis: coincident ones are the hardpoints' fault,
     // not the axis's (which no file names).
     for (k, a, other, b, what) in [
-        ("lower_arm_rear_m", &pts.ar, "lower_arm_front_m", &pts.af, "the lower arm's pivot axis"),
-        ("strut_top_m", &pts.t, "strut_lower_m", &pts.l, "the strut axis"),
-        ("tie_rod_outer_m", &pts.r, "tie_rod_inner_m", &pts.s, "the tie rod"),
+        ("lower_arm_rear_m", &pts.lower_arm_rear, "lower_arm_front_m", &pts.lower_arm_front, "the lower arm's pivot axis"),
+        ("strut_top_m", &pts.strut_top, "strut_lower_m", &pts.strut_lower, "the strut axis"),
+        ("tie_rod_outer_m", &pts.tie_rod_outer, "tie_rod_inner_m", &pts.tie_rod_inner, "the tie rod"),
     ] {
         if norm(&sub(a, b)) < 1e-6 {
             return Err(src.error(
@@ -141,26 +157,26 @@ fn read(src: &Source, tyre: &Tyre) -> Result<Props, InputError> {
     }
     // The strut's frame takes x across it, the tie rod's universal joint pins across it.
     let along = |a: &V, b: &V, e: &V| norm(&cross(&unit(&sub(a, b)), e)) < 1e-6;
-    if along(&pts.t, &pts.l, &[1.0, 0.0, 0.0]) {
+    if along(&pts.strut_top, &pts.strut_lower, &[1.0, 0.0, 0.0]) {
         return Err(src.error(
             &path!["hardpoints", "strut_top_m"],
             "the strut (strut_lower_m to strut_top_m) must not lie along x",
         ));
     }
-    if along(&pts.r, &pts.s, &[0.0, 0.0, 1.0]) {
+    if along(&pts.tie_rod_outer, &pts.tie_rod_inner, &[0.0, 0.0, 1.0]) {
         return Err(src.error(
             &path!["hardpoints", "tie_rod_outer_m"],
             "the tie rod (tie_rod_inner_m to tie_rod_outer_m) must not be vertical",
         ));
     }
-    let pivot = unit(&sub(&pts.af, &pts.ar));
-    let strut = unit(&sub(&pts.t, &pts.l));
+    let pivot = unit(&sub(&pts.lower_arm_front, &pts.lower_arm_rear));
+    let strut = unit(&sub(&pts.strut_top, &pts.strut_lower));
     Ok(Props {
         knuckle: f.knuckle.check(src, &path!["knuckle"])?,
         lca: f.lower_arm.check(src, &path!["lower_arm"])?,
         rod: f.strut_rod.check(src, &path!["strut_rod"])?,
         tie: f.tie_rod.check(src, &path!["tie_rod"])?,
-        rim: wheel::rim_mass(src, &path!["wheel"], &f.wheel, tyre, pts.w)?,
+        rim: wheel::rim_mass(src, &path!["wheel"], &f.wheel, tyre, pts.wheel_centre)?,
         belt: wheel::tyre_own_mass(tyre),
         spring: src.positive(&path!["spring", "stiffness_n_m"], f.spring.stiffness_n_m)?,
         damper: f.damper.check(src, &path!["damper"])?,
@@ -176,59 +192,54 @@ fn read(src: &Source, tyre: &Tyre) -> Result<Props, InputError> {
             .check(src, &path!["lower_arm_rear_bushing"], pivot)?,
         top_mount: f.top_mount.check(src, &path!["top_mount"], strut)?,
         joints: joints(src, &path!["joints"], &f.joints)?,
-        pts,
+        spring_at: src.error(&path!["spring", "stiffness_n_m"], ""),
+        points: pts,
+        src: file,
     })
 }
 
-/// Reads `file` and adds both sides at `slot`.
-fn build(b: &mut Builder, file: &Path, slot: &AxleSlot) -> Result<Axle, InputError> {
-    if slot.variant.is_some() {
-        return Err(b.refused(towride_mbs::model::ModelError::Unsupported(
-            "the McPherson axle has no variants".into(),
-        )));
+impl AxleData for Props {
+    fn build(self: Box<Self>, b: &mut Builder, slot: &AxleSlot) -> Result<Axle, InputError> {
+        let mut out = Axle {
+            wheels: Vec::new(),
+            corners: Vec::new(),
+            body_mounts: Vec::new(),
+            flexible: None,
+        };
+        for (right, name) in [(false, slot.wheels[0]), (true, slot.wheels[1])] {
+            let (wheel, corner, top) = side(b, &self, slot, right, name)?;
+            out.wheels.push(wheel);
+            out.corners.push(corner);
+            out.body_mounts.push(top);
+        }
+        Ok(out)
     }
-    let src = b.read(file)?;
-    let c = read(&src, slot.tyre)?;
-    let mut out = Axle {
-        wheels: Vec::new(),
-        corners: Vec::new(),
-        body_mounts: Vec::new(),
-        flexible: None,
-    };
-    for (right, name) in [(false, slot.wheels[0]), (true, slot.wheels[1])] {
-        let (wheel, corner, top) = side(b, &src, &c, slot.carrier, right, name, slot.tyre)?;
-        out.wheels.push(wheel);
-        out.corners.push(corner);
-        out.body_mounts.push(top);
-    }
-    Ok(out)
 }
 
 /// One side: parts, joints, bushings, damper, wheel; the spring awaits its load.
 fn side(
     b: &mut Builder,
-    src: &Source,
     c: &Props,
-    body: BodyHandle,
+    slot: &AxleSlot,
     right: bool,
     name: &str,
-    tyre: &Tyre,
 ) -> Result<(WheelHandle, Corner, V), InputError> {
-    let p = c.pts.side(right);
+    let (body, tyre, prefix) = (slot.carrier, slot.tyre, slot.prefix);
+    let p = c.points.side(right);
     let (kn_m, lca_m, rod_m, tie_m) = (
         c.knuckle.side(right),
         c.lca.side(right),
         c.rod.side(right),
         c.tie.side(right),
     );
-    let lca = b.body(&format!("lca_{name}"), &lca_m)?;
-    let kn = b.body(&format!("knuckle_{name}"), &kn_m)?;
-    let rod = b.body(&format!("strut_rod_{name}"), &rod_m)?;
-    let tie = b.body(&format!("tie_rod_{name}"), &tie_m)?;
+    let lca = b.body(&format!("{prefix}lca_{name}"), &lca_m)?;
+    let kn = b.body(&format!("{prefix}knuckle_{name}"), &kn_m)?;
+    let rod = b.body(&format!("{prefix}strut_rod_{name}"), &rod_m)?;
+    let tie = b.body(&format!("{prefix}tie_rod_{name}"), &tie_m)?;
     for (what, laws, bi, at) in [
-        ("lca_front_bushing", &c.lca_front, lca, p.af),
-        ("lca_rear_bushing", &c.lca_rear, lca, p.ar),
-        ("top_mount", &c.top_mount, rod, p.t),
+        ("lca_front_bushing", &c.lca_front, lca, p.lower_arm_front),
+        ("lca_rear_bushing", &c.lca_rear, lca, p.lower_arm_rear),
+        ("top_mount", &c.top_mount, rod, p.strut_top),
     ] {
         let l = laws.side(right);
         b.bushing(
@@ -242,23 +253,23 @@ fn side(
         )?;
     }
     let strut_axes =
-        frame(unit(&sub(&p.t, &p.l)), Some([1.0, 0.0, 0.0])).expect("strut axis not along x");
+        frame(unit(&sub(&p.strut_top, &p.strut_lower)), Some([1.0, 0.0, 0.0])).expect("strut axis not along x");
     let ball_axes = frame([0.0, 0.0, 1.0], None).expect("vertical");
     // Tie rod: universal at the rack (pins across the rod, so its spin is held), ball
     // joint at the steering arm.
-    let d = unit(&sub(&p.r, &p.s));
+    let d = unit(&sub(&p.tie_rod_outer, &p.tie_rod_inner));
     let pin_j = unit(&sub(&[0.0, 0.0, 1.0], &scale(&d, d[2])));
     let u_axes = frame(pin_j, Some(cross(&d, &pin_j))).expect("tie rod not vertical");
     let jb = c.joints.as_ref();
     for (what, kind, bi, bj, at, axes) in [
-        ("ball_joint", JointKind::Spherical, kn, lca, p.b, &ball_axes),
-        ("strut", JointKind::Cylindrical, rod, kn, p.l, &strut_axes),
+        ("ball_joint", JointKind::Spherical, kn, lca, p.ball_joint, &ball_axes),
+        ("strut", JointKind::Cylindrical, rod, kn, p.strut_lower, &strut_axes),
         (
             "tie_rod_inner",
             JointKind::Universal,
             tie,
             body,
-            p.s,
+            p.tie_rod_inner,
             &u_axes,
         ),
         (
@@ -266,7 +277,7 @@ fn side(
             JointKind::Spherical,
             tie,
             kn,
-            p.r,
+            p.tie_rod_outer,
             &ball_axes,
         ),
     ] {
@@ -280,14 +291,14 @@ fn side(
             jb,
         ))?;
     }
-    let mut damper = SpringLine::new(&format!("damper_{name}"), Some(kn), p.l, Some(rod), p.t);
+    let mut damper = SpringLine::new(&format!("damper_{name}"), Some(kn), p.strut_lower, Some(rod), p.strut_top);
     damper.damper = c.damper.clone();
     damper.bump_stop = c.bump.clone();
     damper.rebound_stop = c.rebound.clone();
     b.add(|m| m.spring(damper))?;
     let rim = c.rim.side(right);
     let wheel = wheel::add(b, name, kn, &rim, tyre)?;
-    let v = rates(&p, src, &[kn_m.cm, lca_m.cm, rod_m.cm, tie_m.cm])?;
+    let v = rates(&p, &c.src, &[kn_m.cm, lca_m.cm, rod_m.cm, tie_m.cm])?;
     let rates = CornerRates {
         masses: vec![
             (kn_m.mass, v.parts[0]),
@@ -307,13 +318,13 @@ fn side(
             line: Box::new(SpringLine::new(
                 &format!("spring_{name}"),
                 Some(kn),
-                p.q,
+                p.spring_seat,
                 Some(body),
-                p.t,
+                p.strut_top,
             )),
             rate: c.spring,
         },
-        complaint: src.error(&path!["spring", "stiffness_n_m"], ""),
+        complaint: c.spring_at.clone(),
     };
-    Ok((wheel, corner, p.t))
+    Ok((wheel, corner, p.strut_top))
 }

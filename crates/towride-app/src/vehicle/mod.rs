@@ -2,28 +2,36 @@
 //! joints or bushings and force elements of a [`Model`], knowing nothing about the
 //! solver. `docs/vehicle.md` documents the templates, coordinates and every field.
 //!
-//! An assembly file (`vehicles/*.toml`, see [`assembly`]) names the templates and
-//! property files that make a vehicle; [`load`] reads it and returns the [`Vehicle`]: the
-//! model (bodies, tyres, the speed controller; no road and no outputs yet, a scene adds
-//! those) plus named [`Handles`] and what the design statics found ([`Design`]).
+//! Two kinds of vehicle file, one assembly path: an assembly file (`vehicles/*.toml`,
+//! [`assembly_file`]) names the templates and property files that make a vehicle; a
+//! compact `simple` file ([`simple`]) gives a few numbers from which the same slots'
+//! data are derived. Either becomes a [`description::Description`], which
+//! [`assembly::assemble`] turns into builder calls, with the design statics, once.
+//! [`load`] returns the [`Vehicle`]: the model (bodies, tyres, the speed controller; no
+//! road and no outputs yet, a scene adds those) plus named [`Handles`] and what the
+//! design statics found ([`Design`]).
 //!
 //! Coordinates: x forward, y left, z up. The car's origin is on the ground under the
 //! centre of the front axle at the design ride height (car with driver, no trailer);
 //! the trailer's is on the ground under its coupling's ball centre. Hardpoints are given
 //! at the design position; left-side values are mirrored for the right side.
 //!
-//! Templates: [`body`] (lumped body), [`mcpherson`] (front), [`twist_beam`] (rear, its
-//! cross member rigid or flexible: [`twist_flex`]),
-//! [`driveline`] (speed control), [`hitch`] (modal crossbeam and ball coupling),
-//! [`trailer`] (box trailer with rubber torsion axle); shared pieces in [`wheel`],
-//! [`swing`], [`design`] (spring preloads by virtual work), [`build`], [`props`],
-//! [`geom`], [`sensors`], [`strut`] (McPherson kinematics), [`modal_body`] (modal bodies
-//! of the hitch and the cross member).
+//! Templates (the registry: `templates!` below): axles ([`axle`]) [`mcpherson`],
+//! [`twist_beam`] (its cross member rigid or flexible: [`twist_flex`]),
+//! [`trailing_arm_axle`]; trailers ([`trailer`]) [`box_trailer`], [`lumped_trailer`];
+//! one template per other slot: [`body`] (lumped body), [`engine`], [`driveline`] (speed
+//! control), [`hitch`] (modal crossbeam and ball coupling). Shared pieces in [`wheel`],
+//! [`swing`], [`design`] (spring preloads by virtual work), [`air`] (levelled air
+//! springs), [`build`], [`props`], [`geom`], [`sensors`], [`strut`] (McPherson
+//! kinematics), [`modal_body`] (modal bodies of the hitch and the cross member).
 
+pub(crate) mod air;
 pub(crate) mod assembly;
+pub(crate) mod assembly_file;
 pub mod axle;
 pub(crate) mod body;
 pub(crate) mod build;
+pub(crate) mod description;
 pub(crate) mod design;
 pub(crate) mod driveline;
 pub(crate) mod engine;
@@ -35,7 +43,7 @@ pub(crate) mod sensors;
 pub mod simple;
 pub(crate) mod strut;
 pub(crate) mod swing;
-pub(crate) mod trailer;
+pub mod trailer;
 pub(crate) mod twist_flex;
 pub(crate) mod wheel;
 
@@ -44,28 +52,38 @@ use std::sync::Arc;
 
 use serde::Serialize;
 
-/// Declares the axle templates' modules and lists them in [`axle::TEMPLATES`]:
-/// `file::Type`, one line per template.
-macro_rules! axle_templates {
-    ($($module:ident::$ty:ident),* $(,)?) => {
-        $(pub(crate) mod $module;)*
+/// The registry: declares the templates' modules and lists them in [`axle::TEMPLATES`]
+/// and [`trailer::TEMPLATES`], `file::Type` per template.
+macro_rules! templates {
+    (axle: $($am:ident::$at:ident),* ; trailer: $($tm:ident::$tt:ident),* $(;)?) => {
+        $(pub(crate) mod $am;)*
+        $(pub(crate) mod $tm;)*
 
         /// The registered axle templates.
-        pub(crate) static AXLE_TEMPLATES: &[&dyn axle::AxleTemplate] = &[$(&$module::$ty),*];
+        pub(crate) static AXLE_TEMPLATES: &[&dyn axle::AxleTemplate] = &[$(&$am::$at),*];
+        /// The registered trailer templates.
+        pub(crate) static TRAILER_TEMPLATES: &[&dyn trailer::TrailerTemplate] =
+            &[$(&$tm::$tt),*];
     };
 }
 
-// The registered axle templates. A new one is its file in this folder and one line here.
-axle_templates! {
-    mcpherson::McPherson,
-    twist_beam::TwistBeam,
+// The registered templates. A new one is its file in this folder and one line here.
+templates! {
+    axle:
+        mcpherson::McPherson,
+        trailing_arm_axle::TrailingArmAxle,
+        twist_beam::TwistBeam;
+    trailer:
+        box_trailer::BoxTrailer,
+        lumped_trailer::LumpedTrailer;
 }
 
 pub use build::Link;
 pub use design::CornerDesign;
 pub use geom::Placement;
-pub use hitch::{BallKind, HitchHandle};
+pub use hitch::{BallCoupling, BallKind, HitchHandle};
 pub use sensors::Sensor;
+pub use twist_flex::CrossMember;
 pub use wheel::WheelHandle;
 
 use towride_mbs::flex::feedback::RunModes;
@@ -91,12 +109,11 @@ pub struct Options {
     pub tyre_kind: Option<TyreKind>,
     /// Every ideal joint becomes a bushing of these properties.
     pub joints_as_bushings: Option<JointBushing>,
-    /// Ball coupling, "spherical" or "bushing" (hitch file: `ball_coupling.kind`; the
-    /// bushing's properties always come from the hitch file).
-    pub ball_coupling: Option<String>,
-    /// Rear axle cross member, "rigid" or "flexible" (rear axle file:
-    /// `cross_member.kind`).
-    pub rear_cross_member: Option<String>,
+    /// Ball coupling (hitch file: `ball_coupling.kind`; the bushing's properties always
+    /// come from the hitch file).
+    pub ball_coupling: Option<BallCoupling>,
+    /// Rear axle cross member (rear axle file: `cross_member.kind`).
+    pub rear_cross_member: Option<CrossMember>,
     /// Modes of the modal bodies selected from an earlier run's strain-energy shares,
     /// replacing the files' selection rules (`--modes-from`, a scene's `modes_from`).
     pub run_modes: Option<Arc<RunModes>>,
@@ -112,22 +129,25 @@ pub struct Vehicle {
     /// What the design statics found.
     pub design: Design,
     /// Values a compact (`simple`) vehicle file left to the defaults or derived from its
-    /// numbers; empty for an assembly file, which gives everything.
+    /// numbers, and values the design statics derived (air springs' pressures); empty
+    /// for an assembly file of coil springs and rubber, which gives everything.
     pub assumed: Vec<simple::Assumed>,
 }
 
-/// Reads a vehicle file, an assembly file ([`assembly`]) or a compact `simple` file
-/// ([`simple`]), and builds the vehicle, every file read through `loader`.
+/// Reads a vehicle file, an assembly file ([`assembly_file`]) or a compact `simple` file
+/// ([`simple`]), and builds the vehicle by the one assembly path, every file read
+/// through `loader`.
 pub fn load(
     path: &std::path::Path,
     opts: &Options,
     loader: &towride_mbs::input::Loader,
 ) -> Result<Vehicle, towride_mbs::input::InputError> {
-    if simple::is_simple(path) {
-        simple::load(path, opts, loader)
+    let description = if simple::is_simple(path) {
+        simple::describe(path, opts, loader)?
     } else {
-        assembly::load(path, opts, loader)
-    }
+        assembly_file::describe(path, opts, loader)?
+    };
+    assembly::assemble(description, opts, loader)
 }
 
 /// Named parts a scene needs.

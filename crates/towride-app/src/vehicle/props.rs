@@ -7,6 +7,7 @@ use super::geom::{frame, Axes, V};
 use towride_mbs::input::{InputError, Seg, Source};
 use towride_mbs::model::builder::inertia_tensor;
 use towride_mbs::model::elements::{JointBushing, Law, LawSpec, Stop, StopSpec};
+use towride_mbs::model::math::{add, scale, sub};
 
 /// `p` extended by one key or index.
 pub fn at(p: &[Seg], k: impl Into<Seg>) -> Vec<Seg> {
@@ -229,5 +230,27 @@ impl TorsionProps {
             law(src, &at(p, "stiffness_n_m_rad"), &self.stiffness_n_m_rad)?,
             law(src, &at(p, "damping_n_m_s_rad"), &self.damping_n_m_s_rad)?,
         ))
+    }
+}
+
+/// Two bodies merged: mass, centre of mass and inertia about it (parallel axes).
+pub fn merge(a: &Mass, b: &Mass) -> Mass {
+    let m = a.mass + b.mass;
+    let cm = scale(&add(&scale(&a.cm, a.mass), &scale(&b.cm, b.mass)), 1.0 / m);
+    let mut inertia = [[0.0; 3]; 3];
+    for part in [a, b] {
+        let d = sub(&part.cm, &cm);
+        let d2: f64 = d.iter().map(|x| x * x).sum();
+        for r in 0..3 {
+            for c in 0..3 {
+                let delta = if r == c { 1.0 } else { 0.0 };
+                inertia[r][c] += part.inertia[r][c] + part.mass * (d2 * delta - d[r] * d[c]);
+            }
+        }
+    }
+    Mass {
+        mass: m,
+        cm,
+        inertia,
     }
 }

@@ -7,19 +7,121 @@
 //! pivot axis with a torsion spring-damper: heave turns both halves together, roll twists
 //! the torsion element. The torsion axis is the pivot axis (the line through both pivot
 //! bushings), so the rigid variant's roll stiffness is the torsion element's and not the
-//! bushings'.
+//! bushings'. The trailing-arm axle has the same layout with its springs and dampers
+//! standing on the arms; both name their points with [`ArmPoints`].
+
+use serde::Deserialize;
 
 use super::build::Builder;
 use super::design::CornerRates;
-use super::geom::{mirror, turning, Axes, V, Z_ALONG_Y};
-use super::props::{BushingLaws, Mass};
+use super::geom::{distance, mirror, turning, Axes, V, Z_ALONG_Y};
+use super::props::{at, point, BushingLaws, Mass};
 use super::wheel::{self, WheelHandle};
-use towride_mbs::input::InputError;
+use towride_mbs::input::{InputError, Seg, Source};
 use towride_mbs::model::builder::{BodyHandle, ElementHandle};
 use towride_mbs::model::desc::{JointKind, Law};
 use towride_mbs::model::elements::JointBushing;
 use towride_mbs::model::math::dot;
 use towride_mbs::tyre::Tyre;
+
+/// `[hardpoints]` of a trailing arm with its spring and damper: left side, at the design
+/// position [m].
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct ArmHardpoints {
+    wheel_centre_m: [f64; 3],
+    pivot_m: [f64; 3],
+    spring_lower_m: [f64; 3],
+    spring_upper_m: [f64; 3],
+    damper_lower_m: [f64; 3],
+    damper_upper_m: [f64; 3],
+}
+
+/// The points of a trailing arm with its spring and damper, one side [m].
+#[derive(Clone, Debug)]
+pub struct ArmPoints {
+    pub wheel_centre: V,
+    /// Centre of the arm's body bushing, on the pivot axis (along y).
+    pub pivot: V,
+    /// Spring seats on the arm and on the carrier.
+    pub spring_lower: V,
+    pub spring_upper: V,
+    /// Damper mounts on the arm and on the carrier.
+    pub damper_lower: V,
+    pub damper_upper: V,
+}
+
+impl ArmHardpoints {
+    /// The points, checked (at `p` of `src`): finite, on the left, no two that set a
+    /// line coincident.
+    pub fn check(&self, src: &Source, p: &[Seg]) -> Result<ArmPoints, InputError> {
+        let hp = |k: &str, v: &[f64; 3]| point(src, &at(p, k), v);
+        let pts = ArmPoints {
+            wheel_centre: hp("wheel_centre_m", &self.wheel_centre_m)?,
+            pivot: hp("pivot_m", &self.pivot_m)?,
+            spring_lower: hp("spring_lower_m", &self.spring_lower_m)?,
+            spring_upper: hp("spring_upper_m", &self.spring_upper_m)?,
+            damper_lower: hp("damper_lower_m", &self.damper_lower_m)?,
+            damper_upper: hp("damper_upper_m", &self.damper_upper_m)?,
+        };
+        for (k, v) in [("wheel_centre_m", pts.wheel_centre), ("pivot_m", pts.pivot)] {
+            if v[1] <= 0.0 {
+                return Err(src.error(
+                    &at(&at(p, k), 1),
+                    "give the left side (y > 0); the right side is mirrored",
+                ));
+            }
+        }
+        // Coincident ends are the hardpoints' fault, not the element's line that the
+        // builder would otherwise blame (named in no file).
+        for (k, a, other, b, what) in [
+            (
+                "wheel_centre_m",
+                pts.wheel_centre,
+                "pivot_m",
+                pts.pivot,
+                "the trailing arm",
+            ),
+            (
+                "spring_upper_m",
+                pts.spring_upper,
+                "spring_lower_m",
+                pts.spring_lower,
+                "the spring's line",
+            ),
+            (
+                "damper_upper_m",
+                pts.damper_upper,
+                "damper_lower_m",
+                pts.damper_lower,
+                "the damper's line",
+            ),
+        ] {
+            if distance(&a, &b) < 1e-6 {
+                return Err(src.error(
+                    &at(p, k),
+                    format!("coincides with `{other}`; the two set {what}"),
+                ));
+            }
+        }
+        Ok(pts)
+    }
+}
+
+impl ArmPoints {
+    /// The right side's points (itself when `right` is false).
+    pub fn side(&self, right: bool) -> ArmPoints {
+        let m = |p: V| if right { mirror(p) } else { p };
+        ArmPoints {
+            wheel_centre: m(self.wheel_centre),
+            pivot: m(self.pivot),
+            spring_lower: m(self.spring_lower),
+            spring_upper: m(self.spring_upper),
+            damper_lower: m(self.damper_lower),
+            damper_upper: m(self.damper_upper),
+        }
+    }
+}
 
 /// A swinging-half axle described by its left side.
 pub struct Spec<'a> {

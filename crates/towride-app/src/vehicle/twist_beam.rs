@@ -2,34 +2,38 @@
 //! coil springs and dampers between arms and body, wheels and tyres. One property set
 //! describes the left side; the right side is mirrored.
 //!
-//! The cross member (`[cross_member] kind`): "rigid" (default, the thesis's rigid model):
+//! The cross member (`[cross_member] kind`, or the scene's `rear_cross_member`): rigid
+//! (default, the thesis's rigid model):
 //! two halves, each an arm with half the cross member (`[half]`), joined by a revolute
-//! joint and a torsion element about the pivot axis (`[torsion]`); "flexible": the arms
+//! joint and a torsion element about the pivot axis (`[torsion]`); flexible: the arms
 //! alone (`[cross_member.arm]`) and the cross member as a modal body fixed to them
 //! ([`super::twist_flex`]).
 
+use std::path::Path;
+
 use serde::Deserialize;
 
-use super::axle::{Axle, AxleSlot, AxleTemplate};
+use super::axle::{Axle, AxleData, AxleSlot, AxleTemplate};
 use super::build::Builder;
 use super::design::{Corner, Preloaded};
-use super::geom::{distance, length_rate, mirror, turning, V};
+use super::geom::{length_rate, mirror, turning};
 use super::props::{
-    at, joints, point, stop, BushingProps, DamperProps, JointsProps, MassProps, TorsionProps,
-    WheelProps,
+    joints, stop, BushingLaws, BushingProps, DamperProps, JointsProps, Mass, MassProps,
+    TorsionProps, WheelProps,
 };
-use super::swing::{self, Spec};
-use super::twist_flex::{self, CrossMemberProps};
-use super::wheel::{self};
+use super::swing::{self, ArmHardpoints, ArmPoints, Spec};
+use super::twist_flex::{self, CrossMember, CrossMemberProps, Flexible};
+use super::wheel;
 use towride_mbs::input::InputError;
 use towride_mbs::model::builder::SpringLine;
-use towride_mbs::model::elements::StopSpec;
+use towride_mbs::model::desc::{Law, Stop};
+use towride_mbs::model::elements::{JointBushing, StopSpec};
 use towride_mbs::path;
 
 #[derive(Deserialize, Debug)]
 #[serde(deny_unknown_fields)]
 struct File {
-    hardpoints: Hardpoints,
+    hardpoints: ArmHardpoints,
     half: MassProps,
     wheel: WheelProps,
     spring: Spring,
@@ -40,18 +44,6 @@ struct File {
     torsion: TorsionProps,
     joints: JointsProps,
     cross_member: Option<CrossMemberProps>,
-}
-
-/// Left-side hardpoints, vehicle coordinates at the design position [m].
-#[derive(Deserialize, Debug)]
-#[serde(deny_unknown_fields)]
-struct Hardpoints {
-    wheel_centre_m: [f64; 3],
-    pivot_m: [f64; 3],
-    spring_lower_m: [f64; 3],
-    spring_upper_m: [f64; 3],
-    damper_lower_m: [f64; 3],
-    damper_upper_m: [f64; 3],
 }
 
 #[derive(Deserialize, Debug)]
@@ -68,31 +60,44 @@ impl AxleTemplate for TwistBeam {
         "twist_beam"
     }
 
-    fn build(
+    fn read(
         &self,
         b: &mut Builder,
-        file: &std::path::Path,
+        file: &Path,
         slot: &AxleSlot,
-    ) -> Result<Axle, InputError> {
-        build(b, file, slot)
+    ) -> Result<Box<dyn AxleData>, InputError> {
+        Ok(Box::new(read(b, file, slot)?))
     }
 }
 
-/// Reads `file` and adds the axle at `slot`; the slot's variant ("rigid" or
-/// "flexible") overrides the file's cross member.
-fn build(b: &mut Builder, file: &std::path::Path, slot: &AxleSlot) -> Result<Axle, InputError> {
-    let (body, tyre, kind) = (slot.carrier, slot.tyre, slot.variant);
+/// The property file, checked (left side).
+struct Props {
+    points: ArmPoints,
+    half: Mass,
+    rim: Mass,
+    spring_rate: f64,
+    damper: Law,
+    bump: Option<Stop>,
+    rebound: Option<Stop>,
+    bushing: BushingLaws,
+    torsion: (Law, Law),
+    joints: Option<JointBushing>,
+    /// The flexible cross member, when it is the one built.
+    flexible: Option<Flexible>,
+    /// Where the design statics complain about the spring.
+    spring_at: InputError,
+}
+
+/// Reads `file` for `slot`; the slot's cross member (the scene's) overrides the file's.
+fn read(b: &mut Builder, file: &Path, slot: &AxleSlot) -> Result<Props, InputError> {
     let src = b.read(file)?;
     let f: File = src.parse()?;
     let cp = path!["cross_member"];
-    let flexible = match (&f.cross_member, kind) {
-        (Some(c), _) => {
-            let k = kind.unwrap_or(&c.kind);
-            twist_flex::is_flexible(&src, &at(&cp, "kind"), k)?
-                .then(|| twist_flex::read(&src, &cp, file, c, b))
-                .transpose()?
-        }
-        (None, None | Some("rigid")) => None,
+    let flexible = match (&f.cross_member, slot.cross_member) {
+        (Some(c), asked) => (asked.unwrap_or(c.kind) == CrossMember::Flexible)
+            .then(|| twist_flex::read(&src, &cp, file, c, b))
+            .transpose()?,
+        (None, None | Some(CrossMember::Rigid)) => None,
         (None, Some(k)) => {
             return Err(src.error(
                 &cp,
@@ -100,65 +105,59 @@ fn build(b: &mut Builder, file: &std::path::Path, slot: &AxleSlot) -> Result<Axl
             ))
         }
     };
-    let h = &f.hardpoints;
-    let hp = |k: &str, v: &[f64; 3]| point(&src, &path!["hardpoints", k], v);
-    let w = hp("wheel_centre_m", &h.wheel_centre_m)?;
-    let pivot = hp("pivot_m", &h.pivot_m)?;
-    let sl = hp("spring_lower_m", &h.spring_lower_m)?;
-    let su = hp("spring_upper_m", &h.spring_upper_m)?;
-    let dl = hp("damper_lower_m", &h.damper_lower_m)?;
-    let du = hp("damper_upper_m", &h.damper_upper_m)?;
-    for (k, v) in [("wheel_centre_m", w), ("pivot_m", pivot)] {
-        if v[1] <= 0.0 {
-            return Err(src.error(
-                &path!["hardpoints", k, 1],
-                "give the left side (y > 0); the right side is mirrored",
-            ));
-        }
-    }
-    // Coincident ends are the hardpoints' fault, not the element's line that the
-    // builder would otherwise blame (named in no file).
-    for (k, a, other, b, what) in [
-        ("wheel_centre_m", w, "pivot_m", pivot, "the trailing arm"),
-        ("spring_upper_m", su, "spring_lower_m", sl, "the spring's line"),
-        ("damper_upper_m", du, "damper_lower_m", dl, "the damper's line"),
-    ] {
-        if distance(&a, &b) < 1e-6 {
-            return Err(src.error(
-                &path!["hardpoints", k],
-                format!("coincides with `{other}`; the two set {what}"),
-            ));
-        }
-    }
+    let points = f.hardpoints.check(&src, &path!["hardpoints"])?;
     let half = match &flexible {
         Some(x) => x.arm.clone(),
         None => f.half.check(&src, &path!["half"])?,
     };
-    let rim = wheel::rim_mass(&src, &path!["wheel"], &f.wheel, tyre, w)?;
-    let k_spring = src.positive(&path!["spring", "stiffness_n_m"], f.spring.stiffness_n_m)?;
-    let damper_law = f.damper.check(&src, &path!["damper"])?;
-    let bump = stop(&src, &path!["bump_stop"], &f.bump_stop)?;
-    let rebound = stop(&src, &path!["rebound_stop"], &f.rebound_stop)?;
-    let bushing = f
-        .pivot_bushing
-        .check(&src, &path!["pivot_bushing"], [0.0, 1.0, 0.0])?;
-    let torsion = f.torsion.laws(&src, &path!["torsion"])?;
-    let jb = joints(&src, &path!["joints"], &f.joints)?;
-    let spec = Spec {
-        prefix: "arm",
-        wheels: slot.wheels,
-        centre: "twist_beam",
-        carrier: body,
-        pivot,
+    Ok(Props {
+        rim: wheel::rim_mass(
+            &src,
+            &path!["wheel"],
+            &f.wheel,
+            slot.tyre,
+            points.wheel_centre,
+        )?,
+        spring_rate: src.positive(&path!["spring", "stiffness_n_m"], f.spring.stiffness_n_m)?,
+        damper: f.damper.check(&src, &path!["damper"])?,
+        bump: stop(&src, &path!["bump_stop"], &f.bump_stop)?,
+        rebound: stop(&src, &path!["rebound_stop"], &f.rebound_stop)?,
+        bushing: f
+            .pivot_bushing
+            .check(&src, &path!["pivot_bushing"], [0.0, 1.0, 0.0])?,
+        torsion: f.torsion.laws(&src, &path!["torsion"])?,
+        joints: joints(&src, &path!["joints"], &f.joints)?,
+        spring_at: src.error(&path!["spring", "stiffness_n_m"], ""),
+        points,
         half,
-        rim,
-        bushing,
-        torsion,
-        joints_as_bushings: jb,
+        flexible,
+    })
+}
+
+impl AxleData for Props {
+    fn build(self: Box<Self>, b: &mut Builder, slot: &AxleSlot) -> Result<Axle, InputError> {
+        build(b, *self, slot)
+    }
+}
+
+/// Adds both sides at `slot`.
+fn build(b: &mut Builder, c: Props, slot: &AxleSlot) -> Result<Axle, InputError> {
+    let body = slot.carrier;
+    let spec = Spec {
+        prefix: &format!("{}arm", slot.prefix),
+        wheels: slot.wheels,
+        centre: &format!("{}twist_beam", slot.prefix),
+        carrier: body,
+        pivot: c.points.pivot,
+        half: c.half,
+        rim: c.rim,
+        bushing: c.bushing,
+        torsion: c.torsion,
+        joints_as_bushings: c.joints,
     };
-    let mut built = swing::build(b, &spec, tyre)?;
+    let mut built = swing::build(b, &spec, slot.tyre)?;
     let y = [0.0, 1.0, 0.0];
-    let cross_member = match flexible {
+    let cross_member = match c.flexible {
         None => {
             swing::join(b, &spec, built.halves)?;
             None
@@ -168,7 +167,11 @@ fn build(b: &mut Builder, file: &std::path::Path, slot: &AxleSlot) -> Result<Axl
             // Heave turns both arms alike, so the cross member turns with them about
             // the pivot axis: half its mass rides on each corner.
             for (k, r) in built.rates.iter_mut().enumerate() {
-                let piv = if k == 1 { mirror(pivot) } else { pivot };
+                let piv = if k == 1 {
+                    mirror(c.points.pivot)
+                } else {
+                    c.points.pivot
+                };
                 r.masses.push((0.5 * j.mass, turning(&piv, &y, &j.cm)));
             }
             Some((j.body, j.modes))
@@ -176,18 +179,27 @@ fn build(b: &mut Builder, file: &std::path::Path, slot: &AxleSlot) -> Result<Axl
     };
     let mut corners = Vec::new();
     let mut spring_tops = Vec::new();
-    for (k, side) in [false, true].into_iter().enumerate() {
-        let m = |p: V| if side { mirror(p) } else { p };
+    for (k, right) in [false, true].into_iter().enumerate() {
+        let p = c.points.side(right);
         let name = built.wheels[k].name.clone();
         let arm = Some(built.halves[k]);
-        let piv = m(pivot);
-        let mut damper = SpringLine::new(&format!("damper_{name}"), arm, m(dl), Some(body), m(du));
-        damper.damper = damper_law.clone();
-        damper.bump_stop = bump.clone();
-        damper.rebound_stop = rebound.clone();
+        let mut damper = SpringLine::new(
+            &format!("damper_{name}"),
+            arm,
+            p.damper_lower,
+            Some(body),
+            p.damper_upper,
+        );
+        damper.damper = c.damper.clone();
+        damper.bump_stop = c.bump.clone();
+        damper.rebound_stop = c.rebound.clone();
         b.add(|m| m.spring(damper))?;
         let mut rates = built.rates[k].clone();
-        rates.element_rate = length_rate(&m(sl), &turning(&piv, &y, &m(sl)), &m(su));
+        rates.element_rate = length_rate(
+            &p.spring_lower,
+            &turning(&p.pivot, &y, &p.spring_lower),
+            &p.spring_upper,
+        );
         corners.push(Corner {
             wheel: name.clone(),
             rates,
@@ -195,15 +207,15 @@ fn build(b: &mut Builder, file: &std::path::Path, slot: &AxleSlot) -> Result<Axl
                 line: Box::new(SpringLine::new(
                     &format!("spring_{name}"),
                     arm,
-                    m(sl),
+                    p.spring_lower,
                     Some(body),
-                    m(su),
+                    p.spring_upper,
                 )),
-                rate: k_spring,
+                rate: c.spring_rate,
             },
-            complaint: src.error(&path!["spring", "stiffness_n_m"], ""),
+            complaint: c.spring_at.clone(),
         });
-        spring_tops.push(m(su));
+        spring_tops.push(p.spring_upper);
     }
     Ok(Axle {
         wheels: built.wheels,

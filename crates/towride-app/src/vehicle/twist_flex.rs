@@ -24,12 +24,43 @@ use towride_mbs::model::math::{add, sub};
 /// treat the right side as the left one's image.
 const MIRROR_TOLERANCE_M: f64 = 1e-3;
 
+/// The twist beam's cross member: the rear axle file's `cross_member.kind`, a scene's
+/// `rear_cross_member`.
+#[derive(Deserialize, Clone, Copy, Debug, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum CrossMember {
+    /// Two rigid halves joined by a revolute joint and a torsion element (`[half]`,
+    /// `[torsion]`).
+    Rigid,
+    /// A modal body fixed to the arms (`[cross_member]`).
+    Flexible,
+}
+
+impl std::fmt::Display for CrossMember {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str(match self {
+            CrossMember::Rigid => "rigid",
+            CrossMember::Flexible => "flexible",
+        })
+    }
+}
+
+/// How the cross member's interface nodes hold the arms.
+#[derive(Deserialize, Clone, Copy, Debug, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum MountKind {
+    /// Fixed joints (they follow the axle's `[joints]` switch).
+    Fixed,
+    /// Bushings (`mount_bushing`).
+    Bushing,
+}
+
 /// `[cross_member]` of the rear axle's file.
 #[derive(Deserialize, Debug)]
 #[serde(deny_unknown_fields)]
 pub struct CrossMemberProps {
-    /// "rigid" (`[half]` and `[torsion]`) or "flexible" (this table).
-    pub kind: String,
+    /// Which cross member the axle has.
+    pub kind: CrossMember,
     /// The FE model (relative to the property file).
     pub fe_file: String,
     /// Where the FE file's origin lies in vehicle coordinates [m] (axes the vehicle's).
@@ -38,23 +69,14 @@ pub struct CrossMemberProps {
     pub inertia_coupling: String,
     /// Interface nodes welded to the left and the right arm.
     pub interface_nodes: [String; 2],
-    /// "fixed" (fixed joints) or "bushing" (`mount_bushing`).
-    pub mount: String,
+    /// How the interface nodes hold the arms.
+    pub mount: MountKind,
     /// Replaces the FE file's `[selection]` (same fields).
     pub selection: Option<SelectionIn>,
     /// A trailing arm without the cross member: arm, stub axle, brake back plate.
     pub arm: MassProps,
     /// The bushing of mount = "bushing" (z along the pivot axis, y by default).
     pub mount_bushing: BushingProps,
-}
-
-/// Whether `kind` (at `p`) asks for the flexible cross member.
-pub fn is_flexible(src: &Source, p: &[Seg], kind: &str) -> Result<bool, InputError> {
-    match kind {
-        "rigid" => Ok(false),
-        "flexible" => Ok(true),
-        other => Err(src.error(p, format!("'{other}': use rigid or flexible"))),
-    }
 }
 
 enum Mount {
@@ -121,14 +143,13 @@ pub fn read(
             ),
         ));
     }
-    let mount = match c.mount.as_str() {
-        "fixed" => Mount::Fixed,
-        "bushing" => Mount::Bushing(Box::new(c.mount_bushing.check(
+    let mount = match c.mount {
+        MountKind::Fixed => Mount::Fixed,
+        MountKind::Bushing => Mount::Bushing(Box::new(c.mount_bushing.check(
             src,
             &at(p, "mount_bushing"),
             [0.0, 1.0, 0.0],
         )?)),
-        other => return Err(src.error(&at(p, "mount"), format!("'{other}': use fixed or bushing"))),
     };
     Ok(Flexible {
         arm: c.arm.check(src, &at(p, "arm"))?,

@@ -1,123 +1,117 @@
-//! One axle of the simple set: two trailing arms on body bushings joined on the
-//! centreline (the swing-axle layout of the twist beam and the trailer axle,
-//! [`crate::vehicle::swing`]), a spring and a damper standing vertically on each arm over
-//! the wheel centre, bump and rebound stops on the damper. The arm pivots ahead of the
-//! wheel at wheel-centre height, so at the design position the wheel moves vertically and
-//! spring and damper move with it (motion ratio 1).
+//! One axle of a compact file: its section, and the `trailing_arm_axle` data derived from
+//! it. The arm pivots ahead of the wheel at wheel-centre height, spring and damper stand
+//! vertically on it over the wheel centre (motion ratio 1), the corner geometry, bushing
+//! and stops from the defaults file; the arm's mass is what the unsprung mass leaves
+//! after wheel and tyre, lumped at the wheel centre.
 
-use super::air::AirSpring;
-use super::Ctx;
-use crate::vehicle::build::Builder;
-use crate::vehicle::design::{self, Corner, CornerDesign, CornerRates, Preloaded};
-use crate::vehicle::geom::{length_rate, mirror, turning, V};
-use crate::vehicle::props::Mass;
-use crate::vehicle::swing::{self, Spec};
-use crate::vehicle::wheel::WheelHandle;
+use serde::Deserialize;
+
+use super::defaults::CornerDefaults;
+use super::{at, Ctx, Kind};
+use crate::vehicle::geom::V;
+use crate::vehicle::props::{Mass, WheelProps};
+use crate::vehicle::swing::ArmPoints;
+use crate::vehicle::trailing_arm_axle::{Props, Spring, SpringKind};
+use crate::vehicle::wheel;
 use towride_mbs::input::{InputError, Seg};
-use towride_mbs::model::builder::{BodyHandle, SpringLine};
 use towride_mbs::model::desc::Law;
 use towride_mbs::model::elements::StopSpec;
-use towride_mbs::tyre::Tyre;
+use towride_mbs::path;
 
-/// The spring of a corner.
-#[derive(Clone, Debug)]
-pub(super) enum SpringChoice {
-    /// A linear coil with this rate at the wheel [N/m].
-    Coil { wheel_rate: f64 },
-    /// A levelled air spring: effective area [m^2], and either its volume [m^3] or the
-    /// wheel rate [N/m] it must give; polytropic exponent, ambient pressure [Pa].
-    Air {
-        area: f64,
-        volume: Option<f64>,
-        wheel_rate: Option<f64>,
-        exponent: f64,
-        atmosphere: f64,
-    },
+/// One axle of the compact file (per corner).
+#[derive(Deserialize, Debug, Clone)]
+#[serde(deny_unknown_fields)]
+pub(super) struct AxleSec {
+    /// Mass moving with the wheel: wheel, tyre, brake, hub carrier, share of the arms
+    /// and spring [kg].
+    pub unsprung_kg: f64,
+    pub spring: SpringSec,
+    /// Damping at the wheel [N s/m] (or `damping_ratio`).
+    pub damping_n_s_m: Option<f64>,
+    /// Fraction of critical on the corner's ride rate.
+    pub damping_ratio: Option<f64>,
+    /// Roll stiffness an anti-roll bar adds at the axle [N m/rad].
+    pub anti_roll_n_m_rad: Option<f64>,
+    /// Wheel without tyre (rim, brake, hub) [kg].
+    pub wheel_mass_kg: Option<f64>,
 }
 
-/// What an axle is made of (left side; the right is mirrored).
-pub(super) struct AxleInput<'a> {
-    /// Name of the centre joint and torsion element (`front_axle`, `rear_axle`, ...).
-    pub centre: &'a str,
-    /// Body name prefix of the arms (`arm`, `trailer_arm`).
-    pub prefix: &'a str,
-    pub wheels: [&'a str; 2],
-    pub carrier: BodyHandle,
-    /// Wheel centre, left side [m].
+#[derive(Deserialize, Debug, Clone)]
+#[serde(deny_unknown_fields)]
+pub(super) struct SpringSec {
+    pub kind: SpringKind,
+    /// Spring rate at the wheel [N/m] (or `ride_frequency_hz`).
+    pub wheel_rate_n_m: Option<f64>,
+    /// Ride frequency of the corner (wheel rate in series with the tyre, sprung share).
+    pub ride_frequency_hz: Option<f64>,
+    /// Air: effective area [m^2].
+    pub effective_area_m2: Option<f64>,
+    /// Air: gas volume at the design height [m^3] (or the rate from the ride frequency).
+    pub volume_m3: Option<f64>,
+    /// Air: polytropic exponent.
+    pub polytropic_exponent: Option<f64>,
+}
+
+/// The points of the left corner with its wheel centre at `w`: the defaults' corner
+/// geometry.
+pub(super) fn points(d: &CornerDefaults, w: V) -> ArmPoints {
+    let spring_lower = [w[0], w[1] - d.spring_inboard_m, w[2]];
+    let damper_lower = [w[0], w[1] - d.damper_inboard_m, w[2]];
+    ArmPoints {
+        wheel_centre: w,
+        pivot: [w[0] + d.arm_length_m, w[1] - d.pivot_inboard_m, w[2]],
+        spring_lower,
+        spring_upper: [
+            spring_lower[0],
+            spring_lower[1],
+            spring_lower[2] + d.spring_length_m,
+        ],
+        damper_lower,
+        damper_upper: [
+            damper_lower[0],
+            damper_lower[1],
+            damper_lower[2] + d.damper_length_m,
+        ],
+    }
+}
+
+/// What a corner is made of, left side.
+pub(super) struct CornerParts {
+    /// Wheel centre [m].
     pub wheel_centre: V,
-    pub tyre: &'a Tyre,
-    /// The arm (hub carrier, brake, half the arm) at the wheel centre.
-    pub arm: Mass,
-    /// The wheel with the tyre's share that turns with it.
+    /// The wheel with the tyre's share that turns with it; the arm at the wheel centre.
     pub rim: Mass,
-    pub spring: SpringChoice,
+    pub arm: Mass,
+    pub spring: Spring,
     /// Damping at the wheel [N s/m].
     pub damping: f64,
-    /// Roll stiffness added at the axle [N m/rad].
-    pub anti_roll: f64,
     /// Static load of a corner [N] (the bump stop's scale).
     pub corner_load: f64,
     /// Where the spring is given in the compact file (errors of the design statics).
     pub spring_at: Vec<Seg>,
 }
 
-/// An axle awaiting its static loads.
-pub(super) struct Axle {
-    pub wheels: Vec<WheelHandle>,
-    pub pending: Vec<Pending>,
-    /// The spring tops (ride heights are measured to them).
-    pub mounts: Vec<V>,
-}
-
-/// A corner whose spring gets its preload from the static load.
-pub(super) enum Pending {
-    Coil(Corner),
-    Air {
-        wheel: String,
-        rates: CornerRates,
-        line: Box<SpringLine>,
-        spring: SpringChoice,
-        complaint: InputError,
-    },
-}
-
-/// Builds the axle: arms, bushings, wheels, centre joint, dampers with stops.
-pub(super) fn build(ctx: &Ctx, b: &mut Builder, a: &AxleInput) -> Result<Axle, InputError> {
+/// The `trailing_arm_axle` data of an axle of corners `c` with an anti-roll bar adding
+/// `anti_roll` [N m/rad].
+pub(super) fn axle(ctx: &Ctx, c: CornerParts, anti_roll: f64) -> Result<Props, InputError> {
     let d = &ctx.defaults.d.corner;
     let dsrc = &ctx.defaults.src;
-    let w = a.wheel_centre;
-    let pivot = [w[0] + d.arm_length_m, w[1] - d.pivot_inboard_m, w[2]];
-    let bushing = d.pivot_bushing.check(
-        dsrc,
-        &towride_mbs::path!["corner", "pivot_bushing"],
-        [0.0, 1.0, 0.0],
-    )?;
+    let w = c.wheel_centre;
+    let bushing =
+        d.pivot_bushing
+            .check(dsrc, &path!["corner", "pivot_bushing"], [0.0, 1.0, 0.0])?;
     let track = 2.0 * w[1];
     // Roll twists the arms by t phi / L against each other: K_roll = k_t t^2 / L^2.
-    let torsion = a.anti_roll * d.arm_length_m * d.arm_length_m / (track * track);
-    let spec = Spec {
-        prefix: a.prefix,
-        wheels: a.wheels,
-        centre: a.centre,
-        carrier: a.carrier,
-        pivot,
-        half: a.arm.clone(),
-        rim: a.rim.clone(),
-        bushing,
-        torsion: (Law::Linear(torsion), Law::Linear(0.0)),
-        joints_as_bushings: None,
-    };
-    let built = swing::build(b, &spec, a.tyre)?;
-    swing::join(b, &spec, built.halves)?;
+    let torsion = anti_roll * d.arm_length_m * d.arm_length_m / (track * track);
     let bump = StopSpec {
         clearance_m: d.bump_clearance_m,
-        stiffness_n_m: d.bump_stop_load_factor * a.corner_load / d.bump_stop_reference_m.powi(2),
+        stiffness_n_m: d.bump_stop_load_factor * c.corner_load / d.bump_stop_reference_m.powi(2),
         exponent: 2.0,
         damping_n_s_m: d.bump_stop_damping_n_s_m,
         damping_depth_m: d.bump_stop_damping_depth_m,
     }
     .check()
-    .map_err(|e| dsrc.locate(&towride_mbs::path!["corner"], e))?;
+    .map_err(|e| dsrc.locate(&path!["corner"], e))?;
     let rebound = StopSpec {
         clearance_m: d.rebound_clearance_m,
         stiffness_n_m: d.rebound_stiffness_n_m,
@@ -126,141 +120,80 @@ pub(super) fn build(ctx: &Ctx, b: &mut Builder, a: &AxleInput) -> Result<Axle, I
         damping_depth_m: 0.0,
     }
     .check()
-    .map_err(|e| dsrc.locate(&towride_mbs::path!["corner"], e))?;
-    let y = [0.0, 1.0, 0.0];
-    let g = b.model().gravity;
-    let mut pending = Vec::new();
-    let mut mounts = Vec::new();
-    for (k, right) in [false, true].into_iter().enumerate() {
-        let m = |p: V| if right { mirror(p) } else { p };
-        let name = built.wheels[k].name.clone();
-        let arm = Some(built.halves[k]);
-        let piv = m(pivot);
-        let dl = m([w[0], w[1] - d.damper_inboard_m, w[2]]);
-        let du = [dl[0], dl[1], dl[2] + d.damper_length_m];
-        let mut rates = built.rates[k].clone();
-        rates.element_rate = length_rate(&dl, &turning(&piv, &y, &dl), &du);
-        let mr_damper = design::motion_ratio(&rates, g);
-        let mut damper = SpringLine::new(&format!("damper_{name}"), arm, dl, Some(a.carrier), du);
-        damper.damper = Law::Linear(a.damping / (mr_damper * mr_damper));
-        damper.bump_stop = Some(bump.clone());
-        damper.rebound_stop = Some(rebound.clone());
-        b.add(|mb| mb.spring(damper))?;
-        let sl = m([w[0], w[1] - d.spring_inboard_m, w[2]]);
-        let su = [sl[0], sl[1], sl[2] + d.spring_length_m];
-        let mut rates = built.rates[k].clone();
-        rates.element_rate = length_rate(&sl, &turning(&piv, &y, &sl), &su);
-        let mr = design::motion_ratio(&rates, g);
-        let line = Box::new(SpringLine::new(
-            &format!("spring_{name}"),
-            arm,
-            sl,
-            Some(a.carrier),
-            su,
-        ));
-        let complaint = ctx.src.error(&a.spring_at, "");
-        pending.push(match &a.spring {
-            SpringChoice::Coil { wheel_rate } => Pending::Coil(Corner {
-                wheel: name,
-                rates,
-                element: Preloaded::Coil {
-                    line,
-                    rate: wheel_rate / (mr * mr),
-                },
-                complaint,
-            }),
-            s @ SpringChoice::Air { .. } => Pending::Air {
-                wheel: name,
-                rates,
-                line,
-                spring: s.clone(),
-                complaint,
-            },
-        });
-        mounts.push(su);
-    }
-    Ok(Axle {
-        wheels: built.wheels,
-        pending,
-        mounts,
+    .map_err(|e| dsrc.locate(&path!["corner"], e))?;
+    Ok(Props {
+        points: points(d, w),
+        arm: c.arm,
+        rim: c.rim,
+        spring: c.spring,
+        wheel_damping_n_s_m: c.damping,
+        bump: Some(bump),
+        rebound: Some(rebound),
+        bushing,
+        torsion: (Law::Linear(torsion), Law::Linear(0.0)),
+        joints: None,
+        spring_at: ctx.src.error(&c.spring_at, ""),
     })
 }
 
-/// Gives the corner's spring the preload that holds it at the design position under
-/// `load` [N]; returns what was found and the air spring, if it is one.
-pub(super) fn finish(
+/// The wheel (rim, brake, hub) and the arm of a corner with unsprung mass `mu`, tyre
+/// `t` and rim diameter `rim_in` [in]: (rim with the tyre's share, arm) masses, left
+/// side, at the wheel centre `w`.
+pub(super) fn corner_masses(
     ctx: &Ctx,
-    b: &mut Builder,
-    p: Pending,
-    load: f64,
-) -> Result<(CornerDesign, Option<AirSpring>), InputError> {
-    let (wheel, rates, mut line, spring, complaint) = match p {
-        Pending::Coil(c) => return Ok((design::finish(b, c, load)?, None)),
-        Pending::Air {
-            wheel,
-            rates,
-            line,
-            spring,
-            complaint,
-        } => (wheel, rates, line, spring, complaint),
-    };
-    let SpringChoice::Air {
-        area,
-        volume,
-        wheel_rate,
-        exponent,
-        atmosphere,
-    } = spring
-    else {
-        unreachable!("only air springs are pending as air")
-    };
-    let g = b.model().gravity;
-    let preload = design::preload(&rates, g, load);
-    let mr = design::motion_ratio(&rates, g);
-    let gauge = preload / area;
-    let fail = |msg: String| {
-        let mut e = complaint.clone();
-        e.message = msg;
-        e
-    };
-    if gauge.is_nan() || gauge <= 0.0 {
-        return Err(fail(format!(
-            "the air spring would carry {preload:.1} N at the design height: it cannot pull"
-        )));
-    }
-    let volume = match (volume, wheel_rate) {
-        (Some(v), _) => v,
-        (None, Some(k)) => {
-            AirSpring::volume_for_rate(area, gauge, atmosphere, exponent, k / (mr * mr))
+    a: &AxleSec,
+    p: &[Seg],
+    tyre: &towride_mbs::tyre::Tyre,
+    rim_in: f64,
+    w: V,
+) -> Result<(Mass, Mass), InputError> {
+    let name = towride_mbs::input::path_string(p);
+    let d = &ctx.defaults.d.corner;
+    let (k_spin, k_tilt, arm_k) = (
+        d.wheel_spin_inertia_per_m_rrim2,
+        d.wheel_tilt_per_spin,
+        d.arm_gyration_m,
+    );
+    let wheel_mass = match a.wheel_mass_kg {
+        Some(m) => ctx.src.positive(&at(p, "wheel_mass_kg"), m)?,
+        None => {
+            let m = d.wheel_mass_at_16in_kg * (rim_in / 16.0).powi(2);
+            ctx.note(&format!("{name}.wheel_mass_kg"), m, "kg", Kind::Assumed, format!(
+                "{} ({} kg at 16 in, scaled with the rim diameter squared: corner.wheel_mass_at_16in_kg)",
+                ctx.defaults.path.display(),
+                d.wheel_mass_at_16in_kg
+            ));
+            m
         }
-        (None, None) => return Err(fail("give volume_m3 or ride_frequency_hz".into())),
     };
-    let air = AirSpring {
-        area_m2: area,
-        volume_m3: volume,
-        gauge_pa: gauge,
-        atmosphere_pa: atmosphere,
-        exponent,
+    let r_rim = 0.5 * rim_in * 0.0254;
+    let spin = k_spin * wheel_mass * r_rim * r_rim;
+    let props = WheelProps {
+        mass_kg: wheel_mass,
+        spin_inertia_kg_m2: spin,
+        tilt_inertia_kg_m2: k_tilt * spin,
     };
-    let a = &ctx.defaults.d.air_spring;
-    line.free_length = crate::vehicle::geom::distance(&line.point_i, &line.point_j);
-    line.preload = preload;
-    line.spring = air.law(a.table_span, a.table_points).map_err(|e| {
-        ctx.defaults
-            .src
-            .locate(&towride_mbs::path!["air_spring"], e)
-    })?;
-    b.add(|m| m.spring(*line))?;
-    Ok((
-        CornerDesign {
-            wheel,
-            load_n: load,
-            preload,
-            motion_ratio: mr,
-            wheel_rate_n_m: air.rate() * mr * mr,
-            free_length_m: None,
-            unsprung_kg: design::reduced_mass(&rates, g),
-        },
-        Some(air),
-    ))
+    let rim = wheel::rim_mass(&ctx.src, &at(p, "wheel_mass_kg"), &props, tyre, w)?;
+    let tyre_mass = tyre.params().mass;
+    let arm_mass = a.unsprung_kg - wheel_mass - tyre_mass;
+    if arm_mass.is_nan() || arm_mass <= 0.0 {
+        return Err(ctx.src.error(
+            &at(p, "unsprung_kg"),
+            format!(
+                "{} kg leaves nothing for the hub carrier and arm after the wheel ({wheel_mass:.1} kg) and the tyre ({tyre_mass:.1} kg)",
+                a.unsprung_kg
+            ),
+        ));
+    }
+    ctx.note(&format!("{name}.arm_mass_kg"), arm_mass, "kg", Kind::Derived, format!(
+        "unsprung {} kg less wheel and tyre, lumped at the wheel centre (radius of gyration {arm_k} m: corner.arm_gyration_m)",
+        a.unsprung_kg
+    ));
+    let i = arm_mass * arm_k * arm_k;
+    let arm = Mass {
+        mass: arm_mass,
+        cm: w,
+        inertia: [[i, 0.0, 0.0], [0.0, i, 0.0], [0.0, 0.0, i]],
+    };
+    Ok((rim, arm))
 }

@@ -1,4 +1,4 @@
-//! The defaults file of the simple template set (`vehicles/simple_defaults.toml`): the
+//! The defaults file of the `simple` vehicle files (`vehicles/simple_defaults.toml`): the
 //! values a compact vehicle file may leave out, each documented there with its source.
 
 use std::path::{Path, PathBuf};
@@ -83,7 +83,7 @@ pub(super) struct TyreDefaults {
 #[derive(Deserialize, Debug)]
 #[serde(deny_unknown_fields)]
 pub(super) struct DrivelineDefaults {
-    pub driven: String,
+    pub driven: super::drive::Driven,
     pub bandwidth_hz: f64,
     pub damping_ratio: f64,
     pub max_acceleration_g: f64,

@@ -1,24 +1,23 @@
-//! The compact file's optional trailer: a rigid box on one trailing-arm axle (the simple
-//! set's corner, [`super::corner`]), coupled to the car body at the ball by a spherical
-//! joint. Trailer coordinates as for the box trailer: origin on the ground under the
-//! ball, x towards the car.
+//! The compact file's optional trailer, translated into the `lumped_trailer` template's
+//! data: a rigid box on one trailing-arm axle (its corners derived as the car's,
+//! [`super::corner`]), coupled at a ball fixed on the car body. Trailer coordinates:
+//! origin on the ground under the ball, x towards the car.
 
 use serde::Deserialize;
 
-use super::corner::{self, AxleInput};
+use super::corner::{self, corner_masses, AxleSec, CornerParts};
+use super::suspension::suspension;
 use super::tyre::{self, TyreSec};
-use super::{AxleSec, Ctx, Kind};
-use crate::vehicle::build::{Builder, Link};
+use super::{Ctx, Kind};
+use crate::vehicle::axle::AxleSpec;
+use crate::vehicle::description::{TrailerDesc, TyreSpec};
 use crate::vehicle::design::{centre_of_mass, lever};
-use crate::vehicle::geom::{IDENTITY, V};
-use crate::vehicle::hitch::BallKind;
+use crate::vehicle::geom::V;
+use crate::vehicle::lumped_trailer::{self, Props};
 use crate::vehicle::props::Mass;
-use crate::vehicle::trailer::merge;
-use crate::vehicle::wheel::WheelHandle;
-use crate::vehicle::{Options, TrailerDesign};
+use crate::vehicle::trailer::TrailerSpec;
+use crate::vehicle::Options;
 use towride_mbs::input::InputError;
-use towride_mbs::model::builder::{BodyHandle, Placement};
-use towride_mbs::model::desc::JointKind;
 use towride_mbs::path;
 use towride_mbs::tyre::TyreKind;
 
@@ -53,29 +52,31 @@ struct LoadCase {
     payload_height_m: f64,
 }
 
-pub(super) struct Built {
-    pub body: BodyHandle,
-    pub wheels: Vec<WheelHandle>,
-    pub ball: (Link, BallKind),
-    pub place: Placement,
-    pub design: TrailerDesign,
+/// The trailer slot and what the rest of the translation needs of it.
+pub(super) struct Towed {
+    pub desc: TrailerDesc,
+    /// The ball on the car body, car coordinates [m].
+    pub ball: V,
+    /// With the payload [kg] (the file's numbers).
+    pub mass_kg: f64,
+    /// Left wheel centre, trailer coordinates [m].
+    pub wheel_centre: V,
 }
 
-/// The load-case names of a compact file's trailer (empty without a trailer).
-pub(super) fn load_cases(t: &TrailerSec) -> Vec<String> {
+/// The load-case names of a compact file's trailer.
+fn load_cases(t: &TrailerSec) -> Vec<String> {
     t.load_case.iter().map(|c| c.name.clone()).collect()
 }
 
-/// Builds the trailer behind the rear axle at `rear_axle` (car coordinates).
-pub(super) fn build(
+/// The trailer of `t` behind a car of wheelbase `wheelbase` [m], tyres of model `kind`,
+/// the load case `opts.load_case` (the first when `None`).
+pub(super) fn translate(
     ctx: &Ctx,
-    b: &mut Builder,
     t: &TrailerSec,
-    car_body: BodyHandle,
-    rear_axle: V,
+    wheelbase: f64,
     opts: &Options,
     kind: TyreKind,
-) -> Result<Built, InputError> {
+) -> Result<Towed, InputError> {
     let src = &ctx.src;
     let p = |k: &str| path!["trailer", k];
     let mass = src.positive(&p("mass_kg"), t.mass_kg)?;
@@ -98,8 +99,8 @@ pub(super) fn build(
     let cz = tyre.params().cz;
     let rim_in = tyre::parse_size(&t.tyre.size).map_or(13.0, |s| s.2);
     let w = [xa, 0.5 * track, r0 - corner_load / cz];
-    let (rim, arm) =
-        super::corner_masses(ctx, &t.axle, &path!["trailer", "axle"], &tyre, rim_in, w)?;
+    let axle_at = path!["trailer", "axle"];
+    let (rim, arm) = corner_masses(ctx, &t.axle, &axle_at, &tyre, rim_in, w)?;
     let sprung = mass - 2.0 * mu;
     let cm = [
         (mass * xc - 2.0 * mu * xa) / sprung,
@@ -125,7 +126,7 @@ pub(super) fn build(
     ] {
         ctx.default(k, v, "m", "body (ball and axle as the supports)");
     }
-    let mut body_mass = Mass {
+    let body = Mass {
         mass: sprung,
         cm,
         inertia: [
@@ -149,80 +150,28 @@ pub(super) fn build(
     if let Some(c) = case {
         let pm = src.non_negative(&p("load_case"), c.payload_kg)?;
         if pm > 0.0 {
-            let m = Mass {
+            payload = Some(Mass {
                 mass: pm,
                 cm: [-c.payload_behind_ball_m, 0.0, c.payload_height_m],
                 inertia: [[0.0; 3]; 3],
-            };
-            body_mass = merge(&body_mass, &m);
-            payload = Some(m);
+            });
         }
     }
-    let (spring, damping) =
-        super::suspension(ctx, &t.axle, &path!["trailer", "axle"], corner_load, mu, cz)?;
-    let car_place = b.mb.place();
-    let ball = [rear_axle[0] - behind, 0.0, hb];
-    let place = Placement::translate([car_place.point(ball)[0], 0.0, 0.0]);
-    b.set_place(place);
-    let body = b.body("trailer_box", &body_mass)?;
+    let (spring, damping) = suspension(ctx, &t.axle, &axle_at, corner_load, mu, cz)?;
     let anti_roll = t
         .axle
         .anti_roll_n_m_rad
         .unwrap_or(ctx.defaults.d.corner.anti_roll_n_m_rad);
-    let axle = corner::build(
-        ctx,
-        b,
-        &AxleInput {
-            centre: "trailer_axle",
-            prefix: "trailer_arm",
-            wheels: ["tl", "tr"],
-            carrier: body,
-            wheel_centre: w,
-            tyre: &tyre,
-            arm,
-            rim,
-            spring,
-            damping,
-            anti_roll,
-            corner_load,
-            spring_at: path!["trailer", "axle", "spring"].to_vec(),
-        },
-    )?;
-    let mut corners = Vec::new();
-    for pend in axle.pending {
-        corners.push(corner::finish(ctx, b, pend, corner_load)?.0);
-    }
-    b.set_place(car_place);
-    // A bushing measures I relative to J: with joints as bushings the drawbar is I (the
-    // hitch channels take minus its force), as in the modal hitch's coupling.
-    let link = match &opts.joints_as_bushings {
-        None => b.add(|m| {
-            m.joint(
-                "ball_coupling",
-                JointKind::Spherical,
-                Some(car_body),
-                Some(body),
-                ball,
-                &IDENTITY,
-                None,
-            )
-        })?,
-        Some(_) => b.add(|m| {
-            m.joint(
-                "ball_coupling",
-                JointKind::Spherical,
-                Some(body),
-                Some(car_body),
-                ball,
-                &IDENTITY,
-                None,
-            )
-        })?,
+    let parts = CornerParts {
+        wheel_centre: w,
+        rim,
+        arm,
+        spring,
+        damping,
+        corner_load,
+        spring_at: path!["trailer", "axle", "spring"].to_vec(),
     };
-    let ball_kind = match &opts.joints_as_bushings {
-        None => BallKind::Spherical,
-        Some(jb) => BallKind::Bushing(jb.clone()),
-    };
+    let axle = corner::axle(ctx, parts, anti_roll)?;
     ctx.note(
         "trailer.ball_load_n",
         ball_load,
@@ -230,23 +179,27 @@ pub(super) fn build(
         Kind::Derived,
         "lever rule between ball and axle".into(),
     );
-    let mut parts = vec![(mass, [xc, 0.0, zc])];
+    let mut all = vec![(mass, [xc, 0.0, zc])];
     if let Some(m) = &payload {
-        parts.push((m.mass, m.cm));
+        all.push((m.mass, m.cm));
     }
-    let (total, cm_all) = centre_of_mass(&parts);
-    Ok(Built {
+    let data = Props {
+        coupling: [0.0, 0.0, hb],
         body,
-        wheels: axle.wheels,
-        ball: (link, ball_kind),
-        place,
-        design: TrailerDesign {
-            load_case: case.map_or("as_given".into(), |c| c.name.clone()),
-            mass_kg: total,
-            cm_m: cm_all,
-            empty_ball_load_n: ball_load,
-            corners,
-            pitch_rad: 0.0,
+        axle: AxleSpec::Given(Box::new(axle)),
+        payload,
+        load_case: case.map_or(lumped_trailer::AS_GIVEN.into(), |c| c.name.clone()),
+        origin: format!("{} [trailer]", src.path.display()),
+    };
+    Ok(Towed {
+        desc: TrailerDesc {
+            spec: TrailerSpec::Given(Box::new(data)),
+            tyre: TyreSpec::Given(Box::new(tyre)),
+            at: path!["trailer"].to_vec(),
+            assumed: Vec::new(),
         },
+        ball: [-wheelbase - behind, 0.0, hb],
+        mass_kg: centre_of_mass(&all).0,
+        wheel_centre: w,
     })
 }

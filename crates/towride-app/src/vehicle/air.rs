@@ -17,7 +17,8 @@
 
 use serde::Serialize;
 
-use towride_mbs::input::FieldError;
+use super::description::{Assumed, Kind};
+use towride_mbs::input::{FieldError, InputError};
 use towride_mbs::model::desc::Law;
 use towride_mbs::model::function::Spline;
 
@@ -75,6 +76,100 @@ impl AirSpring {
             .unzip();
         Spline::new(&x, &y).map(Law::Curve)
     }
+}
+
+/// A levelled air spring before the design statics: its pressure follows from the
+/// static load, its volume is given or follows from the wheel rate it must give.
+#[derive(Clone, Debug)]
+pub struct AirSpec {
+    /// Effective area [m^2].
+    pub area_m2: f64,
+    /// Gas volume at the design height [m^3]; `None`: the volume giving `wheel_rate_n_m`.
+    pub volume_m3: Option<f64>,
+    /// Rate at the wheel [N/m] the volume must give (used without `volume_m3`).
+    pub wheel_rate_n_m: Option<f64>,
+    /// Polytropic exponent [-].
+    pub exponent: f64,
+    /// Ambient pressure [Pa].
+    pub atmosphere_pa: f64,
+    /// The tabulated law spans this fraction of the stroke V0 / A each way ([`AirSpring::law`]).
+    pub table_span: f64,
+    /// Points of the tabulated law.
+    pub table_points: usize,
+    /// Where a table the law refuses is blamed (message replaced).
+    pub table_at: InputError,
+}
+
+impl AirSpec {
+    /// The spring levelled to carry `preload` [N] at the design height, its rate seen at
+    /// the wheel through the motion ratio `mr`; or why it cannot be.
+    pub fn levelled(&self, preload: f64, mr: f64) -> Result<AirSpring, String> {
+        let gauge = preload / self.area_m2;
+        if gauge.is_nan() || gauge <= 0.0 {
+            return Err(format!(
+                "the air spring would carry {preload:.1} N at the design height: it cannot pull"
+            ));
+        }
+        let volume = match (self.volume_m3, self.wheel_rate_n_m) {
+            (Some(v), _) => v,
+            (None, Some(k)) => AirSpring::volume_for_rate(
+                self.area_m2,
+                gauge,
+                self.atmosphere_pa,
+                self.exponent,
+                k / (mr * mr),
+            ),
+            (None, None) => return Err("give volume_m3 or a wheel rate".into()),
+        };
+        Ok(AirSpring {
+            area_m2: self.area_m2,
+            volume_m3: volume,
+            gauge_pa: gauge,
+            atmosphere_pa: self.atmosphere_pa,
+            exponent: self.exponent,
+        })
+    }
+
+    /// The spring law of the levelled spring `air` as its table, refusals blamed at
+    /// `table_at`.
+    pub fn law(&self, air: &AirSpring) -> Result<Law, InputError> {
+        air.law(self.table_span, self.table_points).map_err(|e| {
+            let mut at = self.table_at.clone();
+            at.message = e.message;
+            at
+        })
+    }
+}
+
+/// What the design statics found for the air spring of wheel `w`, as derived values.
+pub fn notes(w: &str, a: &AirSpring) -> [Assumed; 3] {
+    let note = |what: &str, value: f64, unit: &str, source: &str| Assumed {
+        field: format!("air_spring_{w}.{what}"),
+        value,
+        unit: unit.into(),
+        kind: Kind::Derived,
+        source: source.into(),
+    };
+    [
+        note(
+            "gauge_pressure_pa",
+            a.gauge_pa,
+            "Pa",
+            "static load over the effective area (levelled at the design height)",
+        ),
+        note(
+            "volume_m3",
+            a.volume_m3,
+            "m^3",
+            "the file's volume, or the one giving its rate",
+        ),
+        note(
+            "rate_n_m",
+            a.rate(),
+            "N/m",
+            "n (p_g + p_a) A^2 / V0 at the design height",
+        ),
+    ]
 }
 
 #[cfg(test)]
