@@ -198,10 +198,21 @@ fn the_registry_lists_the_simple_sets_axle_and_trailer() {
         assert!(trailers.contains(&t), "{trailers:?}");
     }
     // A trailer template the registry lacks is refused with the ones it has.
+    refused_template(
+        "trailer.template",
+        "caravan",
+        &["box_trailer", "lumped_trailer"],
+    );
+}
+
+/// Loads the Fabia with the template at `field` of its assembly file replaced by
+/// `name`, which the registry lacks: the error names that field and the registered
+/// templates `known`.
+pub(crate) fn refused_template(field: &str, name: &str, known: &[&str]) {
     let l = Loader::with_overrides(vec![towride_mbs::input::Override::program(
         "fabia_trailer.toml",
-        "trailer.template",
-        "\"caravan\"",
+        field,
+        format!("{name:?}"),
         "test",
     )]);
     let e = vehicle::load(
@@ -210,11 +221,8 @@ fn the_registry_lists_the_simple_sets_axle_and_trailer() {
         &l,
     )
     .unwrap_err();
-    assert_eq!(e.field, "trailer.template", "{e}");
-    assert!(
-        e.message.contains("box_trailer") && e.message.contains("lumped_trailer"),
-        "{e}"
-    );
+    assert_eq!(e.field, field, "{e}");
+    assert!(known.iter().all(|k| e.message.contains(k)), "{e}");
 }
 
 #[test]

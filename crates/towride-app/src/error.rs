@@ -25,6 +25,49 @@ pub use towride_mbs::model::ModelError;
 pub use towride_mbs::road::RoadError;
 pub use towride_solver::SolverError;
 
+/// A vehicle the design statics cannot put together, before the assembly blames it on
+/// a field of the file that asked for it.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum DesignError {
+    /// A trailer that would have to pitch too far (more than about 6 deg: the files
+    /// disagree on the ball's height) or whose coupling is off the centreline.
+    #[error("{origin}: the coupling at height {coupling_height_m} m (y {coupling_y_m}) cannot sit on a ball {ball_height_m} m high on the centreline without pitching the trailer by {pitch_rad:.3} rad")]
+    CouplingCannotPitch {
+        /// The trailer's property file.
+        origin: String,
+        /// Coupling height, trailer coordinates [m].
+        coupling_height_m: f64,
+        /// Coupling y, trailer coordinates [m].
+        coupling_y_m: f64,
+        /// Ball height, world [m].
+        ball_height_m: f64,
+        /// The pitch it would take [rad].
+        pitch_rad: f64,
+    },
+    /// A trailer placed level whose coupling is not at the ball's height or is off the
+    /// centreline.
+    #[error("{origin}: the coupling at height {coupling_height_m} m (y {coupling_y_m}) must sit on the ball, {ball_height_m} m high on the centreline: a lumped trailer is placed level")]
+    CouplingNotLevel {
+        /// The trailer's property file or description.
+        origin: String,
+        /// Coupling height, trailer coordinates [m].
+        coupling_height_m: f64,
+        /// Coupling y, trailer coordinates [m].
+        coupling_y_m: f64,
+        /// Ball height, world [m].
+        ball_height_m: f64,
+    },
+    /// An air spring that would have to pull to carry its corner.
+    #[error("the air spring would carry {preload_n:.1} N at the design height: it cannot pull")]
+    AirSpringPulls {
+        /// The load it would carry [N].
+        preload_n: f64,
+    },
+    /// An air spring given neither its volume nor a wheel rate.
+    #[error("give volume_m3 or a wheel rate")]
+    AirSpringVolume,
+}
+
 /// A signal the processing cannot take.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SignalError {

@@ -15,6 +15,7 @@
 //! spring element as a table (natural cubic spline) of P - F(x) over the stroke, so the
 //! element's preload P plus its spring term reproduces F.
 
+use crate::error::DesignError;
 use serde::Serialize;
 
 use super::description::{Assumed, Kind};
@@ -103,12 +104,10 @@ pub struct AirSpec {
 impl AirSpec {
     /// The spring levelled to carry `preload` [N] at the design height, its rate seen at
     /// the wheel through the motion ratio `mr`; or why it cannot be.
-    pub fn levelled(&self, preload: f64, mr: f64) -> Result<AirSpring, String> {
+    pub fn levelled(&self, preload: f64, mr: f64) -> Result<AirSpring, DesignError> {
         let gauge = preload / self.area_m2;
         if gauge.is_nan() || gauge <= 0.0 {
-            return Err(format!(
-                "the air spring would carry {preload:.1} N at the design height: it cannot pull"
-            ));
+            return Err(DesignError::AirSpringPulls { preload_n: preload });
         }
         let volume = match (self.volume_m3, self.wheel_rate_n_m) {
             (Some(v), _) => v,
@@ -119,7 +118,7 @@ impl AirSpec {
                 self.exponent,
                 k / (mr * mr),
             ),
-            (None, None) => return Err("give volume_m3 or a wheel rate".into()),
+            (None, None) => return Err(DesignError::AirSpringVolume),
         };
         Ok(AirSpring {
             area_m2: self.area_m2,

@@ -119,7 +119,7 @@ pub fn assemble(d: Description, opts: &Options, loader: &Loader) -> Result<Vehic
         let data = t.spec.data(&mut b, opts.load_case.as_deref())?;
         let (place, pitch) = data
             .place(car_place.point(ball))
-            .map_err(|m| src.error(&at(&t.at, "file"), m))?;
+            .map_err(|e| src.error(&at(&t.at, "file"), e.to_string()))?;
         b.set_place(place);
         let built = data.build(&mut b, &TrailerSlot { tyre: &tyre })?;
         b.set_place(car_place);

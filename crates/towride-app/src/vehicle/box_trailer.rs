@@ -8,6 +8,7 @@
 //! the empty trailer at its design position; a payload makes it sit lower. Trailer
 //! coordinates: [`super::trailer`].
 
+use crate::error::DesignError;
 use std::path::Path;
 
 use serde::Deserialize;
@@ -167,9 +168,9 @@ fn read(file: &Path, case: Option<&str>, loader: &Loader) -> Result<Props, Input
 }
 
 impl TrailerData for Props {
-    fn place(&self, ball: V) -> Result<(Placement, f64), String> {
-        trailer::pitched_on_ball(self.coupling, self.wheel_centre[0], ball)
-            .map_err(|m| format!("{}: {m}", self.src_path.display()))
+    fn place(&self, ball: V) -> Result<(Placement, f64), DesignError> {
+        let origin = self.src_path.display().to_string();
+        trailer::pitched_on_ball(&origin, self.coupling, self.wheel_centre[0], ball)
     }
 
     fn build(

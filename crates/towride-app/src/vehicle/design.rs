@@ -86,7 +86,9 @@ pub fn finish(
             (rate, None, None)
         }
         Preloaded::Air { mut line, spring } => {
-            let air = spring.levelled(p, mr).map_err(complain)?;
+            let air = spring
+                .levelled(p, mr)
+                .map_err(|e| complain(e.to_string()))?;
             // The table holds the force less the preload, zero at the design length.
             line.free_length = distance(&line.point_i, &line.point_j);
             line.preload = p;

@@ -22,6 +22,7 @@
 //! bodies prefixed `trailer_`). The springs are preloaded for the empty trailer, its
 //! weight shared by ball and axle by the lever rule; a payload makes it sit lower.
 
+use crate::error::DesignError;
 use std::path::Path;
 
 use serde::Deserialize;
@@ -146,13 +147,15 @@ fn read(src: &Source, file: &Path, case: Option<&str>) -> Result<Props, InputErr
 pub const AS_GIVEN: &str = "as_given";
 
 impl TrailerData for Props {
-    fn place(&self, ball: V) -> Result<(Placement, f64), String> {
+    fn place(&self, ball: V) -> Result<(Placement, f64), DesignError> {
         let c = self.coupling;
         if (ball[2] - c[2]).abs() > LEVEL_TOLERANCE_M || c[1] != 0.0 {
-            return Err(format!(
-                "{}: the coupling at height {} m (y {}) must sit on the ball, {} m high on the centreline: a lumped trailer is placed level",
-                self.origin, c[2], c[1], ball[2]
-            ));
+            return Err(DesignError::CouplingNotLevel {
+                origin: self.origin.clone(),
+                coupling_height_m: c[2],
+                coupling_y_m: c[1],
+                ball_height_m: ball[2],
+            });
         }
         Ok((Placement::translate([ball[0] - c[0], ball[1], 0.0]), 0.0))
     }

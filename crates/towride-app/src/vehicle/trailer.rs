@@ -9,6 +9,7 @@
 //! Trailer coordinates: x forward (towards the car), y left, z up, origin on the ground
 //! under the coupling's ball centre, the empty trailer at its design attitude.
 
+use crate::error::DesignError;
 use std::path::{Path, PathBuf};
 
 use super::build::Builder;
@@ -47,7 +48,7 @@ pub struct Trailer {
 pub trait TrailerData {
     /// Where the trailer goes with its coupling on the ball at `ball` (world), and its
     /// pitch [rad] (positive: nose down); or why it cannot sit there.
-    fn place(&self, ball: V) -> Result<(Placement, f64), String>;
+    fn place(&self, ball: V) -> Result<(Placement, f64), DesignError>;
     /// Adds the trailer and its design statics, the builder placed in trailer
     /// coordinates.
     fn build(self: Box<Self>, b: &mut Builder, slot: &TrailerSlot) -> Result<Trailer, InputError>;
@@ -116,14 +117,26 @@ pub fn names() -> Vec<&'static str> {
 
 /// A trailer with its coupling `coupling` (trailer coordinates) on the ball at `ball`
 /// (world), pitched about the ground line of its axle at x = `axle_x` so its wheels
-/// stay on the ground: the placement and the pitch [rad], or why it cannot sit there.
-pub fn pitched_on_ball(coupling: V, axle_x: f64, ball: V) -> Result<(Placement, f64), String> {
+/// stay on the ground: the placement and the pitch [rad], or why it cannot sit there
+/// (`origin`: the trailer's file, for the message).
+pub fn pitched_on_ball(
+    origin: &str,
+    coupling: V,
+    axle_x: f64,
+    ball: V,
+) -> Result<(Placement, f64), DesignError> {
     let (a, h) = (coupling[0] - axle_x, coupling[2]);
     let rho = a.hypot(h);
     let pitch = (ball[2] / rho).clamp(-1.0, 1.0).acos() - a.atan2(h);
     // More than about 6 deg means the files disagree on the ball height.
     if pitch.is_nan() || pitch.abs() > 0.1 || coupling[1] != 0.0 {
-        return Err(format!("the coupling at height {h} m (y {}) cannot sit on a ball {} m high on the centreline without pitching the trailer by {pitch:.3} rad", coupling[1], ball[2]));
+        return Err(DesignError::CouplingCannotPitch {
+            origin: origin.to_string(),
+            coupling_height_m: h,
+            coupling_y_m: coupling[1],
+            ball_height_m: ball[2],
+            pitch_rad: pitch,
+        });
     }
     let x_rot = axle_x + pitch.cos() * a + pitch.sin() * h;
     let place = Placement::pitched([axle_x, 0.0, 0.0], pitch, [ball[0] - x_rot, ball[1], 0.0]);
