@@ -299,9 +299,11 @@ fn print_summary(r: &RunResult) {
             e.min, e.t_min, e.max, e.t_max, e.abs_peak, c.unit
         );
     };
-    for (name, c) in s.channels.iter().filter(|(n, c)| {
-        !n.starts_with(channels::HITCH_ETA_PREFIX) && c.signal == Signal::Raw
-    }) {
+    for (name, c) in s
+        .channels
+        .iter()
+        .filter(|(n, c)| !n.starts_with(channels::HITCH_ETA_PREFIX) && c.signal == Signal::Raw)
+    {
         // A raw channel with its band-limited twin: the one shown first as above.
         let twin = c
             .twin

@@ -93,7 +93,7 @@ pub fn run_stress(a: &StressArgs) -> CliResult {
             }
         }
         println!(
-            "{} of {} completed; {} same-physics case(s) with max or min off by more than 2 % of the reference's |peak|; wrote {}",
+            "{} of {} completed; {} same-physics case(s) with |peak| off by more than 2 % or on the other side; wrote {}",
             st.completed,
             st.cases,
             st.same_physics_disagreeing,

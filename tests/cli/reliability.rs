@@ -155,7 +155,7 @@ fn a_plan_run_prints_one_json_document_and_writes_a_plan_table() {
         d.to_str().unwrap(),
         "--json",
     ]);
-    assert_eq!(j["schema_version"], 1);
+    assert_eq!(j["schema_version"], 2);
     assert_eq!(j["status"], "completed");
     let cases = j["cases"].as_array().unwrap();
     assert_eq!(cases.len(), 2);
@@ -203,7 +203,7 @@ fn sweep_merge_refuses_missing_shards_and_speaks_json() {
         merged.to_str().unwrap(),
         "--json",
     ]);
-    assert_eq!(j["schema_version"], 1);
+    assert_eq!(j["schema_version"], 2);
     assert_eq!(
         (j["cases"].as_u64(), j["cases_total"].as_u64()),
         (Some(6), Some(6))

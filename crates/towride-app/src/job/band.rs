@@ -3,9 +3,9 @@
 //! ([`crate::signal::acquisition`]), appended to the samples as `<name><suffix>`
 //! (`acc_hitch_z_lp100`) after the raw channels, which stay as the model computed them.
 
+use crate::error::SignalError;
 use crate::scene::channels;
 use crate::signal::acquisition::{band_limit, AcqFilter};
-use crate::error::SignalError;
 use towride_mbs::model::output::ChannelInfo;
 use towride_mbs::model::run::Samples;
 
@@ -21,8 +21,8 @@ pub fn twins<'a>(names: impl IntoIterator<Item = &'a str>, f: &AcqFilter) -> Vec
         .collect()
 }
 
-/// Appends the band-limited twins of `samples`' channels (sampled at `rate` Hz) through
-/// `f`; returns (raw column, twin column) pairs.
+/// Appends the band-limited twins of `samples`' channels (sampled every 1/`rate` s, as a
+/// run samples them) through `f`; returns (raw column, twin column) pairs.
 pub fn append(
     samples: &mut Samples,
     f: &AcqFilter,
@@ -33,7 +33,7 @@ pub fn append(
     let mut columns = Vec::with_capacity(pairs.len());
     for (c, name) in pairs {
         let y: Vec<f64> = samples.rows.iter().map(|r| r[c]).collect();
-        columns.push(band_limit(f, &samples.times, &y, rate)?);
+        columns.push(band_limit(f, &y, rate)?);
         out.push((c, samples.channels.len()));
         let unit = samples.channels[c].unit;
         samples.channels.push(ChannelInfo {

@@ -173,8 +173,9 @@ pub struct Acquisition {
     pub cutoff_hz: f64,
     /// Run forward in time only, as the analog filter (its phase lag kept).
     pub causal: bool,
-    /// The uniform grid the channels were filtered on [Hz] (linear between samples
-    /// when above the sample rate).
+    /// The uniform grid the channels were filtered on [Hz]: the smallest multiple of
+    /// the sample rate at or above 40 times the cutoff, cubic between samples
+    /// ([`crate::signal::acquisition::band_limit`]).
     pub grid_rate_hz: f64,
     /// Suffix of a band-limited channel's name (`_lp100`).
     pub suffix: String,
@@ -496,12 +497,12 @@ fn channels(s: &Samples, acquisition: Option<&AcqFilter>) -> BTreeMap<String, Ch
     let mut m = BTreeMap::new();
     for (c, ch) in s.channels.iter().enumerate() {
         let sensor = |raw: &str| channels::band(raw) == Some(channels::Band::Sensor);
-        let (signal, twin, shown) =
-            match pairs.iter().find(|(r, b)| *r == ch.name || *b == ch.name) {
-                Some((r, b)) if *r == ch.name => (Signal::Raw, Some(b.clone()), !sensor(r)),
-                Some((r, _)) => (Signal::BandLimited, Some(r.clone()), sensor(r)),
-                None => (Signal::Raw, None, true),
-            };
+        let (signal, twin, shown) = match pairs.iter().find(|(r, b)| *r == ch.name || *b == ch.name)
+        {
+            Some((r, b)) if *r == ch.name => (Signal::Raw, Some(b.clone()), !sensor(r)),
+            Some((r, _)) => (Signal::BandLimited, Some(r.clone()), sensor(r)),
+            None => (Signal::Raw, None, true),
+        };
         m.insert(
             ch.name.clone(),
             ChannelSummary {

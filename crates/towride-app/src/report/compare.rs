@@ -141,7 +141,9 @@ fn extremes(v: &[f64]) -> [f64; 3] {
         .iter()
         .copied()
         .filter(|x| x.is_finite())
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| (lo.min(x), hi.max(x)));
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+            (lo.min(x), hi.max(x))
+        });
     if lo > hi {
         [f64::NAN; 3]
     } else {

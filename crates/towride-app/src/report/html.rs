@@ -225,7 +225,9 @@ fn groups(res: &Samples) -> Vec<Group> {
     let palette = super::figure::PALETTE;
     let mut keys: Vec<(String, &str)> = Vec::new();
     // The twins go with their raw channels, not in families of their own.
-    let twin = |c: usize| channels::is_band_limited(&res.channels[c].name) && counterpart(res, c).is_some();
+    let twin = |c: usize| {
+        channels::is_band_limited(&res.channels[c].name) && counterpart(res, c).is_some()
+    };
     for (c, ch) in res.channels.iter().enumerate() {
         let key = (family(&ch.name), ch.unit);
         if !used[c] && !twin(c) && !keys.contains(&key) {
@@ -234,9 +236,10 @@ fn groups(res: &Samples) -> Vec<Group> {
     }
     for (key, unit) in keys {
         let mut series: Vec<Series> = Vec::new();
-        let members = res.channels.iter().enumerate().filter(|(c, ch)| {
-            !used[*c] && !twin(*c) && ch.unit == unit && family(&ch.name) == key
-        });
+        let members =
+            res.channels.iter().enumerate().filter(|(c, ch)| {
+                !used[*c] && !twin(*c) && ch.unit == unit && family(&ch.name) == key
+            });
         for (k, (c, ch)) in members.enumerate() {
             let s = |ch: usize, show: bool| Series {
                 ch,

@@ -114,8 +114,7 @@ pub fn band(name: &str) -> Option<Band> {
         None
     } else if name.starts_with(ACC_PREFIX) || name == TRAILER_AX {
         Some(Band::Sensor)
-    } else if [HITCH_FX, HITCH_FY, HITCH_FZ].contains(&name) || HITCH_DEFLECTION.contains(&name)
-    {
+    } else if [HITCH_FX, HITCH_FY, HITCH_FZ].contains(&name) || HITCH_DEFLECTION.contains(&name) {
         Some(Band::Load)
     } else {
         None
@@ -126,7 +125,9 @@ pub fn band(name: &str) -> Option<Band> {
 /// (`acc_hitch_z_lp100`).
 pub fn is_band_limited(name: &str) -> bool {
     name.rsplit_once("_lp").is_some_and(|(_, f)| {
-        !f.is_empty() && f.parse::<f64>().is_ok() && f.chars().all(|c| c.is_ascii_digit() || c == '.')
+        !f.is_empty()
+            && f.parse::<f64>().is_ok()
+            && f.chars().all(|c| c.is_ascii_digit() || c == '.')
     })
 }
 

@@ -461,7 +461,10 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
     if let Some(a) = &acquisition {
         // A band-limited twin is named by suffix: no channel may already carry its name.
         let suffix = a.suffix();
-        for c in channels.iter().filter(|c| channels::band(&c.name).is_some()) {
+        for c in channels
+            .iter()
+            .filter(|c| channels::band(&c.name).is_some())
+        {
             let twin = format!("{}{suffix}", c.name);
             if channels.iter().any(|d| d.name == twin) {
                 return Err(src.error(

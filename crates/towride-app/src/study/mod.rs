@@ -114,8 +114,7 @@ impl Reference {
             .collect();
         Errors {
             extremes,
-            abs_peak_error: ((extremes.abs_peak - self.extremes.abs_peak)
-                / self.extremes.abs_peak)
+            abs_peak_error: ((extremes.abs_peak - self.extremes.abs_peak) / self.extremes.abs_peak)
                 .abs(),
             hitch_rms,
             sensor_rms: sensors.iter().sum::<f64>() / sensors.len().max(1) as f64,

@@ -26,8 +26,8 @@ pub const SCHEMA_VERSION: u32 = 2;
 /// Relative tolerance of the reference run.
 pub const REFERENCE_RTOL: f64 = 1e-5;
 
-/// Largest deviation of a same-physics case's max and of its min from the reference's,
-/// as a fraction of the reference's |peak|.
+/// Largest deviation of a same-physics case's |peak| from the reference's, as a
+/// fraction of it (the |peak| on the reference's side: [`agrees`]).
 pub const AGREEMENT: f64 = 0.02;
 
 /// One stress case.
@@ -79,8 +79,8 @@ pub struct Outcome {
     pub hitch_rms_deviation: f64,
     /// The case changes only numerical settings.
     pub same_physics: bool,
-    /// Same-physics cases: max and min each within 2 % of the reference's |peak| of the
-    /// reference's max and min ([`agrees`]).
+    /// Same-physics cases: |peak| within 2 % of the reference's, on the same side
+    /// ([`agrees`]).
     pub agrees: Option<bool>,
 }
 
@@ -312,13 +312,15 @@ pub fn ratio(value: f64, reference: f64) -> f64 {
     value / reference
 }
 
-/// A same-physics case agrees with the reference when its max and its min each lie
-/// within [`AGREEMENT`] times the reference's |peak| of the reference's max and min:
-/// both sides held, so the |peak| is held too (it moves by no more than they do), and a
-/// case whose larger side changed with equal magnitudes is not a deviation.
+/// A same-physics case agrees with the reference when its |peak| lies within
+/// [`AGREEMENT`] of the reference's and on the same side (its larger magnitude is its
+/// max where the reference's is, its min where the reference's is): the same test as
+/// |peak - reference peak| <= 2 % |reference peak| on signed peaks, without one. A case
+/// whose larger side changed deviates, however close the magnitudes.
 pub fn agrees(case: &Extremes, reference: &Extremes) -> bool {
-    let tol = AGREEMENT * reference.abs_peak;
-    (case.max - reference.max).abs() <= tol && (case.min - reference.min).abs() <= tol
+    let high = |e: &Extremes| e.max.abs() >= e.min.abs();
+    high(case) == high(reference)
+        && (case.abs_peak - reference.abs_peak).abs() <= AGREEMENT * reference.abs_peak
 }
 
 fn outcome(c: &Case, r: Result<RunResult>, refdata: &Reference) -> Outcome {

@@ -704,8 +704,8 @@ fn previous_rows(
     if csv.is_file() {
         let twin = csv.with_extension("json");
         if let Ok(text) = std::fs::read_to_string(&twin) {
-            let v: serde_json::Value = serde_json::from_str(&text)
-                .map_err(|e| bad(&twin, format!("not JSON: {e}")))?;
+            let v: serde_json::Value =
+                serde_json::from_str(&text).map_err(|e| bad(&twin, format!("not JSON: {e}")))?;
             check_version(&twin, v["schema_version"].as_u64(), "resume it")?;
         }
         let mut r = csv::Reader::from_path(csv).map_err(|e| Error::io(csv, e.into()))?;

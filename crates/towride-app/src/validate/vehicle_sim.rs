@@ -50,7 +50,12 @@ impl Simulator for VehicleSimulator {
         r.require_completed()?;
         // The raw accelerometer channels: what a measurement can be compared with once
         // through the descriptor's own acquisition chain (not the scene's twins).
-        let raw: Vec<bool> = r.samples.channels.iter().map(|c| r.is_raw(&c.name)).collect();
+        let raw: Vec<bool> = r
+            .samples
+            .channels
+            .iter()
+            .map(|c| r.is_raw(&c.name))
+            .collect();
         let res = r.samples;
         let channels = res
             .channels

@@ -108,8 +108,7 @@ pub fn resolve(names: &[String], job: &Job) -> Result<Vec<OutputSpec>> {
         defaults(&channels, suffix.as_deref()).ok_or_else(|| {
             bad(
                 "",
-                "this model has no hitch: name the outputs, e.g. --outputs body.z.abs_peak"
-                    .into(),
+                "this model has no hitch: name the outputs, e.g. --outputs body.z.abs_peak".into(),
             )
         })?
     } else {
