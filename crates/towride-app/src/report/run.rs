@@ -80,19 +80,19 @@ pub fn run_panels(res: &Samples) -> Vec<Panel> {
             })
             .collect()
     };
-    // A panel of band-limited traces says so on its axis (the titles are full).
+    // A panel of band-limited traces says so in its title (the axis label has no room).
     let panel = |title: &str, y: &str, traces: Vec<Trace>| {
         let band = traces.iter().find_map(|t| {
             let (_, cutoff) = t.label.rsplit_once("_lp")?;
             channels::is_band_limited(&t.label).then(|| cutoff.to_string())
         });
-        let y = match band {
-            Some(fc) => format!("{y}, {fc} Hz low-pass"),
-            None => y.to_string(),
+        let title = match band {
+            Some(fc) => format!("{title} ({fc} Hz low-pass)"),
+            None => title.to_string(),
         };
         Panel {
             traces,
-            ..Panel::new(title, "time [s]", y)
+            ..Panel::new(&title, "time [s]", y)
         }
     };
     let acc = "acceleration [m/s²]";
