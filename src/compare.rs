@@ -1,6 +1,6 @@
 //! `towride compare DIR DIR... [--out DIR]`: overlays the channels of two or more runs'
-//! `outputs.csv` in `compare.png` and `compare.html`, with peak and RMS differences
-//! against the first run.
+//! `outputs.csv` in `compare.png` and `compare.html`, with the differences of max, min
+//! and |peak| (like with like) and the RMS difference against the first run.
 
 use std::path::PathBuf;
 
@@ -47,8 +47,20 @@ pub fn run(a: &CompareArgs) -> CliResult {
     );
     for d in &c.differences {
         println!(
-            "  {:<26} {:<12} peak {:>11.4e} vs {:>11.4e} ({:>+10.3e})  RMS diff {:>10.3e} [{}]",
-            d.channel, d.run, d.peak, d.reference_peak, d.peak_difference, d.rms_difference, d.unit
+            "  {:<26} {:<12} max {:>11.4e} vs {:>11.4e} ({:>+10.3e})  min {:>11.4e} vs {:>11.4e} ({:>+10.3e})  |peak| {:>10.4e} vs {:>10.4e} ({:>+10.3e})  RMS diff {:>10.3e} [{}]",
+            d.channel,
+            d.run,
+            d.max,
+            d.reference_max,
+            d.max_difference,
+            d.min,
+            d.reference_min,
+            d.min_difference,
+            d.abs_peak,
+            d.reference_abs_peak,
+            d.abs_peak_difference,
+            d.rms_difference,
+            d.unit
         );
     }
     for f in &c.files {

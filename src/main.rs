@@ -75,8 +75,8 @@ enum Command {
     /// Compare the simulation with recorded runs (RUN.toml or a folder); `validate synth`
     /// writes synthetic runs.
     Validate(validate::ValidateArgs),
-    /// Overlay the channels of two or more runs (HTML page and PNG) with peak and RMS
-    /// differences against the first.
+    /// Overlay the channels of two or more runs (HTML page and PNG) with max, min, |peak|
+    /// and RMS differences against the first.
     Compare(compare::CompareArgs),
 }
 

@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use clap::Args;
 
-use towride_app::job::{Job, RunResult, RunStatus};
+use towride_app::job::{ChannelSummary, Job, RunResult, RunStatus, Signal};
 use towride_app::report::plan_run::PlanRun;
 use towride_app::scene::plan;
 use towride_app::scene::{self, channels, Changes, SceneError};
@@ -286,15 +286,40 @@ fn print_summary(r: &RunResult) {
     if let Some(p) = s.plots.as_deref().filter(|p| p.starts_with("not written")) {
         eprintln!("warning: plots {p}");
     }
+    if let Some(a) = &s.acquisition {
+        println!(
+            "  raw channels as computed; <channel>{} through the scene's acquisition chain ({}, on a {} Hz grid): accelerometers listed band-limited first, as the instrument saw them, forces and deflections raw first",
+            a.suffix, a.description, a.grid_rate_hz
+        );
+    }
+    let line = |name: &str, c: &ChannelSummary| {
+        let e = &c.extremes;
+        println!(
+            "  {name:<30} min {:>11.4e} at {:>7.4} s   max {:>11.4e} at {:>7.4} s   |peak| {:>10.4e}  [{}]",
+            e.min, e.t_min, e.max, e.t_max, e.abs_peak, c.unit
+        );
+    };
     for (name, c) in s
         .channels
         .iter()
-        .filter(|(n, _)| !n.starts_with(channels::HITCH_ETA_PREFIX))
+        .filter(|(n, c)| !n.starts_with(channels::HITCH_ETA_PREFIX) && c.signal == Signal::Raw)
     {
-        println!(
-            "  {name:<24} min {:>11.4e} at {:>7.4} s   max {:>11.4e} at {:>7.4} s  [{}]",
-            c.min, c.t_min, c.max, c.t_max, c.unit
-        );
+        // A raw channel with its band-limited twin: the one shown first as above.
+        let twin = c
+            .twin
+            .as_ref()
+            .and_then(|t| s.channels.get(t).map(|b| (t, b)));
+        match twin {
+            Some((t, b)) if b.shown => {
+                line(t, b);
+                line(name, c);
+            }
+            Some((t, b)) => {
+                line(name, c);
+                line(t, b);
+            }
+            None => line(name, c),
+        }
     }
 }
 

@@ -27,8 +27,8 @@ pub struct BenchSceneArgs {
     /// Methods compared.
     #[arg(long, value_enum, value_delimiter = ',', default_values = ["variable", "fixed", "radau"])]
     pub methods: Vec<crate::MethodArg>,
-    /// Hitch-peak errors at which the methods' cost is compared (the fastest run of each
-    /// method whose error is at most this).
+    /// Hitch |peak| errors at which the methods' cost is compared (the fastest run of
+    /// each method whose error is at most this).
     #[arg(long, value_delimiter = ',', default_values_t = vec![1e-2, 2e-3])]
     pub equal_error: Vec<f64>,
     /// The same for the sensors' in-band error.
@@ -83,13 +83,13 @@ pub fn run_bench(a: &BenchSceneArgs) -> CliResult {
         println!("{}", serde_json::to_string_pretty(&b)?);
     } else {
         println!(
-            "{}: reference (rtol {:.0e}) hitch_fx peak {:.1} N, {:.2} s wall",
+            "{}: reference (rtol {:.0e}) hitch_fx |peak| {:.1} N, {:.2} s wall",
             scene.display(),
             a.reference_tol,
-            b.reference.hitch_peak_n,
+            b.reference.hitch_abs_peak_n,
             b.reference.wall_s
         );
-        println!("method    rtol     wall [s]  x real time  steps  Jac  peak err  hitch RMS err  sensor RMS err  in band");
+        println!("method    rtol     wall [s]  x real time  steps  Jac |peak| err  hitch RMS err  sensor RMS err  in band");
         for p in &b.runs {
             println!(
                 "{:<8} {:>7.0e} {:>9.3} {:>11.2} {:>6} {:>4} {:>9.2e} {:>14.2e} {:>15.2e} {:>8.2e}  {}",
@@ -99,7 +99,7 @@ pub fn run_bench(a: &BenchSceneArgs) -> CliResult {
                 p.realtime_factor,
                 p.steps,
                 p.jacobian_evals,
-                p.hitch_peak_error,
+                p.hitch_abs_peak_error,
                 p.hitch_rms_error,
                 p.sensor_rms_error,
                 p.sensor_band_error,

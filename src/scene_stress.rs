@@ -29,16 +29,17 @@ pub struct StressArgs {
     pub json: bool,
 }
 
-/// The peak against the reference's: an error for a same-physics case (`+0.12 % err`),
+/// The |peak| against the reference's: an error for a same-physics case (`+0.12 % err`),
 /// for a case that changes the physics (speed, load, obstacle) a ratio marked as such
-/// (`x2.72 of ref`), as it compares two different experiments.
+/// (`2.72x of ref`), as it compares two different experiments. Magnitudes over
+/// magnitudes: a larger push than the reference's pull reads as larger, not negative.
 fn change(o: &stress::Outcome) -> String {
-    if !o.peak_deviation.is_finite() {
+    if !o.abs_peak_ratio.is_finite() {
         format!("{:>13}", "")
     } else if o.same_physics {
-        format!("{:>+8.2} % err", 100.0 * o.peak_deviation)
+        format!("{:>+8.2} % err", 100.0 * (o.abs_peak_ratio - 1.0))
     } else {
-        format!("{:>6.2}x of ref", 1.0 + o.peak_deviation)
+        format!("{:>6.2}x of ref", o.abs_peak_ratio)
     }
 }
 
@@ -59,12 +60,15 @@ pub fn run_stress(a: &StressArgs) -> CliResult {
         println!("{}", serde_json::to_string_pretty(&st)?);
     } else {
         println!(
-            "reference: hitch_fx peak {:.1} N ({:.2} s wall)",
-            st.reference.hitch_peak_n, st.reference.wall_s
+            "reference: hitch_fx max {:.1} N, min {:.1} N, |peak| {:.1} N ({:.2} s wall)",
+            st.reference.hitch_max_n,
+            st.reference.hitch_min_n,
+            st.reference.hitch_abs_peak_n,
+            st.reference.wall_s
         );
         for o in &st.outcomes {
             println!(
-                "{:<18} {:<46} {:<10} peak {:>9.1} N  {}  {:>6} steps {:>6.2} s {}",
+                "{:<18} {:<46} {:<10} max {:>8.1} min {:>9.1} |peak| {:>8.1} N  {}  {:>6} steps {:>6.2} s {}",
                 o.group,
                 o.case,
                 if o.status == "completed" {
@@ -72,7 +76,9 @@ pub fn run_stress(a: &StressArgs) -> CliResult {
                 } else {
                     "FAILED"
                 },
-                o.hitch_peak_n,
+                o.hitch_max_n,
+                o.hitch_min_n,
+                o.hitch_abs_peak_n,
                 change(o),
                 o.steps,
                 o.wall_s,
@@ -87,7 +93,7 @@ pub fn run_stress(a: &StressArgs) -> CliResult {
             }
         }
         println!(
-            "{} of {} completed; {} same-physics case(s) off by more than 2 %; wrote {}",
+            "{} of {} completed; {} same-physics case(s) with |peak| off by more than 2 % or on the other side; wrote {}",
             st.completed,
             st.cases,
             st.same_physics_disagreeing,

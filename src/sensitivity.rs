@@ -25,8 +25,9 @@ pub struct SensitivityArgs {
     /// Groups searched for parameters (default hitch, trailer, tyres).
     #[arg(long, value_delimiter = ',')]
     group: Vec<String>,
-    /// Outputs CHANNEL.peak|rms|freq|peak100 (default: hitch force peak, RMS and
-    /// frequency, trailer-box acceleration peak, every accelerometer's 100 Hz peak).
+    /// Outputs CHANNEL.abs_peak|max|min|rms|freq, CHANNEL raw or band-limited
+    /// (`acc_hitch_z_lp100`) (default: hitch force |peak|, RMS and frequency, trailer-box
+    /// acceleration |peak|, every accelerometer's band-limited |peak|).
     #[arg(long, value_delimiter = ',')]
     outputs: Vec<String>,
     /// oat (central differences at +-10 %) or morris (elementary effects).

@@ -48,9 +48,17 @@ fn damping_and_frequency_of_a_damped_sinusoid_are_recovered() {
         let rms = (y.iter().map(|v| v * v).sum::<f64>() / y.len() as f64).sqrt();
         assert!((r.rms_n - rms).abs() < 1e-9 * rms);
         assert!(
-            r.peak_n.abs() > 4000.0 && r.t_peak_s > 0.5 && r.t_peak_s < 0.53,
+            r.abs_peak_n > 4000.0 && r.t_abs_peak_s > 0.5 && r.t_abs_peak_s < 0.53,
             "{r:?}"
         );
+        // |peak| is the larger magnitude of max and min, at the time of that one.
+        assert_eq!(r.abs_peak_n, r.max_n.abs().max(r.min_n.abs()), "{r:?}");
+        let side = if r.max_n.abs() >= r.min_n.abs() {
+            r.t_max_s
+        } else {
+            r.t_min_s
+        };
+        assert_eq!(r.t_abs_peak_s, side, "{r:?}");
     }
 }
 

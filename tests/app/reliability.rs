@@ -358,12 +358,33 @@ fn the_doctor_finds_the_default_scene_well_conditioned() {
 }
 
 #[test]
-fn a_larger_peak_in_the_reference_s_direction_is_a_positive_change() {
-    use towride_app::study::stress::peak_change;
-    // The default scene's hitch peak is a pull of -5357 N; -14570 N is 2.72 times it.
-    assert!((peak_change(-14570.0, -5357.0) - 1.7198).abs() < 1e-3);
-    assert!((peak_change(6000.0, 5000.0) - 0.2).abs() < 1e-12);
-    assert!(peak_change(-4000.0, -5000.0) < 0.0);
+fn stress_ratios_compare_like_with_like() {
+    use towride_app::job::Extremes;
+    use towride_app::study::stress::{agrees, ratio};
+    // The default scene's hitch |peak| is a pull of 5357 N; a pull of 14570 N is 2.72
+    // times it, a larger push 1.2 times a push, a smaller pull 0.8 times.
+    assert!((ratio(14570.0, 5357.0) - 2.7198).abs() < 1e-3);
+    assert!((ratio(6000.0, 5000.0) - 1.2).abs() < 1e-12);
+    assert!((ratio(-4000.0, -5000.0) - 0.8).abs() < 1e-12);
+    // A case whose |peak| is a push of 2306 N against the reference's pull of 5261 N:
+    // 0.44 times the reference's magnitude, not the "-0.44x" of signed peaks.
+    let e = |t: &[f64], y: &[f64]| Extremes::of(t, y.iter().copied());
+    let t = [0.1, 0.2, 0.3];
+    let reference = e(&t, &[1200.0, -5261.0, 300.0]);
+    let push = e(&t, &[2306.0, -1500.0, 0.0]);
+    assert!((ratio(push.abs_peak, reference.abs_peak) - 0.4383).abs() < 1e-4);
+    assert!(ratio(push.max, reference.max) > 1.0 && ratio(push.min, reference.min) < 1.0);
+    // Agreement: the |peak| within 2 % of the reference's, on the reference's side.
+    assert!(agrees(&e(&t, &[1250.0, -5300.0, 0.0]), &reference));
+    assert!(agrees(&e(&t, &[1320.0, -5261.0, 0.0]), &reference));
+    assert!(!agrees(&e(&t, &[1200.0, -5380.0, 0.0]), &reference));
+    // Within 2 % in magnitude, but a push where the reference pulls: a deviation, as
+    // the signed peaks' 5300 against -5261 was.
+    assert!(!agrees(&e(&t, &[5300.0, -5200.0, 0.0]), &reference));
+    // Equal magnitudes on either side: the |peak| is the same whichever side it is on.
+    let both = e(&t, &[5261.0, -5261.0, 0.0]);
+    assert_eq!(both.abs_peak, 5261.0);
+    assert_eq!(both.t_abs_peak, 0.1);
 }
 
 /// Every stress case is a model the input checks accept: a case they refuse measures the

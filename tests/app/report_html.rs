@@ -94,7 +94,7 @@ fn report_is_self_contained_and_carries_the_run() {
     let s = v["s"].as_f64().unwrap();
     let q = v["q"].as_array().unwrap();
     assert_eq!(q.len(), res.samples.times.len());
-    let peak = res.peak("hitch_fx").unwrap().abs();
+    let peak = res.abs_peak("hitch_fx").unwrap();
     for (k, qk) in q.iter().enumerate() {
         let got = qk.as_f64().unwrap() * s;
         assert!(

@@ -72,7 +72,7 @@ fn oat_elasticities_of_a_mass_spring_frequency_are_one_half() {
             // Rotation about z is locked by the slide: no effect.
             "mass_spring.toml:body[0].inertia_kg_m2[2]".into(),
         ],
-        outputs: vec!["k1.force.freq".into(), "k1.force.peak".into()],
+        outputs: vec!["k1.force.freq".into(), "k1.force.abs_peak".into()],
         method: Method::Oat,
         jobs: 1,
         ..Settings::default()
@@ -83,8 +83,8 @@ fn oat_elasticities_of_a_mass_spring_frequency_are_one_half() {
     assert!((el(0, 0) + 0.5).abs() < 0.01, "mass: {}", el(0, 0));
     assert!((el(1, 0) - 0.5).abs() < 0.01, "stiffness: {}", el(1, 0));
     assert!(el(2, 0).abs() < 1e-6);
-    // The spring's peak force, released from its free length: 2 m g, independent of k,
-    // proportional to m.
+    // The spring's largest force, released from its free length: 2 m g, independent of
+    // k, proportional to m.
     assert!(
         (el(0, 1) - 1.0).abs() < 0.02 && el(1, 1).abs() < 0.02,
         "{} {}",
@@ -116,7 +116,7 @@ fn assumed_inputs_are_the_assumed_values_among_the_highest_ranked() {
     };
     let study = serde_json::json!({
         "method": "oat",
-        "outputs": [{"name": "hitch_fx.peak", "unit": "N"}],
+        "outputs": [{"name": "hitch_fx.abs_peak", "unit": "N"}],
         "params": [
             // `# [assumed] light box trailer class estimate` in the file.
             param("vehicles/trailer/box_trailer.toml", "half.mass_kg", 0.5),
@@ -131,7 +131,7 @@ fn assumed_inputs_are_the_assumed_values_among_the_highest_ranked() {
     std::fs::write(dir.join("sensitivity.json"), study.to_string()).unwrap();
     let a = assumed_inputs(&scene, &dir, 4);
     assert_eq!(a.note, None);
-    assert_eq!(a.output.as_deref(), Some("hitch_fx.peak"));
+    assert_eq!(a.output.as_deref(), Some("hitch_fx.abs_peak"));
     // Ranked by |elasticity|: body 0.9, gravity 0.7, missing file 0.6, half 0.5; the
     // wheel (0.01) is fifth, outside the top four.
     assert_eq!(a.inputs.len(), 1, "{a:?}");
@@ -150,4 +150,64 @@ fn assumed_inputs_are_the_assumed_values_among_the_highest_ranked() {
     let none = assumed_inputs(&scene, &dir.join("nothing"), 10);
     assert!(none.inputs.is_empty() && none.note.unwrap().contains("towride sensitivity"));
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The outputs by their names: `abs_peak`, `max`, `min` of raw or band-limited channels;
+/// the former `peak` and `peak100` refused with the name to use, the defaults the hitch
+/// force's |peak| and every accelerometer as the instrument saw it.
+#[test]
+fn outputs_are_named_abs_peak_max_min_raw_or_band_limited() {
+    use towride_app::job::Job;
+    use towride_app::study::sensitivity::outputs::{resolve, Measure};
+    use towride_mbs::input::Loader;
+    let job = Job::from_file(
+        std::path::Path::new(repo!("scenes/default.toml")),
+        &Loader::new(),
+    )
+    .unwrap();
+    let names = |v: &[&str]| v.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+    let o = resolve(
+        &names(&["hitch_fx.abs_peak", "hitch_fx.min", "acc_hitch_z_lp100.max"]),
+        &job,
+    )
+    .unwrap();
+    assert_eq!(
+        o.iter().map(|s| s.measure).collect::<Vec<_>>(),
+        [Measure::AbsPeak, Measure::Min, Measure::Max]
+    );
+    assert_eq!(o[2].unit, "m/s^2");
+    let e = resolve(&names(&["hitch_fx.peak"]), &job)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("hitch_fx.abs_peak") && e.contains("hitch_fx.min"),
+        "{e}"
+    );
+    let e = resolve(&names(&["acc_hitch_z.peak100"]), &job)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("acc_hitch_z_lp100.abs_peak"), "{e}");
+    let d: Vec<String> = resolve(&[], &job)
+        .unwrap()
+        .iter()
+        .map(|s| s.name())
+        .collect();
+    assert_eq!(
+        d[..4],
+        [
+            "hitch_fx.abs_peak",
+            "hitch_fx.rms",
+            "hitch_fx.freq",
+            "acc_trailer_drawbar_z.abs_peak"
+        ]
+    );
+    assert!(
+        d.contains(&"acc_hitch_z_lp100.abs_peak".to_string()),
+        "{d:?}"
+    );
+    assert!(
+        !d.iter()
+            .any(|n| n.contains("peak100") || n.ends_with(".peak")),
+        "{d:?}"
+    );
 }

@@ -98,15 +98,16 @@ fn the_pages_curves_run_along_one_parameter_with_one_curve_per_other_value() {
     std::fs::create_dir_all(&dir).unwrap();
     let csv = dir.join("summary.csv");
     // Two variants at three speeds (the last parameter varies fastest); case 4 failed.
+    // The figure is a magnitude: the stiffer variant's larger pull plots higher.
     let mut t = String::from(
-        "case,variant,speed_km_h,status,wall_time [s],hitch_fx peak [N],steps,error\n",
+        "case,variant,speed_km_h,status,wall_time [s],hitch_fx abs_peak [N],steps,error\n",
     );
     for k in 0..6 {
         let (v, s) = (1 + k / 3, [30.0, 50.0, 60.0][k % 3]);
         let (status, peak) = if k == 4 {
             ("failed", String::new())
         } else {
-            ("completed", format!("{}", -1000.0 * v as f64 - s))
+            ("completed", format!("{}", 1000.0 * v as f64 + s))
         };
         t.push_str(&format!("{k},{v},{s},{status},0.1,{peak},100,\n"));
     }
@@ -120,13 +121,13 @@ fn the_pages_curves_run_along_one_parameter_with_one_curve_per_other_value() {
         labels,
         ["speed_km_h = 30", "speed_km_h = 50", "speed_km_h = 60"]
     );
-    assert_eq!(c[0].1, [(1.0, -1030.0), (2.0, -2030.0)]);
+    assert_eq!(c[0].1, [(1.0, 1030.0), (2.0, 2030.0)]);
     // The failed case (variant 2 at 50 km/h) is left out, not drawn at zero.
-    assert_eq!(c[1].1, [(1.0, -1050.0)]);
+    assert_eq!(c[1].1, [(1.0, 1050.0)]);
     // Against speed instead: one curve per variant, sorted by speed.
     let c = page::curves(&table, 1, 0);
     assert_eq!(c[0].0, "variant = 1");
-    assert_eq!(c[0].1, [(30.0, -1030.0), (50.0, -1050.0), (60.0, -1060.0)]);
+    assert_eq!(c[0].1, [(30.0, 1030.0), (50.0, 1050.0), (60.0, 1060.0)]);
     assert_eq!(page::key_figures(&table), [0]);
     let files = page::write(&csv, "two variants").unwrap();
     assert_eq!(files.html, dir.join("report.html"));

@@ -289,8 +289,29 @@ fn bench_replot_redraws_a_stored_table_and_names_a_bad_cell() {
         String::from_utf8_lossy(&out.stderr)
     );
     assert!(std::fs::metadata(dir.join("bench.png")).unwrap().len() > 10_000);
-    // A table cut by hand: the error names the file, the line and the column.
+    // A table of bench.json version 1 (the signed peak, `hitch_peak [N]`) replots too.
     let text = std::fs::read_to_string(repo!("docs/data/bench_default.csv")).unwrap();
+    let v1 = dir.join("v1.csv");
+    let old = text
+        .replace("hitch_abs_peak [N]", "hitch_peak [N]")
+        .replace("hitch_abs_peak_error [-]", "hitch_peak_error [-]");
+    assert!(old.contains(",hitch_peak [N],hitch_peak_error [-],"));
+    std::fs::write(&v1, old).unwrap();
+    let png = dir.join("v1");
+    let out = towride(&[
+        "bench",
+        "--replot",
+        v1.to_str().unwrap(),
+        "--out",
+        png.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(std::fs::metadata(png.join("bench.png")).unwrap().len() > 10_000);
+    // A table cut by hand: the error names the file, the line and the column.
     let bad = dir.join("bad.csv");
     std::fs::write(&bad, text.replacen(",completed,0.", ",completed,x0.", 1)).unwrap();
     let err = towride_err(&["bench", "--replot", bad.to_str().unwrap(), "--out", d], 2);
@@ -320,7 +341,7 @@ fn run_json_lists_the_assumed_inputs_of_the_scenes_study() {
     };
     let json = serde_json::json!({
         "method": "oat",
-        "outputs": [{"name": "hitch_fx.peak", "unit": "N"}],
+        "outputs": [{"name": "hitch_fx.abs_peak", "unit": "N"}],
         // body.mass_kg is tagged [scaled], half.inertia_kg_m2 [assumed].
         "params": [param("body.mass_kg", 0.54), param("half.inertia_kg_m2", 0.22)],
     });
@@ -344,7 +365,7 @@ fn run_json_lists_the_assumed_inputs_of_the_scenes_study() {
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["status"], "completed");
     let a = &v["assumed_inputs"];
-    assert_eq!(a["output"], "hitch_fx.peak", "{a}");
+    assert_eq!(a["output"], "hitch_fx.abs_peak", "{a}");
     let inputs = a["inputs"].as_array().unwrap();
     assert_eq!(inputs.len(), 1, "{a}");
     assert_eq!(inputs[0]["rank"], 2);

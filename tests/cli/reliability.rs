@@ -155,7 +155,7 @@ fn a_plan_run_prints_one_json_document_and_writes_a_plan_table() {
         d.to_str().unwrap(),
         "--json",
     ]);
-    assert_eq!(j["schema_version"], 1);
+    assert_eq!(j["schema_version"], 2);
     assert_eq!(j["status"], "completed");
     let cases = j["cases"].as_array().unwrap();
     assert_eq!(cases.len(), 2);
@@ -203,7 +203,7 @@ fn sweep_merge_refuses_missing_shards_and_speaks_json() {
         merged.to_str().unwrap(),
         "--json",
     ]);
-    assert_eq!(j["schema_version"], 1);
+    assert_eq!(j["schema_version"], 2);
     assert_eq!(
         (j["cases"].as_u64(), j["cases_total"].as_u64()),
         (Some(6), Some(6))
@@ -364,7 +364,8 @@ fn ctrl_c_stops_a_sweep_and_resume_finishes_it_with_the_same_summary() {
         .spawn()
         .unwrap();
     let journal = parts.join("summary.csv.journal");
-    let finished = || std::fs::read_to_string(&journal).is_ok_and(|j| j.lines().count() >= 2);
+    // The journal's first line is its layout version; two case rows follow it.
+    let finished = || std::fs::read_to_string(&journal).is_ok_and(|j| j.lines().count() >= 3);
     interrupt_when(&child, finished, Duration::from_secs(20));
     let out = child.wait_with_output().unwrap();
     let e = stderr(&out);

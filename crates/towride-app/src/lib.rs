@@ -32,14 +32,16 @@
 //!
 //! let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/examples/pendulum.toml");
 //! let run = Job::from_file(&file, &Loader::new())?.run(&Silent)?;
-//! let tension = run.summary.channels["pivot.force.z"].max;
+//! let tension = run.summary.channels["pivot.force.z"].extremes.max;
 //! assert!((tension / (3.0 * 9.81) - 1.0).abs() < 1e-4);
 //! println!("peak link tension {tension:.4} N in {} steps", run.summary.solver.steps);
 //! # Ok::<(), towride_app::Error>(())
 //! ```
 //!
-//! The default scene (the thesis's ramp at 50 km/h) run from Rust, its hitch-force
-//! peak printed:
+//! The default scene (the thesis's ramp at 50 km/h) run from Rust, the extremes of its
+//! hitch force printed (max, min and |peak|; no signed peak) and of a sensor as the
+//! instrument saw it (its band-limited twin, through the scene's 100 Hz acquisition
+//! low-pass):
 //!
 //! ```
 //! use std::path::Path;
@@ -48,9 +50,14 @@
 //!
 //! let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/default.toml");
 //! let run = Job::from_file(&scene, &Loader::new())?.run(&Silent)?;
-//! let peak = run.peak(HITCH_FX).expect("a scene has the hitch_fx channel");
-//! println!("hitch_fx peak {peak:.1} N at {:.3} s", run.summary.channels[HITCH_FX].t_peak);
-//! assert!(run.completed() && (3e3..1e4).contains(&peak.abs()));
+//! let fx = run.extremes(HITCH_FX).expect("a scene has the hitch_fx channel");
+//! println!(
+//!     "hitch_fx max {:.1} N at {:.3} s, min {:.1} N at {:.3} s, |peak| {:.1} N",
+//!     fx.max, fx.t_max, fx.min, fx.t_min, fx.abs_peak
+//! );
+//! assert!(run.completed() && (3e3..1e4).contains(&fx.abs_peak));
+//! let seen = run.abs_peak("acc_hitch_z_lp100").expect("the band-limited twin");
+//! assert!(seen < run.abs_peak("acc_hitch_z").unwrap());
 //! # Ok::<(), towride_app::Error>(())
 //! ```
 

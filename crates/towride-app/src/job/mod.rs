@@ -1,7 +1,8 @@
 //! One run pipeline for everything that integrates a model: a [`Job`] is an assembled
 //! model with its solver options, run settings and start policy, built from a mechanism
 //! file, a scene or a plan case; [`Job::run`] starts it, integrates it and returns a
-//! [`RunResult`]: the sampled channels plus a typed [`RunSummary`]. `run`, `linear`,
+//! [`RunResult`]: the sampled channels (with the band-limited twins of the sensor, force
+//! and deflection channels, [`band`]) plus a typed [`RunSummary`]. `run`, `linear`,
 //! `doctor`, `bench`, `stress`, `sweep` and `validate` all build their runs here, so the
 //! model checks (a motion on a locked direction, redundant constraints) run on every
 //! path.
@@ -14,11 +15,13 @@
 //! # fn main() -> Result<(), towride_app::Error> {
 //! let job = Job::from_file(Path::new("scenes/default.toml"), &Loader::new())?;
 //! let run = job.run(&Silent)?;
-//! println!("hitch_fx peak {:.1} N", run.peak(HITCH_FX).unwrap_or(f64::NAN));
+//! let fx = run.extremes(HITCH_FX).expect("a scene has the hitch_fx channel");
+//! println!("hitch_fx max {:.1} N, min {:.1} N, |peak| {:.1} N", fx.max, fx.min, fx.abs_peak);
 //! # Ok(())
 //! # }
 //! ```
 
+pub mod band;
 pub mod ringing;
 mod summary;
 
@@ -26,12 +29,13 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 pub use summary::{
-    ChannelSummary, LiftOff, RunStatus, RunSummary, SceneInfo, SolverSummary, StepLimiter,
-    Unknowns, SCHEMA_VERSION,
+    Acquisition, ChannelSummary, Extremes, LiftOff, RunStatus, RunSummary, SceneInfo, Signal,
+    SolverSummary, StepLimiter, Unknowns, SCHEMA_VERSION,
 };
 
 use crate::error::Result;
 use crate::scene::{self, Changes, Scene};
+use crate::signal::acquisition::AcqFilter;
 use towride_mbs::input::Loader;
 use towride_mbs::model::run::{simulate_with_poses, Samples};
 use towride_mbs::model::spec::{self, Mechanism};
@@ -198,6 +202,25 @@ impl Job {
         })
     }
 
+    /// The scene's acquisition chain, through which the run also reports its sensor,
+    /// force and deflection channels (`None`: a mechanism, or `filter = "none"`).
+    pub fn acquisition(&self) -> Option<AcqFilter> {
+        self.scene.as_ref().and_then(|s| s.acquisition)
+    }
+
+    /// The band-limited twins a run of this job appends to its channels: (name, unit)
+    /// ([`band`]).
+    pub fn band_channels(&self) -> Vec<(String, String)> {
+        let Some(f) = self.acquisition() else {
+            return Vec::new();
+        };
+        let chans = towride_mbs::model::output::channels(&self.system);
+        band::twins(chans.iter().map(|c| c.name.as_str()), &f)
+            .into_iter()
+            .map(|(k, n)| (n, chans[k].unit.to_string()))
+            .collect()
+    }
+
     /// The job without the 3D view's pose samples, for runs whose report nobody writes
     /// (studies, sweeps without kept histories): about 7 ms a default run.
     pub fn without_view(mut self) -> Job {
@@ -250,7 +273,7 @@ impl Job {
         // the steps.
         let mut solver = self.solver.clone();
         solver.record_steps = true;
-        let samples = simulate_with_poses(
+        let mut samples = simulate_with_poses(
             &self.system,
             0.0,
             self.settings.t_end,
@@ -261,6 +284,9 @@ impl Job {
             progress,
         );
         progress.finish();
+        if let Some(f) = self.acquisition() {
+            band::append(&mut samples, &f, self.settings.sample_rate)?;
+        }
         let summary = RunSummary::of(self, &samples, start, start_wall_s);
         Ok(RunResult { samples, summary })
     }
@@ -271,6 +297,7 @@ impl Job {
     /// [`towride_mbs::input::bounds::budget`], before anything is computed.
     pub fn check_budget(&self) -> Result<()> {
         let columns = towride_mbs::model::output::channels(&self.system).len()
+            + self.band_channels().len()
             + self.system.nm.iter().sum::<usize>();
         towride_mbs::input::bounds::budget::check(
             self.settings.t_end,
@@ -310,9 +337,22 @@ impl RunResult {
         self.samples.channel(name)
     }
 
-    /// Largest magnitude of channel `name`, with its sign.
-    pub fn peak(&self, name: &str) -> Option<f64> {
-        self.summary.channels.get(name).map(|c| c.peak)
+    /// Extremes of channel `name`: max, min, |peak| and their times.
+    pub fn extremes(&self, name: &str) -> Option<&Extremes> {
+        self.summary.channels.get(name).map(|c| &c.extremes)
+    }
+
+    /// True unless channel `name` is a band-limited twin ([`band`]).
+    pub fn is_raw(&self, name: &str) -> bool {
+        self.summary
+            .channels
+            .get(name)
+            .is_none_or(|c| c.signal == Signal::Raw)
+    }
+
+    /// Largest magnitude of channel `name`, max(|max|, |min|).
+    pub fn abs_peak(&self, name: &str) -> Option<f64> {
+        self.extremes(name).map(|e| e.abs_peak)
     }
 
     /// True when the run reached its end time.

@@ -1,5 +1,5 @@
-//! A force's ringing: peak, RMS, dominant frequency and the damping ratio of its free
-//! decay (what the run summary reports of the hitch force).
+//! A force's ringing: max, min and |peak|, RMS, dominant frequency and the damping ratio
+//! of its free decay (what the run summary reports of the hitch force).
 //!
 //! - Dominant frequency: the largest peak of the amplitude spectrum (mean removed, Hann
 //!   window, [`crate::signal::spectrum::peak_in`]) between 1 Hz and 0.45 times the
@@ -22,10 +22,18 @@ use serde::Serialize;
 pub struct Ringing {
     /// The channel.
     pub channel: String,
-    /// Value of largest magnitude, with its sign [N].
-    pub peak_n: f64,
+    /// Largest value [N].
+    pub max_n: f64,
     /// Its time [s].
-    pub t_peak_s: f64,
+    pub t_max_s: f64,
+    /// Smallest value [N].
+    pub min_n: f64,
+    /// Its time [s].
+    pub t_min_s: f64,
+    /// The larger magnitude, max(|max|, |min|) [N]: where the free decay starts.
+    pub abs_peak_n: f64,
+    /// Its time [s].
+    pub t_abs_peak_s: f64,
     /// Root mean square over the run [N].
     pub rms_n: f64,
     /// Peak of the amplitude spectrum [Hz].
@@ -51,14 +59,19 @@ pub struct Decay {
     pub fit_r2: f64,
 }
 
-/// Peak, RMS, dominant frequency and damping of `y` (samples at times `t`, uniform).
+/// Extremes, RMS, dominant frequency and damping of `y` (samples at times `t`, uniform).
 pub fn ringing(channel: &str, t: &[f64], y: &[f64]) -> Option<Ringing> {
     let n = y.len().min(t.len());
     if n < 8 {
         return None;
     }
     let dt = (t[n - 1] - t[0]) / (n - 1) as f64;
-    let (k_peak, peak) = y[..n]
+    let ext = super::Extremes::of(&t[..n], y[..n].iter().copied());
+    if ext.abs_peak.is_nan() {
+        return None;
+    }
+    // The sample of largest magnitude: the decay is searched from there.
+    let (k_peak, _) = y[..n]
         .iter()
         .copied()
         .enumerate()
@@ -74,8 +87,12 @@ pub fn ringing(channel: &str, t: &[f64], y: &[f64]) -> Option<Ringing> {
     let decay = local.and_then(|f| free_decay(&t[..n], &y[..n], f, k_peak));
     Some(Ringing {
         channel: channel.into(),
-        peak_n: peak,
-        t_peak_s: t[k_peak],
+        max_n: ext.max,
+        t_max_s: ext.t_max,
+        min_n: ext.min,
+        t_min_s: ext.t_min,
+        abs_peak_n: ext.abs_peak,
+        t_abs_peak_s: ext.t_abs_peak,
         rms_n: rms,
         dominant_hz: dominant,
         damping_ratio: decay.as_ref().map(|d| d.1),

@@ -7,6 +7,7 @@ use serde::Serialize;
 
 use super::{Job, StartState};
 use crate::scene::channels;
+use crate::signal::acquisition::AcqFilter;
 use crate::vehicle::Design;
 use towride_mbs::model::desc::Accelerations;
 use towride_mbs::model::energy::{select_by_energy, strain_shares, BodyEnergy};
@@ -18,7 +19,10 @@ use towride_mbs::model::System;
 use towride_solver::{MatrixRebuilds, Stats};
 
 /// Version of the summary's layout; raised when a field changes meaning or goes away.
-pub const SCHEMA_VERSION: u32 = 1;
+/// 2: the signed `peak`/`t_peak` of each channel and `hitch_force.peak_n` are gone
+/// (`abs_peak` beside `max` and `min`); band-limited twins of the sensor, force and
+/// deflection channels, with `signal`, `twin` and the top-level `acquisition`.
+pub const SCHEMA_VERSION: u32 = 2;
 
 /// How a run ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -79,12 +83,11 @@ pub struct Unknowns {
     pub extension_states: usize,
 }
 
-/// One channel's extremes and the times they occur.
-#[derive(Clone, Debug, Serialize)]
-pub struct ChannelSummary {
-    /// Unit of the values.
-    pub unit: String,
-    /// Largest value and its time [s].
+/// A signal's extremes and the times they occur. No signed "peak": which side the
+/// larger magnitude is on shows in `max` and `min`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Extremes {
+    /// Largest value.
     pub max: f64,
     /// Time of the largest value [s].
     pub t_max: f64,
@@ -92,10 +95,114 @@ pub struct ChannelSummary {
     pub min: f64,
     /// Time of the smallest value [s].
     pub t_min: f64,
-    /// The value of largest magnitude, with its sign.
-    pub peak: f64,
-    /// Time of `peak` [s].
-    pub t_peak: f64,
+    /// The larger magnitude, max(|max|, |min|) (NaN without samples).
+    pub abs_peak: f64,
+    /// Time of `abs_peak` [s] (on a tie, the earlier of the two).
+    pub t_abs_peak: f64,
+}
+
+impl Extremes {
+    /// The extremes of `y` sampled at times `t` (the first occurrence of each; NaN
+    /// samples are passed over).
+    pub fn of(t: &[f64], y: impl IntoIterator<Item = f64>) -> Extremes {
+        let (mut max, mut t_max, mut min, mut t_min) = (f64::NEG_INFINITY, 0.0, f64::INFINITY, 0.0);
+        for (t, v) in t.iter().zip(y) {
+            if v < min {
+                (min, t_min) = (v, *t);
+            }
+            if v > max {
+                (max, t_max) = (v, *t);
+            }
+        }
+        let (abs_peak, t_abs_peak) = if max < min {
+            (f64::NAN, 0.0)
+        } else if max.abs() > min.abs() || (max.abs() == min.abs() && t_max <= t_min) {
+            (max.abs(), t_max)
+        } else {
+            (min.abs(), t_min)
+        };
+        Extremes {
+            max,
+            t_max,
+            min,
+            t_min,
+            abs_peak,
+            t_abs_peak,
+        }
+    }
+}
+
+/// Whether a channel is as the model computed it or through the acquisition chain.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Signal {
+    /// As computed.
+    Raw,
+    /// Through the scene's acquisition low-pass ([`RunSummary::acquisition`]).
+    BandLimited,
+}
+
+/// One channel's extremes and the times they occur.
+#[derive(Clone, Debug, Serialize)]
+pub struct ChannelSummary {
+    /// Unit of the values.
+    pub unit: String,
+    /// Raw, or band-limited by the acquisition chain.
+    pub signal: Signal,
+    /// The other channel of a raw/band-limited pair: a raw channel's band-limited twin
+    /// (`acc_hitch_z_lp100`), a band-limited channel's raw one (`acc_hitch_z`).
+    pub twin: Option<String>,
+    /// The one of a pair the console lists first and the report draws (its twin beside
+    /// it, hidden in the chart's legend): the band-limited channel of an accelerometer,
+    /// as the instrument saw it; the raw channel of a force or deflection. True for a
+    /// channel without a twin.
+    pub shown: bool,
+    /// Max, min and |peak| with their times.
+    #[serde(flatten)]
+    pub extremes: Extremes,
+}
+
+/// The acquisition chain the band-limited channels went through.
+#[derive(Clone, Debug, Serialize)]
+pub struct Acquisition {
+    /// Filter kind: "butterworth" (low-pass).
+    pub filter: &'static str,
+    /// Filter order.
+    pub order: usize,
+    /// -3 dB cut-off [Hz].
+    pub cutoff_hz: f64,
+    /// Run forward in time only, as the analog filter (its phase lag kept).
+    pub causal: bool,
+    /// The uniform grid the channels were filtered on [Hz]: the smallest multiple of
+    /// the sample rate at or above 40 times the cutoff, cubic between samples
+    /// ([`crate::signal::acquisition::band_limit`]).
+    pub grid_rate_hz: f64,
+    /// Suffix of a band-limited channel's name (`_lp100`).
+    pub suffix: String,
+    /// The filter in words.
+    pub description: String,
+    /// What is shown first, in the console and the report.
+    pub shown: String,
+}
+
+impl Acquisition {
+    /// The record of `f` for a run sampled at `rate` Hz.
+    pub fn of(f: &AcqFilter, rate: f64) -> Acquisition {
+        let m = (f.grid_rate(rate) / rate).ceil().max(1.0);
+        let suffix = f.suffix();
+        Acquisition {
+            filter: "butterworth",
+            order: f.order,
+            cutoff_hz: f.cutoff_hz,
+            causal: true,
+            grid_rate_hz: m * rate,
+            description: f.describe(),
+            shown: format!(
+                "accelerometers (acc_*, trailer_ax) band-limited (<channel>{suffix}) as the instrument saw them, raw beside; forces and deflections (hitch_f*, hitch_deflection_*) raw, band-limited (<channel>{suffix}) beside"
+            ),
+            suffix,
+        }
+    }
 }
 
 /// A wheel off the road.
@@ -249,10 +356,14 @@ pub struct RunSummary {
     pub lift_off: Vec<LiftOff>,
     /// Strain-energy shares of the modal bodies.
     pub modal_energy: Vec<ModalEnergy>,
-    /// The hitch's fore-aft force (`hitch_fx`): peak, RMS, dominant frequency and the
-    /// damping of its ringing ([`super::ringing`]); `None` without a hitch.
+    /// The hitch's fore-aft force (`hitch_fx`, raw): max, min, |peak|, RMS, dominant
+    /// frequency and the damping of its ringing ([`super::ringing`]); `None` without a
+    /// hitch.
     pub hitch_force: Option<super::ringing::Ringing>,
-    /// Per channel, by name: unit, extremes and their times.
+    /// The acquisition chain of the band-limited channels (`None`: raw channels only).
+    pub acquisition: Option<Acquisition>,
+    /// Per channel, by name (raw and band-limited): unit, which it is, max, min and
+    /// |peak| with their times.
     pub channels: BTreeMap<String, ChannelSummary>,
     /// The CSV written, once written.
     pub outputs_csv: Option<String>,
@@ -333,7 +444,10 @@ impl RunSummary {
             hitch_force: samples
                 .channel(channels::HITCH_FX)
                 .and_then(|y| super::ringing::ringing(channels::HITCH_FX, &samples.times, &y)),
-            channels: channels(samples),
+            acquisition: job
+                .acquisition()
+                .map(|f| Acquisition::of(&f, job.settings.sample_rate)),
+            channels: channels(samples, job.acquisition().as_ref()),
             outputs_csv: None,
             plots: None,
             report: None,
@@ -370,32 +484,35 @@ fn solver_summary(st: &Stats) -> SolverSummary {
     }
 }
 
-/// Per channel: unit, extremes, the signed peak, and their times.
-fn channels(s: &Samples) -> BTreeMap<String, ChannelSummary> {
+/// Per channel: unit, raw or band-limited (and its twin), extremes and their times.
+fn channels(s: &Samples, acquisition: Option<&AcqFilter>) -> BTreeMap<String, ChannelSummary> {
+    let names: Vec<&str> = s.channels.iter().map(|c| c.name.as_str()).collect();
+    let pairs: Vec<(String, String)> = acquisition.map_or_else(Vec::new, |f| {
+        super::band::twins(names.iter().copied(), f)
+            .into_iter()
+            .filter(|(_, twin)| names.contains(&twin.as_str()))
+            .map(|(k, twin)| (names[k].to_string(), twin))
+            .collect()
+    });
     let mut m = BTreeMap::new();
     for (c, ch) in s.channels.iter().enumerate() {
-        let mut x = ChannelSummary {
-            unit: ch.unit.to_string(),
-            max: f64::NEG_INFINITY,
-            t_max: 0.0,
-            min: f64::INFINITY,
-            t_min: 0.0,
-            peak: 0.0,
-            t_peak: 0.0,
+        let sensor = |raw: &str| channels::band(raw) == Some(channels::Band::Sensor);
+        let (signal, twin, shown) = match pairs.iter().find(|(r, b)| *r == ch.name || *b == ch.name)
+        {
+            Some((r, b)) if *r == ch.name => (Signal::Raw, Some(b.clone()), !sensor(r)),
+            Some((r, _)) => (Signal::BandLimited, Some(r.clone()), sensor(r)),
+            None => (Signal::Raw, None, true),
         };
-        for (t, row) in s.times.iter().zip(&s.rows) {
-            let v = row[c];
-            if v < x.min {
-                (x.min, x.t_min) = (v, *t);
-            }
-            if v > x.max {
-                (x.max, x.t_max) = (v, *t);
-            }
-            if v.abs() > x.peak.abs() {
-                (x.peak, x.t_peak) = (v, *t);
-            }
-        }
-        m.insert(ch.name.clone(), x);
+        m.insert(
+            ch.name.clone(),
+            ChannelSummary {
+                unit: ch.unit.to_string(),
+                signal,
+                twin,
+                shown,
+                extremes: Extremes::of(&s.times, s.rows.iter().map(|r| r[c])),
+            },
+        );
     }
     m
 }

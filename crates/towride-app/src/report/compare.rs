@@ -1,6 +1,6 @@
 //! Comparing runs (`towride compare DIR DIR...`): the channels the runs' `outputs.csv`
-//! share, overlaid in one PNG and one self-contained HTML page, with each run's peak and
-//! RMS difference against the first run.
+//! share, overlaid in one PNG and one self-contained HTML page, with each run's max, min
+//! and |peak| against the first run's (like with like) and the RMS of their difference.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -12,8 +12,9 @@ use crate::scene::channels;
 use crate::Error;
 use towride_mbs::input::csv_table;
 
-/// Version of the comparison document.
-pub const SCHEMA_VERSION: u32 = 1;
+/// Version of the comparison document. 2: the signed `peak`, `reference_peak` and
+/// `peak_difference` are gone for max, min and |peak| of each run and their differences.
+pub const SCHEMA_VERSION: u32 = 2;
 
 /// One run's outputs as written by `run`.
 #[derive(Clone, Debug)]
@@ -96,12 +97,24 @@ pub struct Difference {
     pub unit: String,
     /// The run (folder name).
     pub run: String,
-    /// Largest magnitude of the first run, with its sign.
-    pub reference_peak: f64,
-    /// Largest magnitude of this run, with its sign.
-    pub peak: f64,
-    /// `peak - reference_peak`.
-    pub peak_difference: f64,
+    /// The first run's largest value.
+    pub reference_max: f64,
+    /// The first run's smallest value.
+    pub reference_min: f64,
+    /// The first run's |peak|, max(|max|, |min|).
+    pub reference_abs_peak: f64,
+    /// This run's largest value.
+    pub max: f64,
+    /// This run's smallest value.
+    pub min: f64,
+    /// This run's |peak|.
+    pub abs_peak: f64,
+    /// `max - reference_max`.
+    pub max_difference: f64,
+    /// `min - reference_min` (negative: a deeper minimum).
+    pub min_difference: f64,
+    /// `abs_peak - reference_abs_peak` (positive: a larger magnitude, whichever side).
+    pub abs_peak_difference: f64,
     /// Root mean square of the difference to the first run (linearly interpolated at
     /// this run's samples) where the two overlap in time.
     pub rms_difference: f64,
@@ -122,11 +135,20 @@ pub struct Comparison {
     pub files: Vec<PathBuf>,
 }
 
-fn peak(v: &[f64]) -> f64 {
-    v.iter()
+/// Max, min and |peak| of the finite values of `v` (NaN for none).
+fn extremes(v: &[f64]) -> [f64; 3] {
+    let (lo, hi) = v
+        .iter()
         .copied()
         .filter(|x| x.is_finite())
-        .fold(0.0, |a, x| if x.abs() > a.abs() { x } else { a })
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+            (lo.min(x), hi.max(x))
+        });
+    if lo > hi {
+        [f64::NAN; 3]
+    } else {
+        [hi, lo, hi.abs().max(lo.abs())]
+    }
 }
 
 /// Linear interpolation of (t, y) at `x` (`None` outside).
@@ -165,14 +187,20 @@ pub fn compare(runs: &[Run]) -> Comparison {
                     n += 1;
                 }
             }
-            let (p0, p) = (peak(reference), peak(v));
+            let ([max0, min0, abs0], [max, min, abs]) = (extremes(reference), extremes(v));
             differences.push(Difference {
                 channel: name.clone(),
                 unit: unit.clone(),
                 run: r.label.clone(),
-                reference_peak: p0,
-                peak: p,
-                peak_difference: p - p0,
+                reference_max: max0,
+                reference_min: min0,
+                reference_abs_peak: abs0,
+                max,
+                min,
+                abs_peak: abs,
+                max_difference: max - max0,
+                min_difference: min - min0,
+                abs_peak_difference: abs - abs0,
                 rms_difference: if n > 0 {
                     (sum / n as f64).sqrt()
                 } else {

@@ -9,6 +9,7 @@ use std::fmt::Write as _;
 use serde::Serialize;
 
 use super::run::run_panels;
+use crate::scene::channels;
 use crate::signal::psd::{segment_length, welch};
 use towride_mbs::model::run::Samples;
 
@@ -132,14 +133,28 @@ pub(crate) fn string(out: &mut String, s: &str) {
     );
 }
 
-/// One series of a chart: channel index, colour and whether it is drawn dashed (the
-/// right side of a left/right pair).
+/// One series of a chart: channel index, colour, whether it is drawn dashed (the
+/// right side of a left/right pair) and shown at first (the other channel of a
+/// raw/band-limited pair is in the legend, hidden).
 #[derive(Serialize)]
 struct Series {
     ch: usize,
     colour: String,
     width: u32,
     dash: bool,
+    show: bool,
+}
+
+/// The other channel of a raw/band-limited pair: a band-limited twin's raw channel, a
+/// raw channel's twin ([`crate::job::band`]).
+fn counterpart(res: &Samples, c: usize) -> Option<usize> {
+    let name = &res.channels[c].name;
+    if channels::is_band_limited(name) {
+        let (raw, _) = name.rsplit_once("_lp")?;
+        res.channels.iter().position(|ch| ch.name == raw)
+    } else {
+        super::run::band_twin(res, name).map(|t| t.0)
+    }
 }
 
 /// A chart of time histories.
@@ -181,20 +196,26 @@ fn groups(res: &Samples) -> Vec<Group> {
     let mut used = vec![false; res.channels.len()];
     let mut out: Vec<Group> = Vec::new();
     for p in run_panels(res) {
-        let series = p
-            .traces
-            .iter()
-            .filter_map(|t| {
-                let ch = index(&t.label)?;
-                used[ch] = true;
-                Some(Series {
-                    ch,
-                    colour: hex(t.style.colour),
-                    width: t.style.width.max(1),
-                    dash: t.style.width == 1,
-                })
-            })
-            .collect();
+        let mut series = Vec::new();
+        for t in &p.traces {
+            let Some(ch) = index(&t.label) else {
+                continue;
+            };
+            // The hidden one of a pair thin, to tell the two apart when both are shown.
+            let s = |ch: usize, show: bool| Series {
+                ch,
+                colour: hex(t.style.colour),
+                width: if show { t.style.width.max(1) } else { 1 },
+                dash: t.style.width == 1,
+                show,
+            };
+            used[ch] = true;
+            series.push(s(ch, true));
+            if let Some(other) = counterpart(res, ch) {
+                used[other] = true;
+                series.push(s(other, false));
+            }
+        }
         out.push(Group {
             title: p.title,
             y: p.y.label,
@@ -203,26 +224,43 @@ fn groups(res: &Samples) -> Vec<Group> {
     }
     let palette = super::figure::PALETTE;
     let mut keys: Vec<(String, &str)> = Vec::new();
+    // The twins go with their raw channels, not in families of their own.
+    let twin = |c: usize| {
+        channels::is_band_limited(&res.channels[c].name) && counterpart(res, c).is_some()
+    };
     for (c, ch) in res.channels.iter().enumerate() {
         let key = (family(&ch.name), ch.unit);
-        if !used[c] && !keys.contains(&key) {
+        if !used[c] && !twin(c) && !keys.contains(&key) {
             keys.push(key);
         }
     }
     for (key, unit) in keys {
-        let series: Vec<Series> = res
-            .channels
-            .iter()
-            .enumerate()
-            .filter(|(c, ch)| !used[*c] && ch.unit == unit && family(&ch.name) == key)
-            .enumerate()
-            .map(|(k, (c, _))| Series {
-                ch: c,
+        let mut series: Vec<Series> = Vec::new();
+        let members =
+            res.channels.iter().enumerate().filter(|(c, ch)| {
+                !used[*c] && !twin(*c) && ch.unit == unit && family(&ch.name) == key
+            });
+        for (k, (c, ch)) in members.enumerate() {
+            let s = |ch: usize, show: bool| Series {
+                ch,
                 colour: hex(palette[k % palette.len()]),
-                width: 2,
+                width: if show { 2 } else { 1 },
                 dash: k >= palette.len(),
-            })
-            .collect();
+                show,
+            };
+            // The one shown first: a sensor's twin, a force's or deflection's raw channel.
+            match counterpart(res, c) {
+                Some(t) if channels::band(&ch.name) == Some(channels::Band::Sensor) => {
+                    series.push(s(t, true));
+                    series.push(s(c, false));
+                }
+                Some(t) => {
+                    series.push(s(c, true));
+                    series.push(s(t, false));
+                }
+                None => series.push(s(c, true)),
+            }
+        }
         out.push(Group {
             title: key,
             y: format!("[{unit}]"),

@@ -1,5 +1,5 @@
-//! The table of a plan's run: one row per case (status, time reached, hitch-force peak,
-//! steps, wall time, folder), written as `plan_summary.csv` and `plan_summary.json`
+//! The table of a plan's run: one row per case (status, time reached, the hitch force's
+//! max, min and |peak|, steps, wall time, folder), written as `plan_summary.csv` and `plan_summary.json`
 //! beside the cases' own folders.
 
 use std::path::{Path, PathBuf};
@@ -7,11 +7,12 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 
 use crate::error::{Error, Result as LibResult};
-use crate::job::{RunResult, RunStatus, RunSummary};
+use crate::job::{Extremes, RunResult, RunStatus, RunSummary};
 use crate::scene::plan::{Case, Plan};
 
-/// Version of a plan run's summary layout (`plan_summary.json`).
-pub const SCHEMA_VERSION: u32 = 1;
+/// Version of a plan run's summary layout (`plan_summary.json`). 2: the signed
+/// `hitch_fx_peak_n` is gone for `hitch_fx` (max, min, |peak| with their times).
+pub const SCHEMA_VERSION: u32 = 2;
 
 /// A plan's cases run (or some of them): one row per case, written as the plan-level
 /// table `plan_summary.csv` and `plan_summary.json`.
@@ -45,10 +46,9 @@ pub struct PlanRow {
     pub status: String,
     /// Last sample time [s] (0 when not run).
     pub t_reached_s: f64,
-    /// Peak longitudinal hitch force with its sign [N].
-    pub hitch_fx_peak_n: Option<f64>,
-    /// Its time [s].
-    pub hitch_fx_peak_t_s: Option<f64>,
+    /// The longitudinal hitch force's (raw `hitch_fx`) max, min and |peak| [N] with
+    /// their times [s].
+    pub hitch_fx: Option<Extremes>,
     /// Accepted solver steps.
     pub steps: usize,
     /// Wall time, start included [s].
@@ -98,8 +98,7 @@ impl PlanRun {
             load_case: case.load_case.clone(),
             status: status.into(),
             t_reached_s: s.map_or(0.0, |s| s.t_reached_s),
-            hitch_fx_peak_n: hitch.map(|c| c.peak),
-            hitch_fx_peak_t_s: hitch.map(|c| c.t_peak),
+            hitch_fx: hitch.map(|c| c.extremes),
             steps: s.map_or(0, |s| s.solver.steps),
             wall_s: s.map_or(0.0, |s| s.wall_s + s.start_wall_s),
             out: out.display().to_string(),
@@ -115,20 +114,26 @@ impl PlanRun {
         let csv = dir.join("plan_summary.csv");
         let io = |e: std::io::Error| Error::io(&csv, e);
         let mut text = String::from(
-            "case,obstacle,speed [km/h],load_case,status,t_reached [s],hitch_fx peak [N],hitch_fx peak time [s],steps,wall_time [s],out,error\n",
+            "case,obstacle,speed [km/h],load_case,status,t_reached [s],hitch_fx max [N],hitch_fx max time [s],hitch_fx min [N],hitch_fx min time [s],hitch_fx abs_peak [N],hitch_fx abs_peak time [s],steps,wall_time [s],out,error\n",
         );
-        let opt = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:.6e}"));
+        let extremes = |e: Option<&Extremes>| {
+            let v = |x: f64| format!("{x:.6e}");
+            e.map_or(",,,,,".into(), |e| {
+                [e.max, e.t_max, e.min, e.t_min, e.abs_peak, e.t_abs_peak]
+                    .map(v)
+                    .join(",")
+            })
+        };
         for r in &self.cases {
             text.push_str(&format!(
-                "{},{},{},{},{},{:.6},{},{},{},{:.3},{},\"{}\"\n",
+                "{},{},{},{},{},{:.6},{},{},{:.3},{},\"{}\"\n",
                 r.name,
                 r.obstacle,
                 r.speed_km_h,
                 r.load_case,
                 r.status,
                 r.t_reached_s,
-                opt(r.hitch_fx_peak_n),
-                opt(r.hitch_fx_peak_t_s),
+                extremes(r.hitch_fx.as_ref()),
                 r.steps,
                 r.wall_s,
                 r.out,

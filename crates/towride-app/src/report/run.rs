@@ -32,15 +32,36 @@ fn side_of(name: &str) -> Option<(usize, bool)> {
     None
 }
 
+/// The band-limited twin of channel `name` in `res` (`<name>_lp<cutoff>`,
+/// [`crate::job::band`]) and its suffix.
+pub fn band_twin<'a>(res: &'a Samples, name: &str) -> Option<(usize, &'a str)> {
+    res.channels.iter().enumerate().find_map(|(k, c)| {
+        let suffix = c.name.strip_prefix(name)?;
+        (suffix.starts_with("_lp") && channels::is_band_limited(&c.name)).then_some((k, suffix))
+    })
+}
+
 /// The panels of the run page: each panel's traces, left/right pairs in one colour told
-/// apart by line style.
+/// apart by line style. The accelerometers are drawn as the instrument saw them, their
+/// band-limited twins where the run has them (the panel's title names the band); the
+/// forces raw.
 pub fn run_panels(res: &Samples) -> Vec<Panel> {
+    // The sensors' columns: a raw channel's band-limited twin in its place.
+    let shown = |c: usize| -> usize {
+        let name = &res.channels[c].name;
+        match channels::band(name) {
+            Some(channels::Band::Sensor) => band_twin(res, name).map_or(c, |t| t.0),
+            _ => c,
+        }
+    };
     let series = |pred: &dyn Fn(&str) -> bool| -> Vec<Trace> {
         let mut n = 0;
         res.channels
             .iter()
             .enumerate()
-            .filter(|(_, ch)| pred(&ch.name))
+            .filter(|(_, ch)| !channels::is_band_limited(&ch.name) && pred(&ch.name))
+            .map(|(c, _)| shown(c))
+            .map(|c| (c, &res.channels[c]))
             .map(|(c, ch)| {
                 let style = match side_of(&ch.name) {
                     Some((k, right)) => Style::side(k, right),
@@ -59,9 +80,20 @@ pub fn run_panels(res: &Samples) -> Vec<Panel> {
             })
             .collect()
     };
-    let panel = |title: &str, y: &str, traces: Vec<Trace>| Panel {
-        traces,
-        ..Panel::new(title, "time [s]", y)
+    // A panel of band-limited traces says so in its title (the axis label has no room).
+    let panel = |title: &str, y: &str, traces: Vec<Trace>| {
+        let band = traces.iter().find_map(|t| {
+            let (_, cutoff) = t.label.rsplit_once("_lp")?;
+            channels::is_band_limited(&t.label).then(|| cutoff.to_string())
+        });
+        let title = match band {
+            Some(fc) => format!("{title} ({fc} Hz low-pass)"),
+            None => title.to_string(),
+        };
+        Panel {
+            traces,
+            ..Panel::new(&title, "time [s]", y)
+        }
     };
     let acc = "acceleration [m/s²]";
     // The vehicles' sensors at the wheels and on the body: `acc_wheel_*`, `acc_body_*`.

@@ -12,6 +12,12 @@
 //! | `hitch_eta_<k>` [-] | crossbeam modal coordinates (k = 1.. over the selected modes, unit modal mass) |
 //! | `hitch_strain_energy` [J] | crossbeam strain energy |
 //! | `hitch_deflection_<x,y,z>` [m] | elastic displacement of the ball relative to the brackets, hitch axes |
+//!
+//! Each accelerometer (`acc_*`, `trailer_ax`), force (`hitch_f*`) and deflection
+//! (`hitch_deflection_*`) channel has a band-limited twin, the channel through the
+//! scene's acquisition chain (`[acquisition]`, default the thesis's fourth-order 100 Hz
+//! Butterworth, causal): its name plus the filter's suffix, `acc_hitch_z_lp100`
+//! ([`band`], [`crate::signal::acquisition::AcqFilter::suffix`]).
 
 use serde::Serialize;
 
@@ -86,6 +92,43 @@ pub fn tyre_wheel<'a>(channel: &'a str, quantity: &str) -> Option<&'a str> {
         .strip_prefix(TYRE_PREFIX)?
         .strip_suffix(quantity)?
         .strip_suffix('_')
+}
+
+/// How the scene's acquisition chain (`[acquisition]`,
+/// [`crate::signal::acquisition`]) treats a channel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Band {
+    /// An accelerometer (`acc_*`, `trailer_ax`): reported band-limited, as the instrument
+    /// saw it, with the raw channel beside it.
+    Sensor,
+    /// A force or deflection (`hitch_f*`, `hitch_deflection_*`): reported raw, with the
+    /// band-limited channel beside it.
+    Load,
+}
+
+/// What the acquisition chain does with the raw channel `name` (`None`: nothing, it is
+/// reported raw only; also for a band-limited twin itself, [`is_band_limited`]).
+pub fn band(name: &str) -> Option<Band> {
+    if is_band_limited(name) {
+        None
+    } else if name.starts_with(ACC_PREFIX) || name == TRAILER_AX {
+        Some(Band::Sensor)
+    } else if [HITCH_FX, HITCH_FY, HITCH_FZ].contains(&name) || HITCH_DEFLECTION.contains(&name) {
+        Some(Band::Load)
+    } else {
+        None
+    }
+}
+
+/// True for a name ending in a band-limited twin's suffix, `_lp<cutoff>`
+/// (`acc_hitch_z_lp100`).
+pub fn is_band_limited(name: &str) -> bool {
+    name.rsplit_once("_lp").is_some_and(|(_, f)| {
+        !f.is_empty()
+            && f.parse::<f64>().is_ok()
+            && f.chars().all(|c| c.is_ascii_digit() || c == '.')
+    })
 }
 
 /// One channel: its fixed name and unit.

@@ -24,6 +24,11 @@
 //! [solver]                     # any SolverOptions field
 //! rtol = 1e-4
 //!
+//! [acquisition]                # the instrument's low-pass the sensor channels are
+//! filter = "butterworth"       # reported through (default as here, the thesis's);
+//! order = 4                    # "none": raw channels only
+//! cutoff_hz = 100.0
+//!
 //! [[sensor]]                   # extra sensors, as in the vehicle file
 //!
 //! [[override]]                 # a value of any file the scene reads, replaced
@@ -51,6 +56,7 @@ use serde::Deserialize;
 
 pub use channels::Channel;
 
+use crate::signal::acquisition::AcqFilter;
 use crate::vehicle::sensors::{self, SensorSpec};
 use crate::vehicle::{self, build::Builder, BallCoupling, CrossMember, Options, Vehicle};
 use towride_mbs::flex::feedback::RunModes;
@@ -81,6 +87,17 @@ struct File {
     output: Vec<towride_mbs::model::spec::OutputSpec>,
     #[serde(default)]
     report: ReportSec,
+    acquisition: Option<AcquisitionSec>,
+}
+
+/// `[acquisition]`: the instrument's low-pass ([`crate::signal::acquisition`]).
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct AcquisitionSec {
+    /// "butterworth" or "none".
+    filter: String,
+    order: Option<i64>,
+    cutoff_hz: Option<f64>,
 }
 
 /// `[report]`: what the run's HTML report shows.
@@ -194,6 +211,9 @@ pub struct Scene {
     pub names: outputs::Names,
     /// The road file in use.
     pub road_file: PathBuf,
+    /// The instrument's low-pass the sensor, force and deflection channels are also
+    /// reported through (`[acquisition]`; `None`: `filter = "none"`, raw channels only).
+    pub acquisition: Option<AcqFilter>,
 }
 
 impl Scene {
@@ -437,6 +457,23 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
     let (more, more_channels) = outputs::requested(&src, &mut v, &f.output, &channels)?;
     outputs.extend(more);
     channels.extend(more_channels);
+    let acquisition = acquisition(&src, f.acquisition.as_ref())?;
+    if let Some(a) = &acquisition {
+        // A band-limited twin is named by suffix: no channel may already carry its name.
+        let suffix = a.suffix();
+        for c in channels
+            .iter()
+            .filter(|c| channels::band(&c.name).is_some())
+        {
+            let twin = format!("{}{suffix}", c.name);
+            if channels.iter().any(|d| d.name == twin) {
+                return Err(src.error(
+                    &path!["output"],
+                    format!("channel '{twin}' has the name of the band-limited twin of '{}' ([acquisition]): rename it", c.name),
+                ));
+            }
+        }
+    }
     v.model.outputs = outputs;
     v.model.road = Some(road);
     v.model.accelerations = f.run.accelerations;
@@ -456,5 +493,43 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
         channels,
         names,
         road_file,
+        acquisition,
     })
+}
+
+/// The scene's `[acquisition]` (default [`AcqFilter::THESIS`]; `None` for `filter =
+/// "none"`).
+fn acquisition(src: &Source, a: Option<&AcquisitionSec>) -> Result<Option<AcqFilter>, InputError> {
+    let Some(a) = a else {
+        return Ok(Some(AcqFilter::THESIS));
+    };
+    match a.filter.as_str() {
+        "none" => {
+            if a.order.is_some() || a.cutoff_hz.is_some() {
+                return Err(src.error(
+                    &path!["acquisition", "filter"],
+                    "`none` takes no order or cutoff_hz",
+                ));
+            }
+            Ok(None)
+        }
+        "butterworth" => {
+            let order = a.order.unwrap_or(AcqFilter::THESIS.order as i64);
+            if !(1..=10).contains(&order) {
+                return Err(src.error(&path!["acquisition", "order"], "must be 1 ..= 10"));
+            }
+            let cutoff_hz = src.positive(
+                &path!["acquisition", "cutoff_hz"],
+                a.cutoff_hz.unwrap_or(AcqFilter::THESIS.cutoff_hz),
+            )?;
+            Ok(Some(AcqFilter {
+                order: order as usize,
+                cutoff_hz,
+            }))
+        }
+        other => Err(src.error(
+            &path!["acquisition", "filter"],
+            format!("`{other}`: use butterworth or none"),
+        )),
+    }
 }

@@ -19,8 +19,9 @@ use towride_mbs::input::Loader;
 use towride_mbs::progress::{Progress, Silent};
 use towride_solver::{Method, SolverOptions};
 
-/// Version of `bench.json`'s layout.
-pub const SCHEMA_VERSION: u32 = 1;
+/// Version of `bench.json`'s layout. 2: the signed hitch peak is gone for its
+/// magnitude (`hitch_abs_peak_n`, `hitch_abs_peak_error`).
+pub const SCHEMA_VERSION: u32 = 2;
 
 /// What to measure.
 #[derive(Clone, Debug)]
@@ -37,7 +38,7 @@ pub struct Settings {
     pub repeat: usize,
     /// The integrator variants compared.
     pub methods: Vec<Method>,
-    /// Hitch-peak errors at which the methods' cost is compared (the fastest run of
+    /// Hitch |peak| errors at which the methods' cost is compared (the fastest run of
     /// each method whose error is at most this).
     pub equal_error: Vec<f64>,
     /// The same for the sensors' in-band error.
@@ -78,10 +79,10 @@ pub struct Point {
     pub jacobian_evals: usize,
     /// Newton iterations.
     pub newton_iterations: usize,
-    /// Signed hitch-force peak [N].
-    pub hitch_peak_n: f64,
-    /// |peak - reference peak| / |reference peak|.
-    pub hitch_peak_error: f64,
+    /// The hitch force's |peak|, max(|max|, |min|) [N].
+    pub hitch_abs_peak_n: f64,
+    /// ||peak| - |reference peak|| / |reference peak|.
+    pub hitch_abs_peak_error: f64,
     /// RMS of the hitch-force difference over the reference's RMS.
     pub hitch_rms_error: f64,
     /// Mean over the acceleration sensors of their relative RMS errors.
@@ -100,8 +101,8 @@ pub struct ReferenceRun {
     pub wall_s: f64,
     /// Accepted steps.
     pub steps: usize,
-    /// Signed hitch-force peak [N].
-    pub hitch_peak_n: f64,
+    /// The hitch force's |peak| [N].
+    pub hitch_abs_peak_n: f64,
 }
 
 /// The study's result.
@@ -206,8 +207,8 @@ fn point(method: Method, rtol: f64, r: &Result<RunResult>, reference: &Reference
         steps: 0,
         jacobian_evals: 0,
         newton_iterations: 0,
-        hitch_peak_n: f64::NAN,
-        hitch_peak_error: f64::NAN,
+        hitch_abs_peak_n: f64::NAN,
+        hitch_abs_peak_error: f64::NAN,
         hitch_rms_error: f64::NAN,
         sensor_rms_error: f64::NAN,
         sensor_band_error: f64::NAN,
@@ -222,8 +223,8 @@ fn point(method: Method, rtol: f64, r: &Result<RunResult>, reference: &Reference
             p.steps = s.solver.steps;
             p.jacobian_evals = s.solver.jacobian_evals;
             p.newton_iterations = s.solver.newton_iterations;
-            p.hitch_peak_n = e.peak;
-            p.hitch_peak_error = e.peak_error;
+            p.hitch_abs_peak_n = e.extremes.abs_peak;
+            p.hitch_abs_peak_error = e.abs_peak_error;
             p.hitch_rms_error = e.hitch_rms;
             p.sensor_rms_error = e.sensor_rms;
             p.sensor_band_error = reference.band_error(r);
@@ -301,7 +302,7 @@ pub fn run(scene: &Path, s: &Settings, progress: &dyn Progress) -> Result<Bench>
             rtol: s.reference_tol,
             wall_s: total_wall(&reference),
             steps: job.solver.steps,
-            hitch_peak_n: refdata.peak,
+            hitch_abs_peak_n: refdata.extremes.abs_peak,
         },
         runs: points,
         at_equal_error,
@@ -323,14 +324,14 @@ enum ErrorMeasure {
 impl ErrorMeasure {
     fn name(self) -> &'static str {
         match self {
-            ErrorMeasure::HitchPeak => "hitch-peak error",
+            ErrorMeasure::HitchPeak => "hitch |peak| error",
             ErrorMeasure::SensorBand => "sensor in-band error",
         }
     }
 
     fn of(self, p: &Point) -> f64 {
         match self {
-            ErrorMeasure::HitchPeak => p.hitch_peak_error,
+            ErrorMeasure::HitchPeak => p.hitch_abs_peak_error,
             ErrorMeasure::SensorBand => p.sensor_band_error,
         }
     }
@@ -461,8 +462,8 @@ const COLUMNS: [&str; 13] = [
     "steps",
     "jacobian_evals",
     "newton_iterations",
-    "hitch_peak [N]",
-    "hitch_peak_error [-]",
+    "hitch_abs_peak [N]",
+    "hitch_abs_peak_error [-]",
     "hitch_rms_error [-]",
     "sensor_rms_error [-]",
     "sensor_band_error [-]",
@@ -482,8 +483,8 @@ fn write_csv(path: &Path, points: &[Point]) -> Result<()> {
             p.steps.to_string(),
             p.jacobian_evals.to_string(),
             p.newton_iterations.to_string(),
-            format!("{:.3}", p.hitch_peak_n),
-            format!("{:.3e}", p.hitch_peak_error),
+            format!("{:.3}", p.hitch_abs_peak_n),
+            format!("{:.3e}", p.hitch_abs_peak_error),
             format!("{:.3e}", p.hitch_rms_error),
             format!("{:.3e}", p.sensor_rms_error),
             format!("{:.3e}", p.sensor_band_error),
@@ -506,9 +507,18 @@ pub fn replot(csv: &Path, png: &Path) -> Result<()> {
         .headers()
         .map_err(|e| bad(Some(1), "", e.to_string()))?
         .clone();
+    // A table of bench.json version 1 names the signed peak `hitch_peak [N]` and its
+    // error `hitch_peak_error [-]`: read as |peak| and its error, which they are where
+    // a run's peak has the reference's sign (every run of the tables in docs/data).
+    let legacy = |name: &str| match name {
+        "hitch_abs_peak [N]" => Some("hitch_peak [N]"),
+        "hitch_abs_peak_error [-]" => Some("hitch_peak_error [-]"),
+        _ => None,
+    };
     let col = |name: &str| {
         h.iter()
             .position(|c| c == name)
+            .or_else(|| legacy(name).and_then(|old| h.iter().position(|c| c == old)))
             .ok_or_else(|| bad(Some(1), name, "no such column (not a bench.csv?)".into()))
     };
     let names = COLUMNS;
@@ -537,8 +547,8 @@ pub fn replot(csv: &Path, png: &Path) -> Result<()> {
             steps: num(5)? as usize,
             jacobian_evals: num(6)? as usize,
             newton_iterations: num(7)? as usize,
-            hitch_peak_n: num(8)?,
-            hitch_peak_error: num(9)?,
+            hitch_abs_peak_n: num(8)?.abs(),
+            hitch_abs_peak_error: num(9)?,
             hitch_rms_error: num(10)?,
             sensor_rms_error: num(11)?,
             sensor_band_error: num(12)?,
@@ -550,7 +560,7 @@ pub fn replot(csv: &Path, png: &Path) -> Result<()> {
 fn plot(path: &Path, points: &[Point]) -> Result<()> {
     type Measure = (&'static str, fn(&Point) -> f64);
     let measures: [Measure; 4] = [
-        ("hitch-force peak error", |p| p.hitch_peak_error),
+        ("hitch-force |peak| error", |p| p.hitch_abs_peak_error),
         ("hitch-force RMS error", |p| p.hitch_rms_error),
         ("sensor RMS error (mean)", |p| p.sensor_rms_error),
         ("sensor RMS error in band (mean)", |p| p.sensor_band_error),

@@ -9,7 +9,7 @@ pub mod sensitivity;
 pub mod stress;
 
 use crate::error::{Error, Result};
-use crate::job::RunResult;
+use crate::job::{Extremes, RunResult};
 use crate::scene::channels::{ACC_PREFIX, HITCH_FX};
 use crate::signal::butterworth::Butterworth;
 
@@ -27,8 +27,8 @@ pub fn rel_rms(a: &[f64], b: &[f64]) -> f64 {
 
 /// The reference run's key outputs (plain data, shared by the parallel runs).
 pub struct Reference {
-    /// Signed peak of `hitch_fx` [N].
-    pub peak: f64,
+    /// `hitch_fx`'s max, min and |peak| [N].
+    pub extremes: Extremes,
     /// `hitch_fx` samples [N].
     pub hitch: Vec<f64>,
     /// The acceleration sensors' samples, by channel name.
@@ -42,10 +42,10 @@ pub struct Reference {
 /// A run's errors against the reference.
 #[derive(Clone, Copy, Debug)]
 pub struct Errors {
-    /// The run's signed `hitch_fx` peak [N].
-    pub peak: f64,
-    /// |peak - reference peak| / |reference peak|.
-    pub peak_error: f64,
+    /// The run's `hitch_fx` max, min and |peak| [N].
+    pub extremes: Extremes,
+    /// ||peak| - |reference peak|| / |reference peak|.
+    pub abs_peak_error: f64,
     /// RMS of the hitch-force difference over the reference's RMS.
     pub hitch_rms: f64,
     /// Mean over the sensors of their relative RMS errors.
@@ -56,13 +56,13 @@ impl Reference {
     /// The key outputs of the reference run `r`.
     pub fn of(r: &RunResult) -> Reference {
         Reference {
-            peak: r.peak(HITCH_FX).unwrap_or(f64::NAN),
+            extremes: hitch_extremes(r),
             hitch: r.channel(HITCH_FX).unwrap_or_default(),
             sensors: r
                 .samples
                 .channels
                 .iter()
-                .filter(|c| c.name.starts_with(ACC_PREFIX))
+                .filter(|c| c.name.starts_with(ACC_PREFIX) && r.is_raw(&c.name))
                 .map(|c| (c.name.clone(), r.channel(&c.name).unwrap_or_default()))
                 .collect(),
             band: None,
@@ -103,9 +103,9 @@ impl Reference {
         self
     }
 
-    /// Peak, peak error, hitch RMS error and mean sensor RMS error of run `r`.
+    /// Extremes, |peak| error, hitch RMS error and mean sensor RMS error of run `r`.
     pub fn errors(&self, r: &RunResult) -> Errors {
-        let peak = r.peak(HITCH_FX).unwrap_or(f64::NAN);
+        let extremes = hitch_extremes(r);
         let hitch_rms = rel_rms(&r.channel(HITCH_FX).unwrap_or_default(), &self.hitch);
         let sensors: Vec<f64> = self
             .sensors
@@ -113,12 +113,25 @@ impl Reference {
             .map(|(n, v)| rel_rms(&r.channel(n).unwrap_or_default(), v))
             .collect();
         Errors {
-            peak,
-            peak_error: ((peak - self.peak) / self.peak).abs(),
+            extremes,
+            abs_peak_error: ((extremes.abs_peak - self.extremes.abs_peak) / self.extremes.abs_peak)
+                .abs(),
             hitch_rms,
             sensor_rms: sensors.iter().sum::<f64>() / sensors.len().max(1) as f64,
         }
     }
+}
+
+/// `hitch_fx`'s extremes (all NaN without the channel).
+fn hitch_extremes(r: &RunResult) -> Extremes {
+    r.extremes(HITCH_FX).copied().unwrap_or(Extremes {
+        max: f64::NAN,
+        t_max: f64::NAN,
+        min: f64::NAN,
+        t_min: f64::NAN,
+        abs_peak: f64::NAN,
+        t_abs_peak: f64::NAN,
+    })
 }
 
 /// A thread pool of `jobs` threads (at least one).

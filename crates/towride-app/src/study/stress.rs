@@ -1,8 +1,10 @@
 //! The stress test of a scene: the thesis's integrator experiment and worse. Every case
-//! is run and classified: completed or failed, and its hitch-force peak against the
-//! reference (the scene at rtol 1e-5). Cases that change only numerical settings (step
-//! limits, tolerances, modes kept) must agree with it; cases that change the physics
-//! (stiffness, masses, obstacle, speed, load) report their peak and how far it moved.
+//! is run and classified: completed or failed, and its hitch force's max, min and |peak|
+//! against the reference's (the scene at rtol 1e-5). Cases that change only numerical
+//! settings (step limits, tolerances, modes kept) must agree with it; cases that change
+//! the physics (stiffness, masses, obstacle, speed, load) report their extremes and the
+//! ratio of their |peak| to the reference's. Like is compared with like: max with max,
+//! min with min, |peak| with |peak|, never a signed peak that may sit on the other side.
 
 use std::path::{Path, PathBuf};
 
@@ -11,19 +13,21 @@ use serde::Serialize;
 
 use super::{pool, total_wall, Reference};
 use crate::error::{Error, Result};
-use crate::job::{Job, RunResult};
+use crate::job::{Extremes, Job, RunResult};
 use crate::scene::Changes;
 use towride_mbs::input::{Loader, Override};
 use towride_mbs::progress::{Progress, Silent};
 use towride_solver::{Method, SolverOptions};
 
-/// Version of `stress.json`'s layout.
-pub const SCHEMA_VERSION: u32 = 1;
+/// Version of `stress.json`'s layout. 2: the signed `hitch_peak_n` and
+/// `peak_deviation` are gone for max, min, |peak| and their ratios to the reference's.
+pub const SCHEMA_VERSION: u32 = 2;
 
 /// Relative tolerance of the reference run.
 pub const REFERENCE_RTOL: f64 = 1e-5;
 
-/// Largest peak deviation of a case that changes only numerical settings.
+/// Largest deviation of a same-physics case's |peak| from the reference's, as a
+/// fraction of it (the |peak| on the reference's side: [`agrees`]).
 pub const AGREEMENT: f64 = 0.02;
 
 /// One stress case.
@@ -57,17 +61,26 @@ pub struct Outcome {
     pub wall_s: f64,
     /// Accepted steps.
     pub steps: usize,
-    /// Signed hitch-force peak [N].
-    pub hitch_peak_n: f64,
-    /// (peak - reference peak) / reference peak ([`peak_change`]): > 0 a larger peak in
-    /// the reference's direction. For a case that changes the physics (speed, load,
-    /// obstacle) it compares different experiments, not an error.
-    pub peak_deviation: f64,
+    /// The hitch force's (`hitch_fx`) max [N].
+    pub hitch_max_n: f64,
+    /// Its min [N].
+    pub hitch_min_n: f64,
+    /// Its |peak|, max(|max|, |min|) [N].
+    pub hitch_abs_peak_n: f64,
+    /// |peak| / reference |peak| ([`ratio`]): 1.2 a fifth larger, whichever side it is
+    /// on. For a case that changes the physics (speed, load, obstacle) it compares
+    /// different experiments, not an error.
+    pub abs_peak_ratio: f64,
+    /// max / reference max.
+    pub max_ratio: f64,
+    /// min / reference min (both pulls: 1.2 a fifth larger pull).
+    pub min_ratio: f64,
     /// RMS of the hitch-force difference over the reference's RMS.
     pub hitch_rms_deviation: f64,
     /// The case changes only numerical settings.
     pub same_physics: bool,
-    /// Same-physics cases: peak within 2 % of the reference.
+    /// Same-physics cases: |peak| within 2 % of the reference's, on the same side
+    /// ([`agrees`]).
     pub agrees: Option<bool>,
 }
 
@@ -76,8 +89,12 @@ pub struct Outcome {
 pub struct ReferenceRun {
     /// Its relative tolerance.
     pub rtol: f64,
-    /// Signed hitch-force peak [N].
-    pub hitch_peak_n: f64,
+    /// The hitch force's max [N].
+    pub hitch_max_n: f64,
+    /// Its min [N].
+    pub hitch_min_n: f64,
+    /// Its |peak| [N].
+    pub hitch_abs_peak_n: f64,
     /// Wall time [s].
     pub wall_s: f64,
 }
@@ -259,7 +276,9 @@ pub fn run(
         scene: scene.display().to_string(),
         reference: ReferenceRun {
             rtol: REFERENCE_RTOL,
-            hitch_peak_n: refdata.peak,
+            hitch_max_n: refdata.extremes.max,
+            hitch_min_n: refdata.extremes.min,
+            hitch_abs_peak_n: refdata.extremes.abs_peak,
             wall_s: total_wall(&reference),
         },
         cases: outcomes.len(),
@@ -287,11 +306,21 @@ fn run_case(scene: &Path, c: &Case, method: Option<Method>) -> Result<RunResult>
         .run(&Silent)
 }
 
-/// `peak` against the reference's `reference` peak, both signed: (peak - reference) /
-/// reference, so a peak larger in the reference's direction is positive whatever that
-/// direction (dividing by |reference| showed a larger push as a drop).
-pub fn peak_change(peak: f64, reference: f64) -> f64 {
-    (peak - reference) / reference
+/// `value` over the reference's `reference` of the same kind (|peak| over |peak|, max
+/// over max, min over min): 1.2 is a fifth larger on the same side.
+pub fn ratio(value: f64, reference: f64) -> f64 {
+    value / reference
+}
+
+/// A same-physics case agrees with the reference when its |peak| lies within
+/// [`AGREEMENT`] of the reference's and on the same side (its larger magnitude is its
+/// max where the reference's is, its min where the reference's is): the same test as
+/// |peak - reference peak| <= 2 % |reference peak| on signed peaks, without one. A case
+/// whose larger side changed deviates, however close the magnitudes.
+pub fn agrees(case: &Extremes, reference: &Extremes) -> bool {
+    let high = |e: &Extremes| e.max.abs() >= e.min.abs();
+    high(case) == high(reference)
+        && (case.abs_peak - reference.abs_peak).abs() <= AGREEMENT * reference.abs_peak
 }
 
 fn outcome(c: &Case, r: Result<RunResult>, refdata: &Reference) -> Outcome {
@@ -301,8 +330,12 @@ fn outcome(c: &Case, r: Result<RunResult>, refdata: &Reference) -> Outcome {
         status: String::new(),
         wall_s: f64::NAN,
         steps: 0,
-        hitch_peak_n: f64::NAN,
-        peak_deviation: f64::NAN,
+        hitch_max_n: f64::NAN,
+        hitch_min_n: f64::NAN,
+        hitch_abs_peak_n: f64::NAN,
+        abs_peak_ratio: f64::NAN,
+        max_ratio: f64::NAN,
+        min_ratio: f64::NAN,
         hitch_rms_deviation: f64::NAN,
         same_physics: c.same_physics,
         agrees: None,
@@ -313,12 +346,15 @@ fn outcome(c: &Case, r: Result<RunResult>, refdata: &Reference) -> Outcome {
             o.status = "completed".into();
             o.wall_s = total_wall(&r);
             o.steps = r.summary.solver.steps;
-            o.hitch_peak_n = e.peak;
-            o.peak_deviation = peak_change(e.peak, refdata.peak);
+            let (x, r) = (&e.extremes, &refdata.extremes);
+            o.hitch_max_n = x.max;
+            o.hitch_min_n = x.min;
+            o.hitch_abs_peak_n = x.abs_peak;
+            o.abs_peak_ratio = ratio(x.abs_peak, r.abs_peak);
+            o.max_ratio = ratio(x.max, r.max);
+            o.min_ratio = ratio(x.min, r.min);
             o.hitch_rms_deviation = e.hitch_rms;
-            o.agrees = c
-                .same_physics
-                .then_some(o.peak_deviation.abs() <= AGREEMENT);
+            o.agrees = c.same_physics.then(|| agrees(x, r));
         }
         Ok(r) => {
             let (e, t) = r.failure().unwrap_or_default();

@@ -21,7 +21,7 @@ use crate::scene::{channels, SceneError};
 use towride_mbs::input::Loader;
 use towride_mbs::progress::Progress;
 
-/// Named figures of one case (peaks, energies), in a stable order.
+/// Named figures of one case (extremes, energies), in a stable order.
 pub type Figures = Vec<(String, f64)>;
 
 /// What a case produced.
@@ -155,44 +155,67 @@ fn run_case_kept(
     Ok(figures(&r))
 }
 
-/// The figures a sweep records of a run. A mechanism: every channel's max and min and
-/// the steps. A vehicle scene: peak hitch force components, peak acceleration per
-/// sensor, the crossbeam's peak deflection and strain energy, solver effort.
+/// The figures a sweep records of a run (named `<channel> <field> [unit]`, the field
+/// as in `summary.json`: `max`, `min`, `abs_peak`). A mechanism: every channel's max and
+/// min and the steps. A vehicle scene: the hitch force components' max, min and |peak|
+/// raw and the |peak| of their band-limited twins; each accelerometer's |peak|
+/// band-limited (as the instrument saw it) and raw; the crossbeam's largest deflection
+/// and strain energy; solver effort. No signed peak: a larger pull and a larger push
+/// both read as a larger |peak|.
 pub fn figures(r: &RunResult) -> Figures {
     let s = &r.summary;
     let mut out = Figures::new();
     if s.scene.is_none() {
         for (name, c) in &s.channels {
-            out.push((format!("{name} max [{}]", c.unit), c.max));
-            out.push((format!("{name} min [{}]", c.unit), c.min));
+            out.push((format!("{name} max [{}]", c.unit), c.extremes.max));
+            out.push((format!("{name} min [{}]", c.unit), c.extremes.min));
         }
         out.push(("steps".into(), s.solver.steps as f64));
         return out;
     }
+    let twin = |c: &crate::job::ChannelSummary| c.twin.as_ref().and_then(|t| s.channels.get(t));
     for n in [channels::HITCH_FX, channels::HITCH_FY, channels::HITCH_FZ] {
         if let Some(c) = s.channels.get(n) {
-            out.push((format!("{n} peak [N]"), c.peak));
+            let e = &c.extremes;
+            out.push((format!("{n} max [N]"), e.max));
+            out.push((format!("{n} min [N]"), e.min));
+            out.push((format!("{n} abs_peak [N]"), e.abs_peak));
+            if let (Some(b), Some(t)) = (twin(c), &c.twin) {
+                out.push((format!("{t} abs_peak [N]"), b.extremes.abs_peak));
+            }
         }
     }
     for (name, c) in &s.channels {
-        if name.starts_with(channels::ACC_PREFIX) || name == channels::TRAILER_AX {
-            out.push((format!("{name} peak [m/s^2]"), c.peak.abs()));
+        if channels::band(name) != Some(channels::Band::Sensor)
+            || c.signal != crate::job::Signal::Raw
+        {
+            continue;
         }
+        if let (Some(b), Some(t)) = (twin(c), &c.twin) {
+            out.push((format!("{t} abs_peak [{}]", c.unit), b.extremes.abs_peak));
+        }
+        out.push((format!("{name} abs_peak [{}]", c.unit), c.extremes.abs_peak));
     }
     let [dx, dy, dz] = channels::HITCH_DEFLECTION;
     if let (Some(x), Some(y), Some(z)) = (r.channel(dx), r.channel(dy), r.channel(dz)) {
         let d = (0..x.len()).fold(0.0f64, |m, k| {
             m.max((x[k] * x[k] + y[k] * y[k] + z[k] * z[k]).sqrt())
         });
-        out.push(("crossbeam peak deflection [m]".into(), d));
+        out.push((CROSSBEAM_DEFLECTION.into(), d));
     }
     if let Some(c) = s.channels.get(channels::HITCH_STRAIN_ENERGY) {
-        out.push(("crossbeam peak strain energy [J]".into(), c.peak.abs()));
+        out.push((CROSSBEAM_ENERGY.into(), c.extremes.max));
     }
     out.push(("steps".into(), s.solver.steps as f64));
     out.push(("run wall time [s]".into(), s.start_wall_s + s.wall_s));
     out
 }
+
+/// The figure of the crossbeam's largest deflection: the length of the ball's
+/// displacement vector, at its largest.
+pub const CROSSBEAM_DEFLECTION: &str = "crossbeam |deflection| max [m]";
+/// The figure of the crossbeam's largest strain energy.
+pub const CROSSBEAM_ENERGY: &str = "crossbeam strain energy max [J]";
 
 /// Writes the summary CSV: case, parameters, status, wall time, every figure, error
 /// (whole or not at all).
@@ -240,8 +263,9 @@ pub fn write_summary(path: &Path, sweep: &Sweep, rows: &[CaseRow]) -> Result<()>
         .map_err(|e| Error::io(path, e))
 }
 
-/// Version of a merged table's report (`sweep merge --json`).
-pub const MERGE_SCHEMA_VERSION: u32 = 1;
+/// Version of a merged table's report (`sweep merge --json`). 2: the merged table's
+/// figures are those of sweep summary version 4 ([`SCHEMA_VERSION`]).
+pub const MERGE_SCHEMA_VERSION: u32 = 2;
 
 /// What [`merge`] joined.
 #[derive(Clone, Debug, serde::Serialize)]
@@ -280,6 +304,7 @@ fn shard_meta(csv: &Path) -> Result<(String, usize)> {
     })?;
     let v: serde_json::Value =
         serde_json::from_str(&text).map_err(|e| bad(format!("not JSON: {e}")))?;
+    check_version(&json, v["schema_version"].as_u64(), "merge it")?;
     let name = v["sweep"].as_str().map(String::from);
     let total = v["cases_total"].as_u64().map(|n| n as usize);
     match (name, total) {
@@ -409,8 +434,46 @@ pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<Merged> {
     })
 }
 
-/// Version of a sweep summary's layout (`summary.json`).
-pub const SCHEMA_VERSION: u32 = 3;
+/// Version of a sweep summary's layout (`summary.json`, and of the figures in the CSV
+/// beside it and in the journal). 4: no signed peaks; the hitch force's max, min and
+/// |peak|, the sensors' |peak| band-limited and raw ([`figures`]).
+pub const SCHEMA_VERSION: u32 = 4;
+
+/// Refuses a sweep file (a shard's JSON twin, a summary or journal to resume) written
+/// with another layout version than [`SCHEMA_VERSION`]: an older one's figures (signed
+/// peaks, other names) cannot be converted, as version 3 kept the signed peak but not
+/// the max and min. `what`: what the caller would do with it.
+fn check_version(file: &Path, version: Option<u64>, what: &str) -> Result<()> {
+    if version == Some(SCHEMA_VERSION as u64) {
+        return Ok(());
+    }
+    let was = version.map_or("no schema_version (version 3 or older)".to_string(), |v| {
+        format!("schema version {v}")
+    });
+    Err(SceneError::Merge {
+        file: file.to_path_buf(),
+        message: format!(
+            "written with sweep summary {was}; this towride reads and writes version \
+             {SCHEMA_VERSION} (figures max, min and abs_peak instead of signed peaks), and \
+             an older table's figures cannot be converted: to {what}, run its cases again \
+             with this version"
+        ),
+    }
+    .into())
+}
+
+/// The signed-peak figures of sweep summaries before version 4 (`hitch_fx peak [N]`):
+/// a summary CSV whose JSON twin is gone is recognised by them.
+fn legacy_figure(name: &str) -> bool {
+    name.strip_suffix(" peak [N]")
+        .is_some_and(|n| [channels::HITCH_FX, channels::HITCH_FY, channels::HITCH_FZ].contains(&n))
+}
+
+/// The first line of a journal: the layout version of the rows after it.
+#[derive(serde::Serialize, serde::Deserialize)]
+struct JournalHead {
+    schema_version: u32,
+}
 
 /// A sweep (or one shard of it) run and summarised.
 #[derive(Clone, Debug, serde::Serialize)]
@@ -582,6 +645,7 @@ pub fn run_sweep_with(
     // The journal holds what the summary will hold; rewritten so a resumed run's old
     // entries stay with its new ones.
     let mut j = std::fs::File::create(&journal).map_err(|e| Error::io(&journal, e))?;
+    journal_head(&mut j).map_err(|e| Error::io(&journal, e))?;
     for r in &prior {
         journal_line(&mut j, r).map_err(|e| Error::io(&journal, e))?;
     }
@@ -604,6 +668,15 @@ pub fn run_sweep_with(
     let text = serde_json::to_string_pretty(&res).unwrap_or_default();
     crate::atomic::write(&json, text).map_err(|e| Error::io(&json, e))?;
     Ok(res)
+}
+
+fn journal_head(f: &mut std::fs::File) -> std::io::Result<()> {
+    let head = JournalHead {
+        schema_version: SCHEMA_VERSION,
+    };
+    let line = serde_json::to_string(&head).map_err(std::io::Error::other)?;
+    f.write_all(format!("{line}\n").as_bytes())?;
+    f.flush()
 }
 
 fn journal_line(f: &mut std::fs::File, r: &CaseRow) -> std::io::Result<()> {
@@ -629,6 +702,12 @@ fn previous_rows(
     };
     let mut rows: Vec<CaseRow> = Vec::new();
     if csv.is_file() {
+        let twin = csv.with_extension("json");
+        if let Ok(text) = std::fs::read_to_string(&twin) {
+            let v: serde_json::Value =
+                serde_json::from_str(&text).map_err(|e| bad(&twin, format!("not JSON: {e}")))?;
+            check_version(&twin, v["schema_version"].as_u64(), "resume it")?;
+        }
         let mut r = csv::Reader::from_path(csv).map_err(|e| Error::io(csv, e.into()))?;
         let h = r.headers().map_err(|e| bad(csv, e.to_string()))?.clone();
         let np = sweep.parameters.len();
@@ -648,6 +727,9 @@ fn previous_rows(
             ));
         }
         let figure_names = &cols[np + 3..cols.len() - 1];
+        if figure_names.iter().any(|n| legacy_figure(n)) {
+            check_version(csv, None, "resume it")?;
+        }
         for (k, rec) in r.records().enumerate() {
             let line = k + 2;
             let rec = rec.map_err(|e| bad(csv, format!("line {line}: {e}")))?;
@@ -701,6 +783,16 @@ fn previous_rows(
         }
     }
     if let Ok(text) = std::fs::read_to_string(journal) {
+        // The version line first; a journal of rows without one is older than version 4.
+        let first = text.lines().find(|l| !l.trim().is_empty());
+        if let Some(first) = first {
+            let version = serde_json::from_str::<JournalHead>(first)
+                .ok()
+                .map(|h| h.schema_version as u64);
+            if version.is_some() || serde_json::from_str::<CaseRow>(first).is_ok() {
+                check_version(journal, version, "resume it")?;
+            }
+        }
         for (k, l) in text.lines().enumerate() {
             // A line cut short by a kill is the case still running: run it again.
             let Ok(r) = serde_json::from_str::<CaseRow>(l) else {

@@ -1,8 +1,8 @@
 //! The page of a sweep (`sweep` and `sweep merge` write it beside the summary CSV): a
 //! table of the cases with their figures, each case linked to its own report when the
 //! sweep kept histories (`cases/<case id>/report.html`), and each figure plotted against
-//! a swept parameter, one curve per combination of the others (hitch peak against the
-//! crossbeam variant, one curve per speed). The HTML page is interactive (uPlot, the
+//! a swept parameter, one curve per combination of the others (the hitch force's |peak|
+//! against the crossbeam variant, one curve per speed). The HTML page is interactive (uPlot, the
 //! parameter on the x axis chosen on the page); the PNG beside it shows the key figures
 //! through [`crate::report::figure`]. Both are made from the summary CSV alone, so a merged
 //! table of shards gets the same page as an unsharded run.
@@ -50,7 +50,7 @@ pub struct Row {
 pub struct Table {
     /// The swept parameters' names.
     pub parameters: Vec<String>,
-    /// The figures' names with their units (`hitch_fx peak [N]`).
+    /// The figures' names with their units (`hitch_fx abs_peak [N]`).
     pub figures: Vec<String>,
     /// The cases.
     pub rows: Vec<Row>,
@@ -158,21 +158,32 @@ pub fn x_parameter(t: &Table) -> Option<usize> {
         .or(v.first().copied())
 }
 
-/// The figures the PNG shows: the hitch force, trailer and crossbeam peaks of a vehicle
-/// sweep, else the first four that differ between cases (run wall time aside).
+/// The figures the PNG shows: of a vehicle sweep the hitch force's |peak| (fore-aft and
+/// vertical), the trailer's and the hitch sensor's |peak| as the instrument saw them
+/// (band-limited, else raw), the crossbeam's largest deflection and strain energy; else
+/// the first four that differ between cases (run wall time aside).
 pub fn key_figures(t: &Table) -> Vec<usize> {
-    let key = [
-        format!("{} peak [N]", channels::HITCH_FX),
-        format!("{} peak [N]", channels::HITCH_FZ),
-        format!("{} peak [m/s^2]", channels::TRAILER_AX),
-        format!("{} peak [m/s^2]", channels::acc("hitch", "z")),
-        "crossbeam peak deflection [m]".to_string(),
-        "crossbeam peak strain energy [J]".to_string(),
-    ];
-    let some: Vec<usize> = key
-        .iter()
-        .filter_map(|k| t.figures.iter().position(|f| f == k))
-        .collect();
+    let find = |k: &str| t.figures.iter().position(|f| f == k);
+    // A band-limited sensor figure by its twin's suffix (`acc_hitch_z_lp100 abs_peak`).
+    let sensor = |name: &str, unit: &str| {
+        let band = t.figures.iter().position(|f| {
+            f.strip_prefix(name)
+                .and_then(|r| r.strip_prefix("_lp"))
+                .is_some_and(|r| r.ends_with(&format!(" abs_peak [{unit}]")))
+        });
+        band.or_else(|| find(&format!("{name} abs_peak [{unit}]")))
+    };
+    let some: Vec<usize> = [
+        find(&format!("{} abs_peak [N]", channels::HITCH_FX)),
+        find(&format!("{} abs_peak [N]", channels::HITCH_FZ)),
+        sensor(channels::TRAILER_AX, "m/s^2"),
+        sensor(&channels::acc("hitch", "z"), "m/s^2"),
+        find(super::exec::CROSSBEAM_DEFLECTION),
+        find(super::exec::CROSSBEAM_ENERGY),
+    ]
+    .into_iter()
+    .flatten()
+    .collect();
     if !some.is_empty() {
         return some;
     }

@@ -39,14 +39,9 @@ pub struct ChannelSpec {
     pub range_g: Option<f64>,
 }
 
-/// The acquisition low-pass (Butterworth, see [`super::filter`]).
-#[derive(Clone, Copy, Debug)]
-pub struct AcqFilter {
-    /// Filter order.
-    pub order: usize,
-    /// -3 dB cut-off frequency [Hz].
-    pub cutoff_hz: f64,
-}
+/// The acquisition low-pass (Butterworth, see [`super::filter`]): the same type a scene
+/// declares its instrument chain with.
+pub use crate::signal::acquisition::AcqFilter;
 
 /// Trigger information on the recording's clock.
 #[derive(Clone, Debug)]

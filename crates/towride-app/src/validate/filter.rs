@@ -66,7 +66,7 @@ pub fn acquire(sim: &SimChannels, f: AcqFilter) -> Result<Acquired, ValidateErro
     let mut dts: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).collect();
     dts.sort_by(f64::total_cmp);
     let native = 1.0 / dts[dts.len() / 2];
-    let rate = native.max(40.0 * f.cutoff_hz);
+    let rate = f.grid_rate(native);
     let lp = Butterworth::low_pass(f.order, f.cutoff_hz, rate)?;
     let dt = 1.0 / rate;
     let n = ((t[t.len() - 1] - t[0]) / dt).floor() as usize + 1;

@@ -48,13 +48,20 @@ impl Simulator for VehicleSimulator {
             .without_view()
             .run(&Silent)?;
         r.require_completed()?;
+        // The raw accelerometer channels: what a measurement can be compared with once
+        // through the descriptor's own acquisition chain (not the scene's twins).
+        let raw: Vec<bool> = r
+            .samples
+            .channels
+            .iter()
+            .map(|c| r.is_raw(&c.name))
+            .collect();
         let res = r.samples;
-        // The accelerometer channels: what a measurement can be compared with.
         let channels = res
             .channels
             .iter()
             .enumerate()
-            .filter(|(_, ch)| ch.name.starts_with(ACC_PREFIX))
+            .filter(|(c, ch)| ch.name.starts_with(ACC_PREFIX) && raw[*c])
             .map(|(c, ch)| (ch.name.clone(), res.rows.iter().map(|r| r[c]).collect()))
             .collect();
         Ok(SimChannels {

@@ -45,7 +45,10 @@
   const hf = C.channels.includes("hitch_fx") ? "hitch_fx" : C.channels[0];
   if (hf) { pick.value = hf; draw(); }
   app.append(el("h2", {}, `Differences against ${C.runs[0]}`));
-  app.append(table(["channel", "unit", "run", `peak ${C.runs[0]}`, "peak", "peak difference", "RMS difference"],
-    C.differences.map((d) => [d.channel, d.unit, d.run, d.reference_peak, d.peak, d.peak_difference, d.rms_difference])));
+  app.append(el("p", { class: "hint" }, `Like with like: each run's max, min and |peak| = max(|max|, |min|) against ${C.runs[0]}'s; a difference is this run's less ${C.runs[0]}'s.`));
+  app.append(table(["channel", "unit", "run", `max ${C.runs[0]}`, "max", "max difference", `min ${C.runs[0]}`, "min", "min difference",
+    `|peak| ${C.runs[0]}`, "|peak|", "|peak| difference", "RMS difference"],
+    C.differences.map((d) => [d.channel, d.unit, d.run, d.reference_max, d.max, d.max_difference, d.reference_min, d.min, d.min_difference,
+      d.reference_abs_peak, d.abs_peak, d.abs_peak_difference, d.rms_difference])));
   setTimeout(() => document.body.setAttribute("data-ready", chart ? "1" : "0"), 0);
 })();

@@ -20,9 +20,9 @@
   if (S.hitch_force) {
     const h = S.hitch_force;
     const opt = (v, d) => (v == null ? "-" : d(v));
-    app.append(el("h3", {}, `Hitch force (${h.channel})`));
-    app.append(table(["peak [N]", "at [s]", "RMS [N]", "dominant frequency [Hz]", "damping ratio of the ringing", "decay fitted [s]"],
-      [[h.peak_n, h.t_peak_s, h.rms_n, opt(h.dominant_hz, fmt), opt(h.damping_ratio, (z) => `${fmt(100 * z)} %`),
+    app.append(el("h3", {}, `Hitch force (${h.channel}, raw)`));
+    app.append(table(["max [N]", "at [s]", "min [N]", "at [s]", "|peak| [N]", "at [s]", "RMS [N]", "dominant frequency [Hz]", "damping ratio of the ringing", "decay fitted [s]"],
+      [[h.max_n, h.t_max_s, h.min_n, h.t_min_s, h.abs_peak_n, h.t_abs_peak_s, h.rms_n, opt(h.dominant_hz, fmt), opt(h.damping_ratio, (z) => `${fmt(100 * z)} %`),
         opt(h.decay, (d) => `${fmt(d.from_s)}-${fmt(d.to_s)} (${d.half_cycles} half cycles)`)]]));
   }
   // --- 3D view, its time cursor shared with the charts both ways
@@ -46,6 +46,10 @@
   // --- time histories
   app.append(el("h2", { id: "histories" }, "Time histories"));
   app.append(el("p", { class: "hint" }, "Drag to zoom, double click to reset, mouse wheel zooms time, shift + wheel pans; click a legend entry to hide or show it. The time cursor is shared by all charts."));
+  const A = S.acquisition;
+  app.append(el("p", { id: "shown", class: "hint" }, A
+    ? `Shown: accelerometers (acc_*, trailer_ax) band-limited, as the instrument saw them: <channel>${A.suffix}, through the scene's acquisition chain (${A.description}, filtered on a ${fmt(A.grid_rate_hz)} Hz grid); their raw channels are in the legends, hidden (click to show). Forces and deflections (hitch_f*, hitch_deflection_*) are shown raw, their band-limited twins hidden in the legends.`
+    : "Shown: raw channels (the scene declares no acquisition chain)."));
   const t = D.t;
   for (const g of D.groups) {
     const box = el("div", { class: "chart" });
@@ -57,7 +61,7 @@
       axes: [{ label: "time [s]", values: ticks }, { label: g.y, size: 70, values: ticks }],
       series: [{ label: "t [s]", value: (u, v) => fmt(v) }].concat(g.series.map((s) => ({
         label: `${D.channels[s.ch].name} [${D.channels[s.ch].unit}]`,
-        stroke: s.colour, width: s.width, dash: s.dash ? [8, 4] : undefined,
+        stroke: s.colour, width: s.width, dash: s.dash ? [8, 4] : undefined, show: s.show !== false,
         value: (u, v) => fmt(v),
       }))),
       plugins: [wheel(), follow()],
@@ -128,10 +132,22 @@
     app.append(table(["mode", "frequency [Hz]", "peak [J]", "share of peak", "share of integral", "kept at 1 %"],
       m.modes.map((q) => [q.number, q.frequency_hz, q.peak_j, q.share_peak, q.share_integral, m.kept_at_1_percent.includes(q.number) ? "yes" : ""])));
   }
-  const peaks = Object.entries(S.channels || {});
-  app.append(el("h3", {}, "Channel extremes"));
-  app.append(table(["channel", "unit", "min", "at [s]", "max", "at [s]"],
-    peaks.map(([n, c]) => [n, c.unit, c.min, c.t_min, c.max, c.t_max])));
+  // Each raw channel with its band-limited twin, the one shown first on top.
+  const chans = S.channels || {};
+  const rows = [];
+  const row = (n, c) => [n, c.signal === "band_limited" ? (A ? `band-limited, ${fmt(A.cutoff_hz)} Hz` : "band-limited") : "raw",
+    c.unit, c.min, c.t_min, c.max, c.t_max, c.abs_peak, c.t_abs_peak];
+  for (const [n, c] of Object.entries(chans)) {
+    if (c.signal !== "raw") continue;
+    const t = c.twin && chans[c.twin];
+    if (t && t.shown) rows.push(row(c.twin, t), row(n, c));
+    else if (t) rows.push(row(n, c), row(c.twin, t));
+    else rows.push(row(n, c));
+  }
+  app.append(el("h3", { id: "extremes" }, "Channel extremes"));
+  app.append(el("p", { class: "hint" }, "|peak| = max(|max|, |min|), the larger magnitude; which side it is on shows in max and min." +
+    (A ? ` Band-limited: through the scene's acquisition chain (${A.description}); each pair listed with the one shown in the charts first.` : "")));
+  app.append(table(["channel", "signal", "unit", "min", "at [s]", "max", "at [s]", "|peak|", "at [s]"], rows));
 
   // For the browser test: per chart, the canvas pixels in colour (the traces; axes,
   // grid and text are grey).

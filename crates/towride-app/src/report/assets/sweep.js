@@ -13,6 +13,8 @@
   const kept = T.rows.filter((r) => r.link).length;
   app.append(el("p", {}, `${T.rows.length} cases: ${done} completed, ${T.rows.length - done} failed or interrupted; ` +
     (kept ? `${kept} with their own report (histories kept).` : "histories not kept (run the sweep with --keep-histories to link each case's report).")));
+  if (T.figures.some((f) => / (abs_peak|max|min) \[/.test(f)))
+    app.append(el("p", { id: "naming", class: "hint" }, "Figures: max and min of a channel, abs_peak = max(|max|, |min|) (its larger magnitude, whichever side); <channel>_lp<fc>: the channel through the scene's acquisition low-pass at fc Hz, as the instrument saw it (a case's summary.json names the filter)."));
 
   // --- plots
   app.append(el("h2", { id: "plots" }, "Figures against a swept parameter"));

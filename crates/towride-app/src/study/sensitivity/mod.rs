@@ -31,8 +31,9 @@ use towride_mbs::input::Loader;
 use towride_mbs::input::Override;
 use towride_mbs::progress::Progress;
 
-/// Version of the study's JSON layout.
-pub const SCHEMA_VERSION: u32 = 1;
+/// Version of the study's JSON layout. 2: outputs `CHANNEL.abs_peak`, `.max`, `.min`
+/// (`.peak` and `.peak100` are gone; band-limited channels by their own names).
+pub const SCHEMA_VERSION: u32 = 2;
 
 /// The screening method.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]

@@ -1,35 +1,39 @@
-//! The outputs a sensitivity study ranks its parameters by: `CHANNEL.peak` (largest
-//! magnitude), `CHANNEL.rms`, `CHANNEL.freq` (peak of the amplitude spectrum, as the
-//! summary's hitch-force ringing, [`crate::job::ringing`]) and `CHANNEL.peak100`
-//! (largest magnitude after the measurements' 100 Hz low-pass: a fourth-order
-//! Butterworth, [`crate::signal::butterworth`]).
+//! The outputs a sensitivity study ranks its parameters by: `CHANNEL.abs_peak` (largest
+//! magnitude, max(|max|, |min|)), `CHANNEL.max`, `CHANNEL.min`, `CHANNEL.rms` and
+//! `CHANNEL.freq` (peak of the amplitude spectrum, as the summary's hitch-force ringing,
+//! [`crate::job::ringing`]). CHANNEL may be a band-limited twin, the channel through the
+//! scene's acquisition chain (`acc_hitch_z_lp100`, [`crate::job::band`]). The names
+//! `peak` (the largest magnitude) and `peak100` (the same after a 100 Hz low-pass) of
+//! earlier versions are refused with the name to use instead.
 
 use crate::error::Result;
 use crate::job::{Job, RunResult};
-use crate::scene::channels::{acc, ACC_PREFIX, HITCH_FX};
-use crate::signal::butterworth::Butterworth;
+use crate::scene::channels::{acc, band, ACC_PREFIX, HITCH_FX};
 use towride_mbs::input::InputError;
 
 /// What is taken of a channel.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Measure {
-    /// Largest magnitude.
-    Peak,
+    /// Largest magnitude, max(|max|, |min|).
+    AbsPeak,
+    /// Largest value.
+    Max,
+    /// Smallest value.
+    Min,
     /// Root mean square over the run.
     Rms,
     /// Dominant frequency [Hz].
     Freq,
-    /// Largest magnitude after the 100 Hz low-pass.
-    Peak100,
 }
 
 impl Measure {
     fn name(self) -> &'static str {
         match self {
-            Measure::Peak => "peak",
+            Measure::AbsPeak => "abs_peak",
+            Measure::Max => "max",
+            Measure::Min => "min",
             Measure::Rms => "rms",
             Measure::Freq => "freq",
-            Measure::Peak100 => "peak100",
         }
     }
 }
@@ -52,37 +56,46 @@ impl OutputSpec {
     }
 }
 
-/// The default outputs of a scene: the hitch force's peak, RMS and dominant frequency,
-/// the trailer box's acceleration peak (its drawbar sensor) and every accelerometer's
-/// peak in the 100 Hz band. `None` for a model without a hitch (name them).
-pub fn defaults(channels: &[(String, String)]) -> Option<Vec<String>> {
+/// The default outputs of a scene (`channels`: raw channels, then band-limited twins
+/// named with `suffix`): the hitch force's |peak|, RMS and dominant frequency, the
+/// trailer box's raw acceleration |peak| (its drawbar sensor) and every accelerometer's
+/// |peak| as the instrument saw it (its band-limited twin; raw without an acquisition
+/// chain). `None` for a model without a hitch (name them).
+pub fn defaults(channels: &[(String, String)], suffix: Option<&str>) -> Option<Vec<String>> {
     let has = |n: &str| channels.iter().any(|c| c.0 == n);
     if !has(HITCH_FX) {
         return None;
     }
-    let mut v: Vec<String> = ["peak", "rms", "freq"]
+    let mut v: Vec<String> = ["abs_peak", "rms", "freq"]
         .map(|m| format!("{HITCH_FX}.{m}"))
         .to_vec();
     // The trailer's drawbar sensor.
     let drawbar = acc("trailer_drawbar", "z");
     if has(&drawbar) {
-        v.push(format!("{drawbar}.peak"));
+        v.push(format!("{drawbar}.abs_peak"));
     }
-    v.extend(
-        channels
-            .iter()
-            .filter(|c| c.0.starts_with(ACC_PREFIX))
-            .map(|c| format!("{}.peak100", c.0)),
-    );
+    let sensors = channels
+        .iter()
+        .filter(|c| c.0.starts_with(ACC_PREFIX) && band(&c.0).is_some());
+    for (c, _) in sensors {
+        let shown = suffix
+            .map(|s| format!("{c}{s}"))
+            .filter(|t| has(t))
+            .unwrap_or_else(|| c.clone());
+        v.push(format!("{shown}.abs_peak"));
+    }
     Some(v)
 }
 
-/// The outputs named in `names` (empty: [`defaults`]) against the channels of `job`.
+/// The outputs named in `names` (empty: [`defaults`]) against the channels of `job`
+/// (raw and band-limited).
 pub fn resolve(names: &[String], job: &Job) -> Result<Vec<OutputSpec>> {
-    let channels: Vec<(String, String)> = towride_mbs::model::output::channels(&job.system)
+    let mut channels: Vec<(String, String)> = towride_mbs::model::output::channels(&job.system)
         .into_iter()
         .map(|c| (c.name, c.unit.to_string()))
         .collect();
+    channels.extend(job.band_channels());
+    let suffix = job.acquisition().map(|f| f.suffix());
     let bad = |n: &str, m: String| InputError {
         file: "command line".into(),
         line: None,
@@ -92,10 +105,10 @@ pub fn resolve(names: &[String], job: &Job) -> Result<Vec<OutputSpec>> {
         kind: Default::default(),
     };
     let names = if names.is_empty() {
-        defaults(&channels).ok_or_else(|| {
+        defaults(&channels, suffix.as_deref()).ok_or_else(|| {
             bad(
                 "",
-                "this model has no hitch: name the outputs, e.g. --outputs body.z.peak".into(),
+                "this model has no hitch: name the outputs, e.g. --outputs body.z.abs_peak".into(),
             )
         })?
     } else {
@@ -104,15 +117,42 @@ pub fn resolve(names: &[String], job: &Job) -> Result<Vec<OutputSpec>> {
     names
         .iter()
         .map(|n| {
-            let (ch, m) = n
-                .rsplit_once('.')
-                .ok_or_else(|| bad(n, "write CHANNEL.peak, .rms, .freq or .peak100".into()))?;
+            let (ch, m) = n.rsplit_once('.').ok_or_else(|| {
+                bad(
+                    n,
+                    "write CHANNEL.abs_peak, .max, .min, .rms or .freq".into(),
+                )
+            })?;
             let measure = match m {
-                "peak" => Measure::Peak,
+                "abs_peak" => Measure::AbsPeak,
+                "max" => Measure::Max,
+                "min" => Measure::Min,
                 "rms" => Measure::Rms,
                 "freq" => Measure::Freq,
-                "peak100" => Measure::Peak100,
-                _ => return Err(bad(n, format!("`{m}`: use peak, rms, freq or peak100"))),
+                // The names of earlier versions: say what they are now.
+                "peak" => {
+                    return Err(bad(
+                        n,
+                        format!(
+                            "`peak` is now `abs_peak` (the largest magnitude, max(|max|, |min|)): write {ch}.abs_peak, or {ch}.max / {ch}.min for one side"
+                        ),
+                    ))
+                }
+                "peak100" => {
+                    let twin = format!("{ch}{}", suffix.as_deref().unwrap_or("_lp100"));
+                    return Err(bad(
+                        n,
+                        format!(
+                            "`peak100` is gone: the channel through the scene's acquisition chain ([acquisition], default 100 Hz) is `{twin}`; write {twin}.abs_peak"
+                        ),
+                    ));
+                }
+                _ => {
+                    return Err(bad(
+                        n,
+                        format!("`{m}`: use abs_peak, max, min, rms or freq"),
+                    ))
+                }
             };
             let unit = channels
                 .iter()
@@ -152,9 +192,10 @@ pub fn evaluate(specs: &[OutputSpec], r: &RunResult) -> Result<Vec<f64>> {
         .iter()
         .map(|o| {
             let y = r.channel(&o.channel).unwrap_or_default();
-            let peak = |y: &[f64]| y.iter().fold(0.0f64, |m, v| m.max(v.abs()));
             Ok(match o.measure {
-                Measure::Peak => peak(&y),
+                Measure::AbsPeak => y.iter().fold(0.0f64, |m, v| m.max(v.abs())),
+                Measure::Max => y.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+                Measure::Min => y.iter().copied().fold(f64::INFINITY, f64::min),
                 Measure::Rms => {
                     (y.iter().map(|v| v * v).sum::<f64>() / y.len().max(1) as f64).sqrt()
                 }
@@ -162,7 +203,6 @@ pub fn evaluate(specs: &[OutputSpec], r: &RunResult) -> Result<Vec<f64>> {
                     crate::signal::spectrum::peak_in(&y, 1.0 / rate, [1.0, 0.45 * rate])
                         .unwrap_or(f64::NAN)
                 }
-                Measure::Peak100 => peak(&Butterworth::low_pass(4, 100.0, rate)?.apply(&y)),
             })
         })
         .collect()
