@@ -66,11 +66,14 @@
 //!
 //! The equations are written out in `docs/road_tyre.md`.
 
+pub(crate) mod combined;
 pub(crate) mod envelope;
 pub(crate) mod magic;
+pub(crate) mod magic_lateral;
 pub mod params;
 pub(crate) mod point;
 pub mod rig;
+pub mod rig_lateral;
 pub(crate) mod ring;
 
 use std::path::Path;
@@ -82,6 +85,7 @@ use crate::input::InputError;
 use crate::road::Road;
 use towride_solver::VarKind;
 
+pub use combined::{MagicFormula, MfForces};
 pub use envelope::{EffectiveRoad, TandemCams};
 pub use params::TyreParams;
 pub use point::PointFollower;
@@ -147,6 +151,16 @@ pub struct ContactOutputs {
     pub slip_velocity: f64,
     /// Rolling speed at the contact [m/s].
     pub rolling_speed: f64,
+    /// Lateral contact force F_y [N], along the horizontal lateral direction z x e_x
+    /// (ISO: positive to the wheel's left).
+    pub lateral_force: f64,
+    /// Aligning moment M_z [N m] about the road normal at the contact point.
+    pub aligning_moment: f64,
+    /// Transient slip angle alpha' = atan(v / sigma_alpha) [rad] (ISO: positive when the
+    /// contact point moves to the left).
+    pub slip_angle: f64,
+    /// Velocity of the contact point along the lateral direction [m/s] and along e_x.
+    pub lateral_velocity: f64,
 }
 
 /// Which tyre model to build from a `.tir` file.
@@ -312,6 +326,27 @@ pub(crate) struct WheelFrame {
     /// Horizontal heading and lateral unit vectors (x, y).
     pub heading: [f64; 2],
     pub lateral: [f64; 2],
+}
+
+/// Velocity of the contact point `cp` (a geometric point, not a material one): the wheel
+/// centre's velocity plus the carrier's rotation (the angular velocity without the spin)
+/// times the arm; returns its components along e_x and along the horizontal lateral
+/// direction z x e_x: (V_cx, V_cy).
+pub(crate) fn contact_velocity(
+    kin: &WheelKinematics,
+    fr: &WheelFrame,
+    cp: &Vector3<f64>,
+) -> (f64, f64) {
+    let carrier = kin.omega - fr.ey * kin.omega.dot(&fr.ey);
+    let vc = kin.velocity + carrier.cross(&(cp - kin.position));
+    let ly = Vector3::new(fr.lateral[0], fr.lateral[1], 0.0);
+    (vc.dot(&fr.ex), vc.dot(&ly))
+}
+
+/// Transient slip angle alpha' = atan(v / sigma_alpha) of the lateral tread state `v`.
+#[inline]
+pub(crate) fn slip_angle(v: f64, sigma_alpha: f64) -> f64 {
+    (v / sigma_alpha).atan()
 }
 
 impl WheelFrame {

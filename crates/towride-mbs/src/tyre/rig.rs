@@ -26,6 +26,7 @@ use towride_solver::consistent_index1;
 use towride_solver::DaeMethod;
 use towride_solver::{Advance, Bdf, DaeProblem, SolverError, SolverOptions, Stats, VarKind};
 
+use super::rig_lateral::LateralRig;
 use super::{Tyre, TyreKind, WheelKinematics};
 
 /// How the rim of the cleat rig turns.
@@ -354,6 +355,16 @@ pub struct RigSample {
     pub effective_height_m: f64,
     /// Effective forward slope tan(beta) [-].
     pub effective_slope: f64,
+    /// Lateral load on the rim (world y) [N] and its moment about world z [N m].
+    pub hub_fy_n: f64,
+    /// Moment of the load on the rim about world z [N m].
+    pub hub_mz_n_m: f64,
+    /// Lateral contact force F_y [N] and aligning moment M_z [N m].
+    pub lateral_force_n: f64,
+    /// Aligning moment M_z [N m].
+    pub aligning_moment_n_m: f64,
+    /// Transient slip angle alpha' [rad].
+    pub slip_angle_rad: f64,
 }
 
 /// A finished rig run.
@@ -368,7 +379,7 @@ pub struct RigRun {
 }
 
 /// Integrates a rig from consistent initial values to `t_end`, sampling every `dt`.
-fn integrate<P: DaeProblem>(
+pub(crate) fn integrate<P: DaeProblem>(
     prob: &P,
     y0: Vec<f64>,
     yp0: Vec<f64>,
@@ -398,7 +409,13 @@ fn integrate<P: DaeProblem>(
     })
 }
 
-fn sample_of(tyre: &Tyre, road: &Road, t: f64, kin: &WheelKinematics, x: &[f64]) -> RigSample {
+pub(crate) fn sample_of(
+    tyre: &Tyre,
+    road: &Road,
+    t: f64,
+    kin: &WheelKinematics,
+    x: &[f64],
+) -> RigSample {
     let o = tyre.outputs(kin, road, x);
     let hub = tyre.hub_load(kin, road, x);
     RigSample {
@@ -416,6 +433,11 @@ fn sample_of(tyre: &Tyre, road: &Road, t: f64, kin: &WheelKinematics, x: &[f64])
         deflection_m: o.deflection,
         effective_height_m: o.effective.height,
         effective_slope: o.effective.tan_slope,
+        hub_fy_n: hub.force.y,
+        hub_mz_n_m: hub.torque.z,
+        lateral_force_n: o.lateral_force,
+        aligning_moment_n_m: o.aligning_moment,
+        slip_angle_rad: o.slip_angle,
     }
 }
 
@@ -519,6 +541,23 @@ enum RigSection {
         #[serde(default)]
         drop_height_m: Option<f64>,
     },
+    Lateral {
+        speed_m_s: f64,
+        start_x_m: f64,
+        spin: Spin,
+        rim_iyy_kg_m2: f64,
+        /// Steady sweep: loads and slip angles, run length per point.
+        loads_n: Vec<f64>,
+        slip_angles_deg: Vec<f64>,
+        settle_s: f64,
+        /// Step response: load, slip angle and run length.
+        step_load_n: f64,
+        step_angle_deg: f64,
+        duration_s: f64,
+        /// Optional reference table (relative to the rig file).
+        #[serde(default)]
+        reference_csv: Option<String>,
+    },
 }
 
 #[derive(Deserialize)]
@@ -564,6 +603,34 @@ pub enum RigSetup {
         /// Drop height above first contact [m]; `None` starts at rest in equilibrium.
         drop: Option<f64>,
     },
+    /// A side-slip rig: a step in slip angle (`rig`, run for `duration` seconds) and a
+    /// steady sweep over loads and slip angles.
+    Lateral {
+        /// The step-response rig.
+        rig: LateralRig,
+        /// Run length of the step response [s].
+        duration: f64,
+        /// The steady sweep.
+        sweep: LateralSweep,
+    },
+}
+
+/// The steady slip-angle sweep of a lateral rig file.
+pub struct LateralSweep {
+    /// Forward speed [m/s].
+    pub speed: f64,
+    /// Vertical loads [N].
+    pub loads: Vec<f64>,
+    /// Slip angles [rad].
+    pub alphas: Vec<f64>,
+    /// Run length per point [s].
+    pub settle: f64,
+    /// Driven or free rim.
+    pub spin: Spin,
+    /// Rim spin inertia [kg m^2].
+    pub rim_iyy: f64,
+    /// Reference table to compare with, if any.
+    pub reference: Option<PathBuf>,
 }
 
 /// A rig file read and checked.
@@ -647,6 +714,62 @@ impl RigCase {
                     drop: drop_height_m,
                 }
             }
+            RigSection::Lateral {
+                speed_m_s,
+                start_x_m,
+                spin,
+                rim_iyy_kg_m2,
+                loads_n,
+                slip_angles_deg,
+                settle_s,
+                step_load_n,
+                step_angle_deg,
+                duration_s,
+                reference_csv,
+            } => {
+                src.positive(&path!["rig", "speed_m_s"], speed_m_s)?;
+                src.finite(&path!["rig", "start_x_m"], start_x_m)?;
+                src.positive(&path!["rig", "rim_iyy_kg_m2"], rim_iyy_kg_m2)?;
+                src.positive(&path!["rig", "settle_s"], settle_s)?;
+                src.positive(&path!["rig", "step_load_n"], step_load_n)?;
+                src.positive(&path!["rig", "duration_s"], duration_s)?;
+                for (i, l) in loads_n.iter().enumerate() {
+                    src.positive(&path!["rig", "loads_n", i], *l)?;
+                }
+                for (i, a) in slip_angles_deg.iter().chain([&step_angle_deg]).enumerate() {
+                    src.finite(&path!["rig", "slip_angles_deg", i], *a)?;
+                    if a.abs() >= 45.0 {
+                        return Err(src.error(
+                            &path!["rig", "slip_angles_deg", i],
+                            format!("a slip angle of {a} deg is outside the rig's range (|alpha| < 45 deg)"),
+                        ));
+                    }
+                }
+                let mut rig = LateralRig::new(
+                    tyre.clone(),
+                    road.clone(),
+                    speed_m_s,
+                    step_angle_deg.to_radians(),
+                    start_x_m,
+                    step_load_n,
+                    spin,
+                    rim_iyy_kg_m2,
+                );
+                rig.step = true;
+                RigSetup::Lateral {
+                    rig,
+                    duration: duration_s,
+                    sweep: LateralSweep {
+                        speed: speed_m_s,
+                        loads: loads_n,
+                        alphas: slip_angles_deg.iter().map(|a| a.to_radians()).collect(),
+                        settle: settle_s,
+                        spin,
+                        rim_iyy: rim_iyy_kg_m2,
+                        reference: reference_csv.map(|r| dir.join(r)),
+                    },
+                }
+            }
         };
         Ok(RigCase {
             file: path.to_path_buf(),
@@ -654,6 +777,28 @@ impl RigCase {
             rtol,
             dt,
         })
+    }
+
+    /// The steady sweep of a lateral rig file (`None` for the other rigs), at the file's
+    /// tolerance or `rtol`.
+    pub fn lateral_sweep(
+        &self,
+        rtol: Option<f64>,
+    ) -> Option<Result<Vec<super::rig_lateral::LateralPoint>, SolverError>> {
+        let RigSetup::Lateral { rig, sweep: w, .. } = &self.setup else {
+            return None;
+        };
+        Some(super::rig_lateral::sweep(
+            &rig.tyre,
+            &rig.road,
+            w.speed,
+            &w.loads,
+            &w.alphas,
+            w.settle,
+            w.spin,
+            w.rim_iyy,
+            rtol.unwrap_or(self.rtol),
+        ))
     }
 
     /// Runs the case at its own tolerance (or `rtol` if given).
@@ -671,6 +816,10 @@ impl RigCase {
             } => {
                 let opts = rig_options(&rig.tyre, rtol, &[1e-6, 1e-4, 1e-3]);
                 rig.run(*drop, *duration, self.dt, &opts)
+            }
+            RigSetup::Lateral { rig, duration, .. } => {
+                let opts = rig_options(&rig.tyre, rtol, &[1e-3]);
+                rig.run(*duration, self.dt, &opts)
             }
         }
     }
