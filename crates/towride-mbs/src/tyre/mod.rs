@@ -1,4 +1,7 @@
-//! Tyres: a Swift-like rigid-ring tyre with tandem-cam enveloping, and a point follower.
+//! Tyres: a Swift-like rigid-ring tyre with tandem-cam enveloping, and a point follower,
+//! both with the Magic Formula 6.1 longitudinal and lateral forces, aligning moment and
+//! combined slip (`magic.rs`, `magic_lateral.rs`, `combined.rs`) behind first-order
+//! relaxation states.
 //!
 //! # Interface for a multibody model
 //!
@@ -48,8 +51,23 @@
 //! | 5 | ring_omega_rad_s | ring spin rate [rad/s] |
 //! | 6 | residual_u_m | residual longitudinal spring deflection [m] |
 //! | 7 | tread_u_m | tread deflection, transient slip kappa' = u / a0 [m] |
+//! | 8 | tread_v_m | lateral deflection, transient slip angle alpha' = atan(v / sigma_alpha) [m] |
 //!
-//! Point follower (`point::idx`): tread_u_m, kappa' = u / sigma (differential).
+//! Point follower (`point::idx`): tread_u_m, kappa' = u / sigma; tread_v_m, alpha' =
+//! atan(v / sigma_alpha) (differential).
+//!
+//! # Lateral force and aligning moment
+//!
+//! The ring is in-plane (x, z, wind-up): it has no lateral or yaw freedom. The lateral
+//! force F_y (along the horizontal lateral direction z x e_x, ISO: positive to the left)
+//! and the aligning moment M_z (about the road normal) act on the rim at the contact point,
+//! with the moment arm from the contact point to the wheel centre. The slip angle is that
+//! of the contact point's velocity (wheel centre velocity plus the carrier's rotation, spin
+//! excluded, times the arm) in the wheel's heading frame (e_x, z x e_x): at steady state
+//! tan(alpha) = V_cy / |V_cx|. The lateral deflection v obeys v' = V_cy - |V_cx| v /
+//! sigma_alpha, sigma_alpha = |K_ya(FNOMIN)| / LATERAL_STIFFNESS: no division by the speed,
+//! so the state is defined at rest (then a lateral spring of stiffness ~ C_y), exactly as
+//! the longitudinal tread state u' = -V_s - |V_r| u / sigma is.
 //!
 //! The contact forces are not unknowns: they follow from the states and the road in every
 //! residual evaluation (see [`Tyre::outputs`]). On a road with kinks (obstacle edges) the
@@ -73,6 +91,7 @@ pub(crate) mod magic_lateral;
 pub mod params;
 pub(crate) mod point;
 pub mod rig;
+mod rig_file;
 pub mod rig_lateral;
 pub(crate) mod ring;
 
