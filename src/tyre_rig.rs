@@ -1,13 +1,18 @@
-//! `towride tyre-rig FILE.toml`: runs a tyre test rig (cleat or quarter rig) and reports
-//! peaks, contact losses and solver effort; optionally writes the history (CSV) and a plot.
+//! `towride tyre-rig FILE.toml`: runs a tyre test rig (cleat, quarter or lateral rig) and
+//! reports peaks, contact losses and solver effort; optionally writes the history (CSV)
+//! and a plot. A lateral rig also runs its steady slip-angle sweep and compares it with
+//! the Magic Formula and the file's reference table (`<name>_sweep.csv`,
+//! `<name>_lateral.png`).
 
 use crate::CliResult;
 use std::path::PathBuf;
 
 use clap::Args;
+use towride_app::report::tyre_lateral::LateralSummary;
 use towride_app::report::tyre_rig::RigSummary;
 use towride_mbs::input::Loader;
-use towride_mbs::tyre::rig::RigCase;
+use towride_mbs::tyre::rig::{RigCase, RigSetup};
+use towride_mbs::tyre::rig_lateral::read_reference;
 
 #[derive(Args, Debug)]
 pub struct TyreRigArgs {
@@ -31,15 +36,47 @@ pub fn run(a: &TyreRigArgs) -> CliResult {
         .run(Some(rtol))
         .map_err(|e| format!("{}: {e}", a.file.display()))?;
     let mut sum = RigSummary::of(&case, &a.file, rtol, &run)?;
+    let name = a
+        .file
+        .file_stem()
+        .map_or("rig".into(), |s| s.to_string_lossy().to_string());
     if let Some(dir) = &a.out {
-        let name = a
-            .file
-            .file_stem()
-            .map_or("rig".into(), |s| s.to_string_lossy().to_string());
         sum.write(&run, dir, &name)?;
     }
+    let mut lateral = None;
+    if let (Some(points), RigSetup::Lateral { rig, sweep, .. }) =
+        (case.lateral_sweep(Some(rtol)), &case.setup)
+    {
+        let points = points.map_err(|e| format!("{}: sweep: {e}", a.file.display()))?;
+        let reference = match &sweep.reference {
+            Some(p) => read_reference(p)?,
+            None => Vec::new(),
+        };
+        let sigma = rig.tyre.params().d.sigma_alpha;
+        let mut lat = LateralSummary::of(points, &reference, sigma, &run, rig.speed, rig.alpha);
+        if let Some(dir) = &a.out {
+            let label = sweep
+                .reference
+                .as_ref()
+                .and_then(|p| p.file_stem())
+                .map_or("reference".into(), |s| s.to_string_lossy().to_string());
+            let mf = &rig.tyre.params().mf;
+            let formula = |load: f64, alpha: f64| {
+                let f = mf.forces(0.0, alpha, load, true);
+                (f.fy, f.mz)
+            };
+            lat.write(
+                dir, &name, &formula, &reference, &label, &run, rig.speed, rig.alpha,
+            )?;
+        }
+        lateral = Some(lat);
+    }
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&sum)?);
+        let mut v = serde_json::to_value(&sum)?;
+        if let Some(l) = &lateral {
+            v["lateral"] = serde_json::to_value(l)?;
+        }
+        println!("{}", serde_json::to_string_pretty(&v)?);
     } else {
         println!("{} ({} rig), tyre {}", sum.file, sum.rig, sum.tyre);
         println!("road: {}", sum.road);
@@ -57,6 +94,29 @@ pub fn run(a: &TyreRigArgs) -> CliResult {
         );
         if let (Some(c), Some(p)) = (&sum.csv, &sum.png) {
             println!("wrote {c} and {p}");
+        }
+        if let Some(l) = &lateral {
+            println!(
+                "steady sweep: {} points; rig vs formula: |dFy| <= {:.3e} N, |dMz| <= {:.3e} N m",
+                l.points.len(),
+                l.max_dev_formula_fy_n,
+                l.max_dev_formula_mz_n_m
+            );
+            if let (Some(f), Some(m)) = (l.max_dev_reference_fy_n, l.max_dev_reference_mz_n_m) {
+                println!(
+                    "rig vs reference ({} points): |dFy| <= {f:.3e} N, |dMz| <= {m:.3e} N m",
+                    l.reference_points
+                );
+            }
+            println!(
+                "step response: 63 % reached after {} m rolled (sigma_alpha = {:.4} m)",
+                l.step_distance_63_m
+                    .map_or("(not reached)".into(), |d| format!("{d:.4}")),
+                l.sigma_alpha_m
+            );
+            if let (Some(c), Some(p)) = (&l.csv, &l.png) {
+                println!("wrote {c} and {p}");
+            }
         }
     }
     Ok(0)

@@ -17,6 +17,7 @@ pub mod scene3d;
 pub mod steps;
 
 pub mod ticks;
+pub mod tyre_lateral;
 pub mod tyre_rig;
 
 pub use crate::error::ReportError;

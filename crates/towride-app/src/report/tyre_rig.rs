@@ -65,6 +65,7 @@ impl RigSummary {
         let (rig, tyre, road) = match &case.setup {
             RigSetup::Cleat { rig, .. } => ("cleat", &rig.tyre, &rig.road),
             RigSetup::Quarter { rig, .. } => ("quarter", &rig.tyre, &rig.road),
+            RigSetup::Lateral { rig, .. } => ("lateral", &rig.tyre, &rig.road),
         };
         let s = &run.samples;
         let last = s.last().ok_or_else(|| {

@@ -7,9 +7,11 @@
 //! C = PCX1 LCX, D = (PDX1 + PDX2 dfz) LMUX F_z,
 //! K = F_z (PKX1 + PKX2 dfz) exp(PKX3 dfz) LKX, B = K / (C D),
 //! E = (PEX1 + PEX2 dfz + PEX3 dfz^2)(1 - PEX4 sgn k) LEX (<= 1),
-//! S_H = (PHX1 + PHX2 dfz) LHX, S_V = F_z (PVX1 + PVX2 dfz) LVX LMUX.
+//! S_H = (PHX1 + PHX2 dfz) LHX, S_V = F_z (PVX1 + PVX2 dfz) LVX LMUX' with the
+//! degressive friction scaling LMUX' = A LMUX / (1 + (A - 1) LMUX), A = 10 (4.E8).
 //! B is formed with F_z divided out, so the force goes to zero smoothly with F_z (a wheel
-//! leaving the road) without 0/0.
+//! leaving the road) without 0/0. The lateral force, the aligning moment and the
+//! combined-slip weighting are in `magic_lateral.rs` and `combined.rs`.
 
 use crate::input::InputError;
 
@@ -18,32 +20,53 @@ use crate::input::tir::TirFile;
 /// Longitudinal Magic Formula coefficients (scaling factors folded in).
 #[derive(Clone, Debug)]
 pub struct MfLongitudinal {
+    /// Nominal load F_z0' = FNOMIN LFZO [N].
     pub fz0: f64,
+    /// PCX1: shape factor C.
     pub pcx1: f64,
+    /// PDX1: friction at the nominal load.
     pub pdx1: f64,
+    /// PDX2: friction variation with load.
     pub pdx2: f64,
+    /// PEX1..PEX4: curvature E.
     pub pex: [f64; 4],
+    /// PKX1..PKX3: slip stiffness.
     pub pkx: [f64; 3],
+    /// PHX1, PHX2: horizontal shift.
     pub phx: [f64; 2],
+    /// PVX1, PVX2: vertical shift.
     pub pvx: [f64; 2],
     /// Scaling factors LCX, LMUX, LEX, LKX, LHX, LVX (LFZO is folded into fz0).
     pub scale: [f64; 6],
 }
 
 const SEC: &str = "LONGITUDINAL_COEFFICIENTS";
-const SCALE: &str = "SCALING_COEFFICIENTS";
+pub(crate) const SCALE: &str = "SCALING_COEFFICIENTS";
+
+/// The MF's constant of the degressive friction scaling, lambda' = A lambda / (1 + (A - 1)
+/// lambda) (Pacejka 2012, (4.E8): "A = 10, say"); it only matters when a friction scaling
+/// factor differs from 1.
+pub(crate) const A_MU: f64 = 10.0;
+
+/// lambda' of a friction scaling factor lambda (4.E8).
+pub(crate) fn degressive(lambda: f64) -> f64 {
+    A_MU * lambda / (1.0 + (A_MU - 1.0) * lambda)
+}
+
+/// A scaling factor of [SCALING_COEFFICIENTS]: optional (1 when absent), positive.
+pub(crate) fn scaling(t: &TirFile, k: &str) -> Result<f64, InputError> {
+    let v = t.f64_or(SCALE, k, 1.0)?;
+    if v > 0.0 {
+        Ok(v)
+    } else {
+        Err(t.error(SCALE, k, format!("must be positive, got {v}")))
+    }
+}
 
 impl MfLongitudinal {
+    /// Reads [LONGITUDINAL_COEFFICIENTS] and the longitudinal scaling factors.
     pub fn from_tir(t: &TirFile, fnomin: f64) -> Result<MfLongitudinal, InputError> {
-        // Scaling factors are optional (1 when absent) but must be positive when given.
-        let sc = |k: &str| -> Result<f64, InputError> {
-            let v = t.f64_or(SCALE, k, 1.0)?;
-            if v > 0.0 {
-                Ok(v)
-            } else {
-                Err(t.error(SCALE, k, format!("must be positive, got {v}")))
-            }
-        };
+        let sc = |k: &str| scaling(t, k);
         let lfzo = sc("LFZO")?;
         let mf = MfLongitudinal {
             fz0: fnomin * lfzo,
@@ -95,7 +118,8 @@ impl MfLongitudinal {
         fz * (self.pkx[0] + self.pkx[1] * dfz) * (self.pkx[2] * dfz).exp() * self.scale[3]
     }
 
-    /// F_x [N] at longitudinal slip `kappa` and vertical load `fz` >= 0 [N].
+    /// Pure-slip F_x0 [N] at longitudinal slip `kappa` and vertical load `fz` >= 0 [N]
+    /// (4.E9).
     pub fn force(&self, kappa: f64, fz: f64) -> f64 {
         let fz = fz.max(0.0);
         let dfz = self.dfz(fz);
@@ -110,7 +134,7 @@ impl MfLongitudinal {
             * lex)
             .min(1.0);
         let bk = b * k;
-        let sv = fz * (self.pvx[0] + self.pvx[1] * dfz) * lvx * lmux;
+        let sv = fz * (self.pvx[0] + self.pvx[1] * dfz) * lvx * degressive(lmux);
         mu * fz * (c * (bk - e * (bk - bk.atan())).atan()).sin() + sv
     }
 }

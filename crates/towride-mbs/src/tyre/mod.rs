@@ -1,4 +1,7 @@
-//! Tyres: a Swift-like rigid-ring tyre with tandem-cam enveloping, and a point follower.
+//! Tyres: a Swift-like rigid-ring tyre with tandem-cam enveloping, and a point follower,
+//! both with the Magic Formula 6.1 longitudinal and lateral forces, aligning moment and
+//! combined slip (`magic.rs`, `magic_lateral.rs`, `combined.rs`) behind first-order
+//! relaxation states.
 //!
 //! # Interface for a multibody model
 //!
@@ -48,8 +51,23 @@
 //! | 5 | ring_omega_rad_s | ring spin rate [rad/s] |
 //! | 6 | residual_u_m | residual longitudinal spring deflection [m] |
 //! | 7 | tread_u_m | tread deflection, transient slip kappa' = u / a0 [m] |
+//! | 8 | tread_v_m | lateral deflection, transient slip angle alpha' = atan(v / sigma_alpha) [m] |
 //!
-//! Point follower (`point::idx`): tread_u_m, kappa' = u / sigma (differential).
+//! Point follower (`point::idx`): tread_u_m, kappa' = u / sigma; tread_v_m, alpha' =
+//! atan(v / sigma_alpha) (differential).
+//!
+//! # Lateral force and aligning moment
+//!
+//! The ring is in-plane (x, z, wind-up): it has no lateral or yaw freedom. The lateral
+//! force F_y (along the horizontal lateral direction z x e_x, ISO: positive to the left)
+//! and the aligning moment M_z (about the road normal) act on the rim at the contact point,
+//! with the moment arm from the contact point to the wheel centre. The slip angle is that
+//! of the contact point's velocity (wheel centre velocity plus the carrier's rotation, spin
+//! excluded, times the arm) in the wheel's heading frame (e_x, z x e_x): at steady state
+//! tan(alpha) = V_cy / |V_cx|. The lateral deflection v obeys v' = V_cy - |V_cx| v /
+//! sigma_alpha, sigma_alpha = |K_ya(FNOMIN)| / LATERAL_STIFFNESS: no division by the speed,
+//! so the state is defined at rest (then a lateral spring of stiffness ~ C_y), exactly as
+//! the longitudinal tread state u' = -V_s - |V_r| u / sigma is.
 //!
 //! The contact forces are not unknowns: they follow from the states and the road in every
 //! residual evaluation (see [`Tyre::outputs`]). On a road with kinks (obstacle edges) the
@@ -66,11 +84,15 @@
 //!
 //! The equations are written out in `docs/road_tyre.md`.
 
+pub(crate) mod combined;
 pub(crate) mod envelope;
 pub(crate) mod magic;
+pub(crate) mod magic_lateral;
 pub mod params;
 pub(crate) mod point;
 pub mod rig;
+mod rig_file;
+pub mod rig_lateral;
 pub(crate) mod ring;
 
 use std::path::Path;
@@ -82,6 +104,7 @@ use crate::input::InputError;
 use crate::road::Road;
 use towride_solver::VarKind;
 
+pub use combined::{MagicFormula, MfForces};
 pub use envelope::{EffectiveRoad, TandemCams};
 pub use params::TyreParams;
 pub use point::PointFollower;
@@ -147,6 +170,16 @@ pub struct ContactOutputs {
     pub slip_velocity: f64,
     /// Rolling speed at the contact [m/s].
     pub rolling_speed: f64,
+    /// Lateral contact force F_y [N], along the horizontal lateral direction z x e_x
+    /// (ISO: positive to the wheel's left).
+    pub lateral_force: f64,
+    /// Aligning moment M_z [N m] about the road normal at the contact point.
+    pub aligning_moment: f64,
+    /// Transient slip angle alpha' = atan(v / sigma_alpha) [rad] (ISO: positive when the
+    /// contact point moves to the left).
+    pub slip_angle: f64,
+    /// Velocity of the contact point along the lateral direction [m/s] and along e_x.
+    pub lateral_velocity: f64,
 }
 
 /// Which tyre model to build from a `.tir` file.
@@ -312,6 +345,27 @@ pub(crate) struct WheelFrame {
     /// Horizontal heading and lateral unit vectors (x, y).
     pub heading: [f64; 2],
     pub lateral: [f64; 2],
+}
+
+/// Velocity of the contact point `cp` (a geometric point, not a material one): the wheel
+/// centre's velocity plus the carrier's rotation (the angular velocity without the spin)
+/// times the arm; returns its components along e_x and along the horizontal lateral
+/// direction z x e_x: (V_cx, V_cy).
+pub(crate) fn contact_velocity(
+    kin: &WheelKinematics,
+    fr: &WheelFrame,
+    cp: &Vector3<f64>,
+) -> (f64, f64) {
+    let carrier = kin.omega - fr.ey * kin.omega.dot(&fr.ey);
+    let vc = kin.velocity + carrier.cross(&(cp - kin.position));
+    let ly = Vector3::new(fr.lateral[0], fr.lateral[1], 0.0);
+    (vc.dot(&fr.ex), vc.dot(&ly))
+}
+
+/// Transient slip angle alpha' = atan(v / sigma_alpha) of the lateral tread state `v`.
+#[inline]
+pub(crate) fn slip_angle(v: f64, sigma_alpha: f64) -> f64 {
+    (v / sigma_alpha).atan()
 }
 
 impl WheelFrame {

@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 
 use crate::input::InputError;
 
-use super::magic::MfLongitudinal;
+use super::combined::MagicFormula;
 use crate::input::tir::TirFile;
 
 /// Checked tyre data (SI units).
@@ -60,6 +60,9 @@ pub struct TyreParams {
     // [STRUCTURAL]
     /// Overall longitudinal stiffness of the standing tyre [N/m].
     pub cx: f64,
+    /// LATERAL_STIFFNESS: overall lateral stiffness of the standing tyre [N/m] (sets the
+    /// lateral relaxation length).
+    pub cy: f64,
     /// FREQ_LONG: natural frequency of the belt on its sidewall springs, in-plane
     /// translation (longitudinal and vertical), rim fixed [Hz].
     pub freq_long: f64,
@@ -88,9 +91,10 @@ pub struct TyreParams {
     pub ellips_max_step: f64,
     /// ELLIPS_NWIDTH: number of tandems side by side across the tread.
     pub ellips_nwidth: usize,
-    // [LONGITUDINAL_COEFFICIENTS] with [SCALING_COEFFICIENTS]
-    /// Magic Formula longitudinal force coefficients (scaling factors applied).
-    pub mf: MfLongitudinal,
+    // [LONGITUDINAL_COEFFICIENTS], [LATERAL_COEFFICIENTS], [ALIGNING_COEFFICIENTS] with
+    // [SCALING_COEFFICIENTS]
+    /// The Magic Formula: longitudinal and lateral force, aligning moment, combined slip.
+    pub mf: MagicFormula,
     /// Quantities derived from the above.
     pub d: Derived,
 }
@@ -131,6 +135,11 @@ pub struct Derived {
     pub k_slip0: f64,
     /// Relaxation length of the point follower sigma = C_Fk / C_x [m].
     pub sigma_point: f64,
+    /// Cornering stiffness at the nominal load |K_ya(FNOMIN)| [N/rad].
+    pub k_alpha0: f64,
+    /// Lateral relaxation length sigma_alpha = |K_ya(FNOMIN)| / C_y [m] (both models: the
+    /// ring has no lateral freedom, so the whole lateral compliance is in the slip state).
+    pub sigma_alpha: f64,
 }
 
 impl TyreParams {
@@ -189,6 +198,7 @@ impl TyreParams {
         let q_re0 = t.positive("VERTICAL", "Q_RE0")?;
         let q_v1 = t.non_negative("VERTICAL", "Q_V1")?;
         let cx = t.positive("STRUCTURAL", "LONGITUDINAL_STIFFNESS")?;
+        let cy = t.positive("STRUCTURAL", "LATERAL_STIFFNESS")?;
         let freq_long = t.positive("STRUCTURAL", "FREQ_LONG")?;
         let freq_windup = t.positive("STRUCTURAL", "FREQ_WINDUP")?;
         let damp_long = t.in_range("STRUCTURAL", "DAMP_LONG", 0.0, 2.0)?;
@@ -217,7 +227,7 @@ impl TyreParams {
                 format!("must be a whole number, got {nw}"),
             ));
         }
-        let mf = MfLongitudinal::from_tir(t, fnomin)?;
+        let mf = MagicFormula::from_tir(t, fnomin, r0)?;
 
         // Rigid ring (Pacejka 2012, sec. 9.2; Zegelaar 1998): the free ring on its sidewall
         // springs with the rim fixed vibrates at the file's frequencies, so
@@ -261,7 +271,12 @@ impl TyreParams {
         }
         let c_rx = 1.0 / residual_compliance;
         let a0 = half_contact_length(r0, q_ra1, q_ra2, fnomin / cz);
-        let k_slip0 = mf.slip_stiffness(fnomin);
+        let k_slip0 = mf.long.slip_stiffness(fnomin);
+        // MF 6.1 / 6.2 carry no lateral relaxation length of their own (PTY1, PTY2 are
+        // MF 5.2's): it follows from the cornering stiffness and the overall lateral
+        // stiffness, sigma_alpha = K_ya / C_Fy (Pacejka 2012 sec. 7.2; MFeval's
+        // `calculateRelax`), here at the nominal load.
+        let k_alpha0 = mf.cornering_stiffness(fnomin).abs();
         Ok(TyreParams {
             file: t.path.clone(),
             longvl,
@@ -282,6 +297,7 @@ impl TyreParams {
             q_re0,
             q_v1,
             cx,
+            cy,
             freq_long,
             freq_windup,
             damp_long,
@@ -316,6 +332,8 @@ impl TyreParams {
                 k_slip0,
                 // Pacejka 2012, sec. 7.2: sigma_kappa = C_Fkappa / C_Fx.
                 sigma_point: k_slip0 / cx,
+                k_alpha0,
+                sigma_alpha: k_alpha0 / cy,
             },
         })
     }

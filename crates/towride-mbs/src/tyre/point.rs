@@ -1,8 +1,9 @@
 //! The point-follower tyre: one contact point under the wheel centre, vertical spring and
 //! damper (VERTICAL_STIFFNESS, VERTICAL_DAMPING), first-order transient slip with the
-//! relaxation length sigma = C_Fkappa / C_x (Pacejka 2012 sec. 7.2) and the Magic Formula
-//! longitudinal force. No ring, no enveloping: it sees the road's own slope (45 deg on the
-//! thesis ramp's flank), which is why it suits flat roads and quick runs only.
+//! relaxation lengths sigma = C_Fkappa / C_x and sigma_alpha = C_Falpha / C_y (Pacejka 2012
+//! sec. 7.2), and the Magic Formula with combined slip (F_x, F_y, M_z). No ring, no
+//! enveloping: it sees the road's own slope (45 deg on the thesis ramp's flank), which is
+//! why it suits flat roads and quick runs only.
 
 use nalgebra::Vector3;
 
@@ -11,13 +12,18 @@ use towride_solver::VarKind;
 
 use super::envelope::EffectiveRoad;
 use super::params::TyreParams;
-use super::{ramp, smooth_step, ContactOutputs, HubLoad, WheelFrame, WheelKinematics};
+use super::{
+    contact_velocity, ramp, slip_angle, smooth_step, ContactOutputs, HubLoad, WheelFrame,
+    WheelKinematics,
+};
 
 /// State indices of the point follower.
 pub mod idx {
     /// Tread (carcass) deflection, kappa' = u / sigma [m].
     pub const U: usize = 0;
-    pub const N: usize = 1;
+    /// Lateral tread (carcass) deflection, tan(alpha') = v / sigma_alpha [m].
+    pub const V: usize = 1;
+    pub const N: usize = 2;
 }
 
 /// The point-follower tyre.
@@ -32,6 +38,9 @@ struct Eval {
     out: ContactOutputs,
     v_slip: f64,
     v_roll: f64,
+    /// Contact point velocity along e_x and the lateral direction [m/s].
+    v_cx: f64,
+    v_cy: f64,
 }
 
 impl PointFollower {
@@ -40,24 +49,24 @@ impl PointFollower {
         PointFollower { p }
     }
 
-    /// Number of states (one: the tread deflection).
+    /// Number of states (two: the longitudinal and lateral tread deflections).
     pub fn n_states(&self) -> usize {
         idx::N
     }
 
     /// Names of the states.
     pub fn state_names(&self) -> Vec<String> {
-        vec!["tread_u_m".to_string()]
+        vec!["tread_u_m".to_string(), "tread_v_m".to_string()]
     }
 
     /// Differential or algebraic, per state.
     pub fn var_kinds(&self) -> Vec<VarKind> {
-        vec![VarKind::Differential]
+        vec![VarKind::Differential; idx::N]
     }
 
-    /// Absolute tolerance of the tread deflection (1 um), times `scale`.
+    /// Absolute tolerance of the tread deflections (1 um), times `scale`.
     pub fn atol(&self, scale: f64) -> Vec<f64> {
-        vec![1e-6 * scale]
+        vec![1e-6 * scale; idx::N]
     }
 
     fn eval(&self, kin: &WheelKinematics, road: &Road, x: &[f64]) -> Eval {
@@ -83,12 +92,16 @@ impl PointFollower {
         let v_slip = kin.velocity.dot(&t) - v_roll;
         let sigma = p.d.sigma_point;
         let kappa = x[idx::U] / sigma;
-        let f_x = p.mf.force(kappa, f_n);
-        let fc = n * f_n + t * f_x;
+        let alpha = slip_angle(x[idx::V], p.d.sigma_alpha);
         let cp = Vector3::new(px, py, z_road);
+        let (v_cx, v_cy) = contact_velocity(kin, &fr, &cp);
+        let mf = p.mf.forces(kappa, alpha, f_n, v_cx >= 0.0);
+        let f_x = mf.fx;
+        let ly = Vector3::new(fr.lateral[0], fr.lateral[1], 0.0);
+        let fc = n * f_n + t * f_x + ly * mf.fy;
         let hub = HubLoad {
             force: fc,
-            torque: (cp - kin.position).cross(&fc),
+            torque: (cp - kin.position).cross(&fc) + n * mf.mz,
         };
         let out = ContactOutputs {
             normal_force: f_n,
@@ -109,12 +122,18 @@ impl PointFollower {
             deflection: rho,
             slip_velocity: v_slip,
             rolling_speed: v_roll,
+            lateral_force: mf.fy,
+            aligning_moment: mf.mz,
+            slip_angle: alpha,
+            lateral_velocity: v_cy,
         };
         Eval {
             hub,
             out,
             v_slip,
             v_roll,
+            v_cx,
+            v_cy,
         }
     }
 
@@ -129,7 +148,13 @@ impl PointFollower {
         res: &mut [f64],
     ) -> HubLoad {
         let e = self.eval(kin, road, x);
-        res[idx::U] = xdot[idx::U] + e.v_slip + e.v_roll.abs() / self.p.d.sigma_point * x[idx::U];
+        let d = &self.p.d;
+        res[idx::U] = xdot[idx::U] + e.v_slip + e.v_roll.abs() / d.sigma_point * x[idx::U];
+        // Lateral transient slip (Pacejka 2012 sec. 7.2, ISO signs): the contact point
+        // slides sideways at V_cy, the deflection relaxes over sigma_alpha of travel. At
+        // standstill v' = V_cy: the tyre is a lateral spring of stiffness |K_ya| / sigma_alpha
+        // = C_y, so nothing divides by the speed.
+        res[idx::V] = xdot[idx::V] - e.v_cy + e.v_cx.abs() / d.sigma_alpha * x[idx::V];
         e.hub
     }
 
@@ -153,6 +178,10 @@ impl PointFollower {
             0.0
         };
         x[idx::U] = kappa * self.p.d.sigma_point;
+        // Steady side slip tan(alpha) = V_cy / |V_cx|; at rest no deflection.
+        if e.v_cx.abs() > 1e-9 {
+            x[idx::V] = e.v_cy / e.v_cx.abs() * self.p.d.sigma_alpha;
+        }
         x
     }
 }

@@ -9,24 +9,23 @@
 //!   moves forward at constant speed and spins freely. Unknowns: the tyre's states, then
 //!   the wheel centre height, its vertical velocity and the rim spin rate.
 //!
-//! The solver builds the iteration matrix by finite differences (the systems have 2 to
-//! 11 unknowns, below the dense limit). A rig file (TOML, read with
+//! - [`crate::tyre::rig_lateral::LateralRig`]: side slip at a set slip angle (its own
+//!   module).
+//!
+//! The solver builds the iteration matrix by finite differences (the systems have 3 to
+//! 12 unknowns, below the dense limit). A rig file (TOML, `rig_file.rs`, read with
 //! [`crate::input::Source`]) names the tyre, the road and the rig; see
 //! `docs/road_tyre.md` and `scenes/tyre_rigs/`.
-
-use std::path::{Path, PathBuf};
 
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
-use crate::input::InputError;
-use crate::path;
 use crate::road::Road;
 use towride_solver::consistent_index1;
 use towride_solver::DaeMethod;
 use towride_solver::{Advance, Bdf, DaeProblem, SolverError, SolverOptions, Stats, VarKind};
 
-use super::{Tyre, TyreKind, WheelKinematics};
+use super::{Tyre, WheelKinematics};
 
 /// How the rim of the cleat rig turns.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -354,6 +353,16 @@ pub struct RigSample {
     pub effective_height_m: f64,
     /// Effective forward slope tan(beta) [-].
     pub effective_slope: f64,
+    /// Lateral load on the rim (world y) [N] and its moment about world z [N m].
+    pub hub_fy_n: f64,
+    /// Moment of the load on the rim about world z [N m].
+    pub hub_mz_n_m: f64,
+    /// Lateral contact force F_y [N] and aligning moment M_z [N m].
+    pub lateral_force_n: f64,
+    /// Aligning moment M_z [N m].
+    pub aligning_moment_n_m: f64,
+    /// Transient slip angle alpha' [rad].
+    pub slip_angle_rad: f64,
 }
 
 /// A finished rig run.
@@ -368,7 +377,7 @@ pub struct RigRun {
 }
 
 /// Integrates a rig from consistent initial values to `t_end`, sampling every `dt`.
-fn integrate<P: DaeProblem>(
+pub(crate) fn integrate<P: DaeProblem>(
     prob: &P,
     y0: Vec<f64>,
     yp0: Vec<f64>,
@@ -398,7 +407,13 @@ fn integrate<P: DaeProblem>(
     })
 }
 
-fn sample_of(tyre: &Tyre, road: &Road, t: f64, kin: &WheelKinematics, x: &[f64]) -> RigSample {
+pub(crate) fn sample_of(
+    tyre: &Tyre,
+    road: &Road,
+    t: f64,
+    kin: &WheelKinematics,
+    x: &[f64],
+) -> RigSample {
     let o = tyre.outputs(kin, road, x);
     let hub = tyre.hub_load(kin, road, x);
     RigSample {
@@ -416,6 +431,11 @@ fn sample_of(tyre: &Tyre, road: &Road, t: f64, kin: &WheelKinematics, x: &[f64])
         deflection_m: o.deflection,
         effective_height_m: o.effective.height,
         effective_slope: o.effective.tan_slope,
+        hub_fy_n: hub.force.y,
+        hub_mz_n_m: hub.torque.z,
+        lateral_force_n: o.lateral_force,
+        aligning_moment_n_m: o.aligning_moment,
+        slip_angle_rad: o.slip_angle,
     }
 }
 
@@ -469,209 +489,4 @@ pub fn rig_options(tyre: &Tyre, rtol: f64, extra_atol: &[f64]) -> SolverOptions 
     }
 }
 
-// ---------------------------------------------------------------------------------------
-// Rig files.
-
-/// A rig file: `[tyre]`, `[road]`, `[rig]`, optional `[solver]` and `[output]`.
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RigFile {
-    tyre: TyreRef,
-    road: RoadRef,
-    rig: RigSection,
-    #[serde(default)]
-    solver: SolverSection,
-    output: OutputSection,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct TyreRef {
-    file: String,
-    model: TyreKind,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RoadRef {
-    file: String,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields, tag = "kind", rename_all = "snake_case")]
-enum RigSection {
-    Cleat {
-        speed_m_s: f64,
-        start_x_m: f64,
-        duration_s: f64,
-        load_n: f64,
-        spin: Spin,
-        rim_iyy_kg_m2: f64,
-    },
-    Quarter {
-        speed_m_s: f64,
-        start_x_m: f64,
-        duration_s: f64,
-        mass_kg: f64,
-        rim_iyy_kg_m2: f64,
-        damper_n_s_m: f64,
-        /// Release height above first contact [m]; absent = start in equilibrium.
-        #[serde(default)]
-        drop_height_m: Option<f64>,
-    },
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct SolverSection {
-    #[serde(default = "default_rtol")]
-    rtol: f64,
-}
-
-fn default_rtol() -> f64 {
-    1e-6
-}
-
-impl Default for SolverSection {
-    fn default() -> Self {
-        SolverSection {
-            rtol: default_rtol(),
-        }
-    }
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct OutputSection {
-    dt_s: f64,
-}
-
-/// A rig read from a file, ready to run.
-pub enum RigSetup {
-    /// A cleat rig run for `duration` seconds.
-    Cleat {
-        /// The rig.
-        rig: CleatRig,
-        /// Run length [s].
-        duration: f64,
-    },
-    /// A quarter rig run for `duration` seconds, dropped or from rest.
-    Quarter {
-        /// The rig.
-        rig: QuarterRig,
-        /// Run length [s].
-        duration: f64,
-        /// Drop height above first contact [m]; `None` starts at rest in equilibrium.
-        drop: Option<f64>,
-    },
-}
-
-/// A rig file read and checked.
-pub struct RigCase {
-    /// The rig file.
-    pub file: PathBuf,
-    /// The rig with its run settings.
-    pub setup: RigSetup,
-    /// Relative tolerance of the run (file's `[solver] rtol`).
-    pub rtol: f64,
-    /// Output sample interval [s] (file's `[output] dt_s`).
-    pub dt: f64,
-}
-
-impl RigCase {
-    /// Reads and checks a rig file; the tyre and road paths are relative to it.
-    pub fn from_file(path: &Path, loader: &crate::input::Loader) -> Result<RigCase, InputError> {
-        let src = loader.toml(path)?;
-        let f: RigFile = src.parse()?;
-        let dir = path.parent().unwrap_or(Path::new("."));
-        let tyre = Tyre::from_file(&dir.join(&f.tyre.file), f.tyre.model, loader)?;
-        let road = Road::from_file(&dir.join(&f.road.file), loader)?;
-        let rtol = src.positive(&path!["solver", "rtol"], f.solver.rtol)?;
-        let dt = src.positive(&path!["output", "dt_s"], f.output.dt_s)?;
-        let setup = match f.rig {
-            RigSection::Cleat {
-                speed_m_s,
-                start_x_m,
-                duration_s,
-                load_n,
-                spin,
-                rim_iyy_kg_m2,
-            } => {
-                src.non_negative(&path!["rig", "speed_m_s"], speed_m_s)?;
-                src.finite(&path!["rig", "start_x_m"], start_x_m)?;
-                src.positive(&path!["rig", "duration_s"], duration_s)?;
-                src.positive(&path!["rig", "load_n"], load_n)?;
-                src.positive(&path!["rig", "rim_iyy_kg_m2"], rim_iyy_kg_m2)?;
-                RigSetup::Cleat {
-                    rig: CleatRig::new(
-                        tyre,
-                        road,
-                        speed_m_s,
-                        start_x_m,
-                        load_n,
-                        spin,
-                        rim_iyy_kg_m2,
-                    ),
-                    duration: duration_s,
-                }
-            }
-            RigSection::Quarter {
-                speed_m_s,
-                start_x_m,
-                duration_s,
-                mass_kg,
-                rim_iyy_kg_m2,
-                damper_n_s_m,
-                drop_height_m,
-            } => {
-                src.non_negative(&path!["rig", "speed_m_s"], speed_m_s)?;
-                src.finite(&path!["rig", "start_x_m"], start_x_m)?;
-                src.positive(&path!["rig", "duration_s"], duration_s)?;
-                src.positive(&path!["rig", "mass_kg"], mass_kg)?;
-                src.positive(&path!["rig", "rim_iyy_kg_m2"], rim_iyy_kg_m2)?;
-                src.non_negative(&path!["rig", "damper_n_s_m"], damper_n_s_m)?;
-                if let Some(d) = drop_height_m {
-                    src.non_negative(&path!["rig", "drop_height_m"], d)?;
-                }
-                RigSetup::Quarter {
-                    rig: QuarterRig::new(
-                        tyre,
-                        road,
-                        speed_m_s,
-                        start_x_m,
-                        mass_kg,
-                        rim_iyy_kg_m2,
-                        damper_n_s_m,
-                    ),
-                    duration: duration_s,
-                    drop: drop_height_m,
-                }
-            }
-        };
-        Ok(RigCase {
-            file: path.to_path_buf(),
-            setup,
-            rtol,
-            dt,
-        })
-    }
-
-    /// Runs the case at its own tolerance (or `rtol` if given).
-    pub fn run(&self, rtol: Option<f64>) -> Result<RigRun, SolverError> {
-        let rtol = rtol.unwrap_or(self.rtol);
-        match &self.setup {
-            RigSetup::Cleat { rig, duration } => {
-                let opts = rig_options(&rig.tyre, rtol, &[1e-3]);
-                rig.run(*duration, self.dt, &opts)
-            }
-            RigSetup::Quarter {
-                rig,
-                duration,
-                drop,
-            } => {
-                let opts = rig_options(&rig.tyre, rtol, &[1e-6, 1e-4, 1e-3]);
-                rig.run(*drop, *duration, self.dt, &opts)
-            }
-        }
-    }
-}
+pub use super::rig_file::{LateralSweep, RigCase, RigSetup};

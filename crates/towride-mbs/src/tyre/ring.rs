@@ -15,7 +15,10 @@ use towride_solver::VarKind;
 
 use super::envelope::{EffectiveRoad, TandemCams};
 use super::params::TyreParams;
-use super::{ramp, smooth_step, ContactOutputs, HubLoad, WheelFrame, WheelKinematics};
+use super::{
+    contact_velocity, ramp, slip_angle, smooth_step, ContactOutputs, HubLoad, WheelFrame,
+    WheelKinematics,
+};
 
 /// State indices of the rigid-ring tyre.
 pub mod idx {
@@ -33,7 +36,9 @@ pub mod idx {
     pub const UR: usize = 6;
     /// Tread deflection of the contact patch, kappa' = u_t / a0 [m].
     pub const UT: usize = 7;
-    pub const N: usize = 8;
+    /// Lateral deflection (carcass and tread), tan(alpha') = v / sigma_alpha [m].
+    pub const VT: usize = 8;
+    pub const N: usize = 9;
 }
 
 const NAMES: [&str; idx::N] = [
@@ -45,6 +50,7 @@ const NAMES: [&str; idx::N] = [
     "ring_omega_rad_s",
     "residual_u_m",
     "tread_u_m",
+    "tread_v_m",
 ];
 
 /// The rigid-ring tyre.
@@ -68,6 +74,9 @@ struct Eval {
     v_slip: f64,
     v_roll: f64,
     f_x: f64,
+    /// Contact point velocity along e_x and the lateral direction [m/s].
+    v_cx: f64,
+    v_cy: f64,
 }
 
 impl RigidRing {
@@ -150,11 +159,14 @@ impl RigidRing {
         let v_slip = v_c - v_roll;
         let sigma = d.a0;
         let kappa = x[idx::UT] / sigma;
-        let f_x = p.mf.force(kappa, f_n);
-
-        // Contact force on the ring.
-        let fc = n * f_n + t * f_x;
+        let alpha = slip_angle(x[idx::VT], d.sigma_alpha);
         let cp = pb - n * h;
+        let (v_cx, v_cy) = contact_velocity(kin, &fr, &cp);
+        let mf = p.mf.forces(kappa, alpha, f_n, v_cx >= 0.0);
+        let f_x = mf.fx;
+
+        // In-plane contact force on the ring.
+        let fc = n * f_n + t * f_x;
         let m_b = (cp - pb).cross(&fc);
         let m_spin = m_b.dot(&fr.ey);
         let f_out = fr.ey * fc.dot(&fr.ey);
@@ -173,8 +185,15 @@ impl RigidRing {
             fsw_z + fc.dot(&fr.ez) + g.dot(&fr.ez),
         ];
         let windup = d.c_theta * x[idx::THETA] + d.k_theta * (omega_b - omega_w);
-        let f_hub = -(fr.ex * fsw_x + fr.ez * fsw_z) + f_out + fr.ey * g.dot(&fr.ey);
-        let m_hub = fr.ey * windup + (m_b - fr.ey * m_spin) + offset.cross(&f_out);
+        // The lateral force and the aligning moment act on the rim at the contact point
+        // (the ring has no lateral or yaw freedom of its own).
+        let f_lat = Vector3::new(fr.lateral[0], fr.lateral[1], 0.0) * mf.fy;
+        let f_hub = -(fr.ex * fsw_x + fr.ez * fsw_z) + f_out + fr.ey * g.dot(&fr.ey) + f_lat;
+        let m_hub = fr.ey * windup
+            + (m_b - fr.ey * m_spin)
+            + offset.cross(&f_out)
+            + (cp - kin.position).cross(&f_lat)
+            + n * mf.mz;
         let _ = xdot_ur;
         Eval {
             hub: HubLoad {
@@ -193,12 +212,18 @@ impl RigidRing {
                 deflection: rho_tot,
                 slip_velocity: v_slip,
                 rolling_speed: v_roll,
+                lateral_force: mf.fy,
+                aligning_moment: mf.mz,
+                slip_angle: alpha,
+                lateral_velocity: v_cy,
             },
             f_ring,
             m_spin,
             v_slip,
             v_roll,
             f_x,
+            v_cx,
+            v_cy,
         }
     }
 
@@ -231,6 +256,9 @@ impl RigidRing {
         // slip plus the residual spring's rate.
         res[idx::UT] =
             xdot[idx::UT] + e.v_slip + xdot[idx::UR] + e.v_roll.abs() / d.a0 * x[idx::UT];
+        // Lateral transient slip (Pacejka 2012 sec. 7.2, ISO signs), the same law as the
+        // point follower's: v' = V_cy - |V_cx| v / sigma_alpha, sigma_alpha = |K_ya| / C_y.
+        res[idx::VT] = xdot[idx::VT] - e.v_cy + e.v_cx.abs() / d.sigma_alpha * x[idx::VT];
         e.hub
     }
 
@@ -257,6 +285,14 @@ impl RigidRing {
         x[idx::VBX] = kin.velocity.dot(&fr.ex);
         x[idx::VBZ] = kin.velocity.dot(&fr.ez);
         x[idx::OMEGA_B] = omega_w;
+        // Steady side slip tan(alpha) = V_cy / |V_cx| (the contact point's velocity does
+        // not depend on the ring's in-plane offset, whose rate is zero at steady state).
+        {
+            let e = self.eval(kin, road, &x, 0.0);
+            if e.v_cx.abs() > 1e-9 {
+                x[idx::VT] = e.v_cy / e.v_cx.abs() * d.sigma_alpha;
+            }
+        }
         // Given the ring offset, close the slip and the wind-up at steady state.
         let settle = |x: &mut Vec<f64>| {
             for _ in 0..50 {
