@@ -17,13 +17,22 @@ use towride_solver::SolverOptions;
 
 /// A vehicle file at rest on a flat road: the vehicle, its system and the equilibrium.
 pub(crate) fn at_rest(file: &str, case: Option<&str>) -> (Vehicle, System, Vec<f64>, Vec<f64>) {
+    at_rest_with(file, case, &towride_mbs::input::Loader::new())
+}
+
+/// [`at_rest`] with the files read through `loader` (its overrides applied).
+pub(crate) fn at_rest_with(
+    file: &str,
+    case: Option<&str>,
+    loader: &towride_mbs::input::Loader,
+) -> (Vehicle, System, Vec<f64>, Vec<f64>) {
     let mut v = vehicle::load(
         Path::new(file),
         &Options {
             load_case: case.map(String::from),
             ..Default::default()
         },
-        &towride_mbs::input::Loader::new(),
+        loader,
     )
     .unwrap();
     v.model.road = Some(Road::flat(0.0));
@@ -215,7 +224,19 @@ fn half_car(v: &Vehicle) -> (f64, f64) {
 
 #[test]
 fn car_body_and_wheel_hop_frequencies() {
-    let (v, sys, y, _) = at_rest(repo!("vehicles/fabia.toml"), None);
+    // On floating pads, as a ride-frequency rig measures: at rest the tyre's lateral
+    // stiffness resists the McPherson's track change and stiffens the front (bounce
+    // 1.42 -> 1.48 Hz), which the half-car estimate (wheel rate and tyre rate in series)
+    // leaves out; rolling, the lateral slip relaxes that resistance.
+    let pads =
+        towride_mbs::input::Loader::with_overrides(vec![towride_mbs::input::Override::program(
+            "car_185_60r14.tir",
+            "STRUCTURAL.LATERAL_STIFFNESS",
+            // The least the file's bounds accept, 1/86 of the tyre's.
+            "1e3",
+            "floating pads",
+        )]);
+    let (v, sys, y, _) = at_rest_with(repo!("vehicles/fabia.toml"), None, &pads);
     let lin = linearise(&sys, 0.0, &y).unwrap();
     let unsprung = |n: &str| {
         ["wheel_", "knuckle_", "arm_", "lca_"]
@@ -223,11 +244,20 @@ fn car_body_and_wheel_hop_frequencies() {
             .any(|p| n.starts_with(p))
     };
     // Body modes: the car body dominates, lightly damped, above the rigid-body and
-    // tyre-slip roots.
-    let body: Vec<f64> = lin
+    // tyre-slip roots. The tyres' lateral stiffness couples the body's lateral, roll and
+    // yaw motions at rest (sway about 1.4 Hz, yaw about 2.3 Hz, roll about 3.4 Hz): the
+    // half-car estimate is for the modes in the vertical plane, bounce and pitch.
+    let share = |m: &towride_mbs::model::linear::Mode, dirs: &[&str]| -> f64 {
+        m.motions
+            .iter()
+            .filter(|s| dirs.iter().any(|d| s.name == format!("car_body {d}")))
+            .map(|s| s.share)
+            .sum()
+    };
+    let body_modes: Vec<&towride_mbs::model::linear::Mode> = lin
         .modes
         .iter()
-        .filter(|m| m.undamped_hz > 0.8 && m.undamped_hz < 3.0 && m.damping_ratio < 0.5)
+        .filter(|m| m.undamped_hz > 0.8 && m.undamped_hz < 4.0 && m.damping_ratio < 0.5)
         .filter(|m| {
             // At 1-2 Hz the engine moves with the body on its 6-10 Hz mounts: both
             // together are the sprung mass.
@@ -239,9 +269,20 @@ fn car_body_and_wheel_hop_frequencies() {
                 .sum();
             m.bodies.first().is_some_and(|b| b.name == "car_body") && sprung > 0.8
         })
+        .collect();
+    let body: Vec<f64> = body_modes
+        .iter()
+        .filter(|m| share(m, &["bounce", "pitch"]) > share(m, &["lateral", "roll", "yaw"]))
         .map(|m| m.undamped_hz)
         .collect();
-    assert_eq!(body.len(), 3, "bounce, pitch, roll: {body:?}");
+    assert_eq!(body.len(), 2, "bounce, pitch: {body:?}");
+    // Roll stays a body mode, on the springs and the tyres' lateral stiffness.
+    assert!(
+        body_modes
+            .iter()
+            .any(|m| m.motions.first().is_some_and(|s| s.name == "car_body roll")),
+        "no roll-dominated body mode below 4 Hz"
+    );
     let (lo, hi) = half_car(&v);
     for (f, est) in body.iter().take(2).zip([lo, hi]) {
         assert!((1.0..=1.8).contains(f), "body mode {f} Hz");
