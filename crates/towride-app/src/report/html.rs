@@ -87,8 +87,9 @@ pub(crate) fn quantised(out: &mut String, values: impl Iterator<Item = f64> + Cl
         .filter(|v| v.is_finite())
         .fold(0.0f64, |m, v| m.max(v.abs()));
     let scale = if peak > 0.0 { peak / 999_999.0 } else { 1.0 };
-    out.push_str("{\"s\":");
-    num(out, scale);
+    // The scale exactly (shortest round-trip form): six digits would put up to 5e-6 of
+    // the peak into every value q s.
+    let _ = write!(out, "{{\"s\":{scale:e}");
     out.push_str(",\"q\":[");
     for (k, v) in values.enumerate() {
         if k > 0 {
