@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use clap::Args;
 
-use towride_app::job::{ChannelSummary, Job, RunResult, RunStatus, Signal};
+use towride_app::job::{convergence, ChannelSummary, Job, RunResult, RunStatus, Signal};
 use towride_app::report::plan_run::PlanRun;
 use towride_app::scene::plan;
 use towride_app::scene::{self, channels, Changes, SceneError};
@@ -51,6 +51,14 @@ pub struct RunArgs {
     /// With --modes-from: the strain-energy share a mode needs [%] (default 1).
     #[arg(long, requires = "modes_from", value_parser = crate::bounded::share_pct)]
     pub(crate) modes_share: Option<f64>,
+    /// Check convergence: run the job again at rtol and atol ten times tighter and judge
+    /// every reported channel's max, min and RMS (band-limited where the scene has an
+    /// acquisition chain) against it; the verdict goes into summary.json and the report.
+    #[arg(long)]
+    pub(crate) check: bool,
+    /// With --check: the relative difference a converged channel may show [%] (default 2).
+    #[arg(long, requires = "check", value_parser = crate::bounded::share_pct)]
+    pub(crate) check_threshold: Option<f64>,
 }
 
 pub fn run(a: &RunArgs) -> CliResult {
@@ -91,23 +99,31 @@ pub fn run(a: &RunArgs) -> CliResult {
     if a.list_names {
         return list_names(a, &loader, run_modes);
     }
+    let check = Check::of(a);
     if !plan::is_plan(&a.file) {
-        let job = if scene::is_scene(&a.file) {
-            let changes = Changes {
-                animation_rate_hz: a.animation_rate_hz,
-                run_modes,
-                ..Changes::default()
-            };
-            Job::from_scene_file(&a.file, &changes, &loader)?
-        } else {
-            let mut job = Job::from_file(&a.file, &loader)?;
-            if let Some(r) = a.animation_rate_hz {
-                job.settings.animation_rate = r;
-            }
-            job
+        let build = || -> Result<Job, Box<dyn std::error::Error>> {
+            Ok(if scene::is_scene(&a.file) {
+                let changes = Changes {
+                    animation_rate_hz: a.animation_rate_hz,
+                    run_modes: run_modes.clone(),
+                    ..Changes::default()
+                };
+                Job::from_scene_file(&a.file, &changes, &loader)?
+            } else {
+                let mut job = Job::from_file(&a.file, &loader)?;
+                if let Some(r) = a.animation_rate_hz {
+                    job.settings.animation_rate = r;
+                }
+                job
+            })
+        };
+        let job = build()?;
+        let companion = match check {
+            Some(_) => Some(build()?.tightened(convergence::TIGHTEN)),
+            None => None,
         };
         crate::interrupt::install();
-        let res = run_job(&job, &a.out, a.json)?;
+        let res = run_job(&job, companion.as_ref().zip(check), &a.out, a.json)?;
         if a.json && job.scene.is_some() {
             // The summary plus the assumed inputs, as the text output lists them.
             // Plain data: serialisation cannot fail.
@@ -152,11 +168,19 @@ pub fn run(a: &RunArgs) -> CliResult {
         }
         let mut changes = c.changes.clone();
         changes.run_modes.clone_from(&run_modes);
-        let mut job = Job::from_scene(scene::load_with(&c.scene, &changes, &loader)?)?;
-        if let Some(r) = a.animation_rate_hz {
-            job.settings.animation_rate = r;
-        }
-        let res = run_job(&job, &out, a.json)?;
+        let build = || -> Result<Job, Box<dyn std::error::Error>> {
+            let mut job = Job::from_scene(scene::load_with(&c.scene, &changes, &loader)?)?;
+            if let Some(r) = a.animation_rate_hz {
+                job.settings.animation_rate = r;
+            }
+            Ok(job)
+        };
+        let job = build()?;
+        let companion = match check {
+            Some(_) => Some(build()?.tightened(convergence::TIGHTEN)),
+            None => None,
+        };
+        let res = run_job(&job, companion.as_ref().zip(check), &a.out, a.json)?;
         code = code.max(exit_code(&res, &out));
         table.push(c, &out, Some(&res));
     }
@@ -224,8 +248,30 @@ fn list_names(a: &RunArgs, loader: &Loader, run_modes: Option<Arc<RunModes>>) ->
     Ok(0)
 }
 
-/// Runs one job, writes its files and, without `--json`, prints its summary.
-fn run_job(job: &Job, out: &Path, json: bool) -> Result<RunResult, Box<dyn std::error::Error>> {
+/// `--check`: its relative threshold.
+#[derive(Clone, Copy, Debug)]
+struct Check {
+    threshold: f64,
+}
+
+impl Check {
+    fn of(a: &RunArgs) -> Option<Check> {
+        a.check.then(|| Check {
+            threshold: a
+                .check_threshold
+                .map_or(convergence::DEFAULT_THRESHOLD, |p| p / 100.0),
+        })
+    }
+}
+
+/// Runs one job (and its companion at a tighter tolerance for a convergence check),
+/// writes its files and, without `--json`, prints its summary.
+fn run_job(
+    job: &Job,
+    check: Option<(&Job, Check)>,
+    out: &Path,
+    json: bool,
+) -> Result<RunResult, Box<dyn std::error::Error>> {
     if !json {
         for w in &job.warnings {
             eprintln!("warning: {w}");
@@ -234,6 +280,20 @@ fn run_job(job: &Job, out: &Path, json: bool) -> Result<RunResult, Box<dyn std::
     let samples = (job.settings.t_end * job.settings.sample_rate).round() as u64;
     let pb = crate::progress(samples, json);
     let mut res = job.run(&pb)?;
+    if let Some((companion, c)) = check.filter(|_| !crate::interrupt::requested()) {
+        let pb = crate::progress(samples, json);
+        let tight = companion.run(&pb)?;
+        res.summary.convergence = convergence::verdict(&res, &tight, job.solver.rtol, c.threshold);
+        if res.summary.convergence.is_none() && !json {
+            eprintln!(
+                "warning: no convergence verdict: {}",
+                match tight.failure() {
+                    Some((e, t)) => format!("the companion run stopped at t = {t:.6} s: {e}"),
+                    None => "the run or its companion did not complete".into(),
+                }
+            );
+        }
+    }
     towride_app::report::write_run(&mut res, &job.system, out)?;
     if !json {
         print_summary(&res);
@@ -292,10 +352,23 @@ fn print_summary(r: &RunResult) {
             a.suffix, a.description, a.grid_rate_hz
         );
     }
+    let verdict = s.convergence.as_ref();
     let line = |name: &str, c: &ChannelSummary| {
         let e = &c.extremes;
+        // A channel the convergence check judged and failed says so where its number is.
+        let flag = verdict
+            .and_then(|v| v.channels.get(name))
+            .filter(|k| !k.converged)
+            .map_or(String::new(), |k| {
+                format!(
+                    "  NOT CONVERGED (max {:.1} %, min {:.1} %, RMS {:.1} %)",
+                    100.0 * k.max_diff,
+                    100.0 * k.min_diff,
+                    100.0 * k.rms_diff
+                )
+            });
         println!(
-            "  {name:<30} min {:>11.4e} at {:>7.4} s   max {:>11.4e} at {:>7.4} s   |peak| {:>10.4e}  [{}]",
+            "  {name:<30} min {:>11.4e} at {:>7.4} s   max {:>11.4e} at {:>7.4} s   |peak| {:>10.4e}  [{}]{flag}",
             e.min, e.t_min, e.max, e.t_max, e.abs_peak, c.unit
         );
     };
@@ -320,6 +393,25 @@ fn print_summary(r: &RunResult) {
             }
             None => line(name, c),
         }
+    }
+    if let Some(v) = verdict {
+        let judged = v.channels.len();
+        println!(
+            "convergence (--check: rtol {:e} against {:e}, {} steps; max, min and RMS within {} %): {}",
+            v.rtol,
+            v.check_rtol,
+            v.check_steps,
+            100.0 * v.threshold,
+            if v.converged {
+                format!("all {judged} judged channels converged")
+            } else {
+                format!(
+                    "{} of {judged} channels NOT converged: {}",
+                    v.failing.len(),
+                    v.failing.join(", ")
+                )
+            }
+        );
     }
 }
 

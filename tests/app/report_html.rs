@@ -99,7 +99,8 @@ fn report_is_self_contained_and_carries_the_run() {
         let got = qk.as_f64().unwrap() * s;
         assert!(
             (got - res.samples.rows[k][c]).abs() <= 1e-6 * peak,
-            "sample {k}: {got} vs {}", res.samples.rows[k][c]
+            "sample {k}: {got} vs {}",
+            res.samples.rows[k][c]
         );
     }
     // Step history and spectra are there; the summary records the page.

@@ -12,6 +12,7 @@ macro_rules! repo {
 mod validate_sim;
 
 mod basics;
+mod check;
 mod modes;
 mod provenance;
 mod reliability;

@@ -22,6 +22,7 @@
 //! ```
 
 pub mod band;
+pub mod convergence;
 pub mod ringing;
 mod summary;
 
@@ -259,6 +260,14 @@ impl Job {
             }
         }
         Ok(out)
+    }
+
+    /// The same job at tolerances `factor` times tighter (rtol and every atol divided by
+    /// it): the companion of a convergence check ([`convergence`]).
+    pub fn tightened(mut self, factor: f64) -> Job {
+        self.solver.rtol /= factor;
+        self.solver.atol.iter_mut().for_each(|a| *a /= factor);
+        self
     }
 
     /// Starts and integrates the job, sampling every 1/rate seconds. A solver failure

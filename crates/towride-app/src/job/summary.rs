@@ -365,6 +365,10 @@ pub struct RunSummary {
     /// Per channel, by name (raw and band-limited): unit, which it is, max, min and
     /// |peak| with their times.
     pub channels: BTreeMap<String, ChannelSummary>,
+    /// The convergence verdict against a companion run at a tighter tolerance (`run
+    /// --check`); `None` when not asked for.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub convergence: Option<super::convergence::Verdict>,
     /// The CSV written, once written.
     pub outputs_csv: Option<String>,
     /// The plot page written (or why not), once written.
@@ -452,6 +456,7 @@ impl RunSummary {
             plots: None,
             report: None,
             report_wall_s: None,
+            convergence: None,
         }
     }
 
