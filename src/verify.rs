@@ -45,6 +45,9 @@ pub struct VerifyArgs {
     /// (`newton_tol_growth_cap`, see docs/solver.md).
     #[arg(long)]
     newton_tol_cap: bool,
+    /// BDF stability limit detection (`stability_limit_detection`, see docs/solver.md).
+    #[arg(long)]
+    stability_limit_detection: bool,
 }
 
 pub fn run(a: &VerifyArgs) -> CliResult {
@@ -58,6 +61,7 @@ pub fn run(a: &VerifyArgs) -> CliResult {
             let opts = towride_solver::SolverOptions {
                 method: a.method.into(),
                 newton_tol_growth_cap: a.newton_tol_cap,
+                stability_limit_detection: a.stability_limit_detection,
                 // rtol = atol = h0 for RADAU5 in the test set (`docs/data/radau5_testset.csv`).
                 h_init: radau.then_some(tol),
                 ..towride_solver::SolverOptions::with_tol(tol, tol * b.atol_scale)

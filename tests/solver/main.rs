@@ -5,4 +5,5 @@
 mod index1;
 mod pendulum;
 mod radau;
+mod stald;
 mod testset;

@@ -196,6 +196,12 @@ pub struct SolverOptions {
     /// before the trailer's impact was still recombined 112 steps later and the
     /// fixed-coefficient run at rtol 3e-3 failed there.
     pub recombine_max_age: usize,
+    /// BDF stability limit detection (STALD, CVODE's `CVodeSetStabLimDet`; TOML key
+    /// `stability_limit_detection`): from the scaled derivatives of the last steps at
+    /// orders 3..5, detect a lightly damped mode that the step size holds inside the
+    /// order's instability region and lower the order (`bdf/stald.rs`). BDF only (both
+    /// variants); Radau IIA is L-stable and ignores it.
+    pub stability_limit_detection: bool,
     /// Settings of the Radau IIA method (`method = "radau5"`).
     pub radau: RadauOptions,
     /// Record (time, step, order) of every accepted step in `Stats::step_history`.
@@ -229,6 +235,7 @@ impl Default for SolverOptions {
             matrix_transport: true,
             jacobian_recombine: false,
             recombine_max_age: 50,
+            stability_limit_detection: false,
             radau: RadauOptions::default(),
             record_steps: false,
         }
@@ -379,6 +386,11 @@ pub struct Stats {
     pub last_step: f64,
     /// Accepted steps per order 1..=5 (Radau IIA: all at 5, its classical order).
     pub order_counts: [usize; 5],
+    /// Order reductions dictated by stability limit detection
+    /// (`SolverOptions::stability_limit_detection`; CVODE's nor,
+    /// CVodeGetNumStabLimOrderReds).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub stability_order_reductions: usize,
     /// Why the iteration matrix was rebuilt.
     pub matrix_rebuilds: MatrixRebuilds,
     /// The unknowns whose error estimate dominated the most accepted steps, with the

@@ -59,6 +59,8 @@ pub struct SolverSummary {
     pub step_limiters: Vec<StepLimiter>,
     /// Accepted steps per order 1..=5.
     pub order_counts: [usize; 5],
+    /// Order reductions dictated by BDF stability limit detection.
+    pub stability_order_reductions: usize,
 }
 
 /// An unknown that limited the step, and how often.
@@ -486,6 +488,7 @@ fn solver_summary(st: &Stats) -> SolverSummary {
             })
             .collect(),
         order_counts: st.order_counts,
+        stability_order_reductions: st.stability_order_reductions,
     }
 }
 

@@ -44,6 +44,12 @@ impl<P: DaeProblem + ?Sized> Bdf<'_, P> {
     /// Accepts the step: statistics, next order and step size, history update
     /// (IDACompleteStep).
     pub(super) fn complete_step(&mut self) {
+        let stald_limited = if self.core.opts.stability_limit_detection {
+            self.stald_record();
+            self.stald_limited()
+        } else {
+            false
+        };
         let ctl = &mut self.ctl;
         self.core
             .book_step(ctl.hh, ctl.kk, &self.work.ee, &self.wt.err);
@@ -96,6 +102,15 @@ impl<P: DaeProblem + ?Sized> Bdf<'_, P> {
                 } else {
                     Action::Raise
                 }
+            };
+            // CVODE's cvBDFStab (`bdf/stald.rs`): unless the error estimates already lower
+            // the order, STALD may find the step stability-limited and lower it; the step
+            // then follows the order-(k-1) estimate, as CVODE takes etaqm1.
+            let action = if stald_limited && action != Action::Lower {
+                self.core.stats.stability_order_reductions += 1;
+                Action::Lower
+            } else {
+                action
             };
             let err_knew = match action {
                 Action::Raise => {

@@ -18,8 +18,10 @@ use super::problem::DaeProblem;
 mod control;
 mod history;
 mod newton;
+mod stald;
 
 use history::rescale_differences;
+use stald::Stald;
 
 pub(crate) const MAXORD: usize = 5;
 const UROUND: f64 = f64::EPSILON;
@@ -142,6 +144,8 @@ pub struct Bdf<'a, P: DaeProblem + ?Sized> {
     ctl: StepControl,
     nls: Newton,
     work: Work,
+    /// Stability limit detection's data (`SolverOptions::stability_limit_detection`).
+    stald: Stald,
 }
 
 impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
@@ -228,6 +232,7 @@ impl<'a, P: DaeProblem + ?Sized> Bdf<'a, P> {
                 res: vec![0.0; n],
                 scratch: vec![0.0; n],
             },
+            stald: Stald::new(),
         };
         s.set_ewt();
         Ok(s)
