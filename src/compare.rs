@@ -47,7 +47,7 @@ pub fn run(a: &CompareArgs) -> CliResult {
     );
     for d in &c.differences {
         println!(
-            "  {:<26} {:<12} max {:>11.4e} vs {:>11.4e} ({:>+10.3e})  min {:>11.4e} vs {:>11.4e} ({:>+10.3e})  |peak| {:>10.4e} vs {:>10.4e} ({:>+10.3e})  RMS diff {:>10.3e} [{}]",
+            "  {:<26} {:<12} max {:>11.4e} vs {:>11.4e} ({:>+10.3e})  min {:>11.4e} vs {:>11.4e} ({:>+10.3e})  |peak| {:>10.4e} vs {:>10.4e} ({:>+10.3e})  RMS diff {:>10.3e} [{}]{}",
             d.channel,
             d.run,
             d.max,
@@ -60,7 +60,14 @@ pub fn run(a: &CompareArgs) -> CliResult {
             d.reference_abs_peak,
             d.abs_peak_difference,
             d.rms_difference,
-            d.unit
+            d.unit,
+            // A channel a run's convergence check failed: its numbers depend on the
+            // tolerance, and so does this difference.
+            if d.converged == Some(false) {
+                "  NOT CONVERGED (run --check)"
+            } else {
+                ""
+            }
         );
     }
     for f in &c.files {

@@ -118,6 +118,29 @@ fn a_loose_bdf_run_is_flagged_where_its_numbers_are_shown() {
     let w: Vec<f64> = failing.iter().map(worst).collect();
     assert!(w.windows(2).all(|p| p[0] >= p[1]), "{w:?}");
     assert!(w.iter().all(|x| *x > c["threshold"].as_f64().unwrap()));
+    // `compare` flags the channels a run's check failed, and only those.
+    let cmp = towride_json(&[
+        "compare",
+        d.to_str().unwrap(),
+        d.to_str().unwrap(),
+        "--out",
+        d.join("cmp").to_str().unwrap(),
+        "--json",
+    ]);
+    for diff in cmp["differences"].as_array().unwrap() {
+        let name = &diff["channel"];
+        let judged = c["channels"].get(name.as_str().unwrap()).is_some();
+        let expected = if failing.contains(name) {
+            serde_json::json!(false)
+        } else if judged {
+            serde_json::json!(true)
+        } else {
+            serde_json::Value::Null
+        };
+        // A channel the verdict does not judge (raw with a twin) is neither flagged nor
+        // passed.
+        assert_eq!(diff["converged"], expected, "{name}");
+    }
     std::fs::remove_dir_all(&d).ok();
 }
 

@@ -39,6 +39,10 @@ pub enum RunStatus {
 /// Solver effort, as the integrator counted it.
 #[derive(Clone, Debug, Serialize)]
 pub struct SolverSummary {
+    /// Integration method: "bdf", "bdf_fixed_coefficient" or "radau5".
+    pub method: &'static str,
+    /// Relative tolerance of the run.
+    pub rtol: f64,
     /// Accepted steps.
     pub steps: usize,
     /// Rejected step attempts.
@@ -411,7 +415,7 @@ impl RunSummary {
             samples: samples.times.len(),
             wall_s: samples.wall_s,
             start_wall_s,
-            solver: solver_summary(st),
+            solver: solver_summary(st, &job.solver),
             equations: sys.size(),
             unknowns: Unknowns {
                 positions: sys.nq,
@@ -469,8 +473,14 @@ impl RunSummary {
     }
 }
 
-fn solver_summary(st: &Stats) -> SolverSummary {
+fn solver_summary(st: &Stats, o: &towride_solver::SolverOptions) -> SolverSummary {
     SolverSummary {
+        method: match o.method {
+            towride_solver::Method::Variable => "bdf",
+            towride_solver::Method::FixedCoefficient => "bdf_fixed_coefficient",
+            towride_solver::Method::Radau5 => "radau5",
+        },
+        rtol: o.rtol,
         steps: st.steps,
         rejected_steps: st.rejected_steps,
         residual_evals: st.residual_evals,

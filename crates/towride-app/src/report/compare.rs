@@ -25,6 +25,30 @@ pub struct Run {
     pub times: Vec<f64>,
     /// (name, unit, samples) per channel.
     pub channels: Vec<(String, String, Vec<f64>)>,
+    /// Its convergence verdict (`run --check`, in its summary.json) per judged channel:
+    /// (name, converged); `None` when the run was not checked.
+    pub verdict: Option<Vec<(String, bool)>>,
+}
+
+impl Run {
+    /// The verdict on `channel`: `None` when not checked or not judged.
+    fn converged(&self, channel: &str) -> Option<bool> {
+        let v = self.verdict.as_ref()?;
+        v.iter().find(|(n, _)| n == channel).map(|(_, ok)| *ok)
+    }
+}
+
+/// The convergence verdict in `dir/summary.json`, if it has one.
+fn verdict(dir: &Path) -> Option<Vec<(String, bool)>> {
+    let text = std::fs::read_to_string(dir.join("summary.json")).ok()?;
+    let v: serde_json::Value = serde_json::from_str(&text).ok()?;
+    let channels = v.get("convergence")?.get("channels")?.as_object()?;
+    Some(
+        channels
+            .iter()
+            .map(|(n, c)| (n.clone(), c["converged"].as_bool().unwrap_or(false)))
+            .collect(),
+    )
 }
 
 fn bad(file: &Path, line: Option<usize>, field: &str, message: String) -> Error {
@@ -85,6 +109,7 @@ pub fn load(dir: &Path) -> Result<Run, Error> {
         label,
         times,
         channels,
+        verdict: verdict(dir),
     })
 }
 
@@ -118,6 +143,10 @@ pub struct Difference {
     /// Root mean square of the difference to the first run (linearly interpolated at
     /// this run's samples) where the two overlap in time.
     pub rms_difference: f64,
+    /// The convergence verdicts of the two runs (`run --check`) on this channel: false
+    /// when either failed it, true when both passed it, `None` otherwise (a run not
+    /// checked, or a channel its verdict does not judge).
+    pub converged: Option<bool>,
 }
 
 /// The comparison: what `compare` prints with `--json`.
@@ -205,6 +234,11 @@ pub fn compare(runs: &[Run]) -> Comparison {
                     (sum / n as f64).sqrt()
                 } else {
                     f64::NAN
+                },
+                converged: match (first.converged(name), r.converged(name)) {
+                    (Some(false), _) | (_, Some(false)) => Some(false),
+                    (Some(true), Some(true)) => Some(true),
+                    _ => None,
                 },
             });
         }

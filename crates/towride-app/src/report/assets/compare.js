@@ -47,8 +47,9 @@
   app.append(el("h2", {}, `Differences against ${C.runs[0]}`));
   app.append(el("p", { class: "hint" }, `Like with like: each run's max, min and |peak| = max(|max|, |min|) against ${C.runs[0]}'s; a difference is this run's less ${C.runs[0]}'s.`));
   app.append(table(["channel", "unit", "run", `max ${C.runs[0]}`, "max", "max difference", `min ${C.runs[0]}`, "min", "min difference",
-    `|peak| ${C.runs[0]}`, "|peak|", "|peak| difference", "RMS difference"],
+    `|peak| ${C.runs[0]}`, "|peak|", "|peak| difference", "RMS difference", "convergence (run --check)"],
     C.differences.map((d) => [d.channel, d.unit, d.run, d.reference_max, d.max, d.max_difference, d.reference_min, d.min, d.min_difference,
-      d.reference_abs_peak, d.abs_peak, d.abs_peak_difference, d.rms_difference])));
+      d.reference_abs_peak, d.abs_peak, d.abs_peak_difference, d.rms_difference,
+      d.converged == null ? "not checked" : d.converged ? "converged" : "NOT converged"])));
   setTimeout(() => document.body.setAttribute("data-ready", chart ? "1" : "0"), 0);
 })();

@@ -15,8 +15,10 @@
   app.append(el("p", {}, status, ` · ${S.file} · ${fmt(S.t_reached_s)} of ${fmt(S.t_end_s)} s · ${S.samples} samples at ${fmt(S.sample_rate_hz)} Hz · ${fmt(S.wall_s)} s wall`));
   if (S.error) app.append(el("p", { class: "failed" }, `stopped at ${fmt(S.failed_at_s)} s: ${S.error}`));
   app.append(el("h3", {}, "Solver"));
-  app.append(table(["steps", "rejected", "Newton iterations", "residuals", "Jacobians", "LU factorisations", "steps per order 1..5"],
-    [[S.steps, S.rejected_steps, S.newton_iterations, S.residual_evals, S.jacobian_evals, S.lu_factorizations, (S.order_counts || []).join(" / ")]]));
+  // Radau IIA has one order (5); the BDF's order varies step by step.
+  const radau = S.method === "radau5";
+  app.append(table(["method", "rtol", "steps", "rejected", "Newton iterations", "residuals", "Jacobians", "LU factorisations", radau ? "order" : "steps per order 1..5"],
+    [[radau ? "Radau IIA" : "BDF", S.rtol.toExponential(), S.steps, S.rejected_steps, S.newton_iterations, S.residual_evals, S.jacobian_evals, S.lu_factorizations, radau ? "5" : (S.order_counts || []).join(" / ")]]));
   if (S.hitch_force) {
     const h = S.hitch_force;
     const opt = (v, d) => (v == null ? "-" : d(v));
@@ -24,6 +26,24 @@
     app.append(table(["max [N]", "at [s]", "min [N]", "at [s]", "|peak| [N]", "at [s]", "RMS [N]", "dominant frequency [Hz]", "damping ratio of the ringing", "decay fitted [s]"],
       [[h.max_n, h.t_max_s, h.min_n, h.t_min_s, h.abs_peak_n, h.t_abs_peak_s, h.rms_n, opt(h.dominant_hz, fmt), opt(h.damping_ratio, (z) => `${fmt(100 * z)} %`),
         opt(h.decay, (d) => `${fmt(d.from_s)}-${fmt(d.to_s)} (${d.half_cycles} half cycles)`)]]));
+  }
+  // --- convergence verdict (run --check), failing channels first
+  const V = S.convergence;
+  app.append(el("h3", { id: "convergence" }, "Convergence"));
+  if (!V) {
+    app.append(el("p", { class: "hint" }, "Not checked: `towride run --check` runs the scene again at rtol and atol ten times tighter and judges every reported channel's max, min and RMS."));
+  } else {
+    const n = Object.keys(V.channels).length;
+    const pct = (x) => `${(100 * x).toFixed(2)} %`;
+    app.append(el("p", { class: V.converged ? "" : "failed" }, V.converged
+      ? `All ${n} judged channels converged: max, min and RMS within ${pct(V.threshold)} of a run at rtol ${V.check_rtol.toExponential()} (this run: ${V.rtol.toExponential()}; ${V.check_steps} steps, ${fmt(V.check_wall_s)} s wall).`
+      : `${V.failing.length} of ${n} channels NOT converged (differences over ${pct(V.threshold)} against a run at rtol ${V.check_rtol.toExponential()}; this run: ${V.rtol.toExponential()}): ${V.failing.join(", ")}. Their numbers on this page depend on the tolerance.`));
+    const names = Object.keys(V.channels).sort((a, b) => (V.channels[a].converged - V.channels[b].converged) || a.localeCompare(b));
+    // Per channel, folded away when everything converged.
+    const box = el("details", V.converged ? {} : { open: "" }, el("summary", {}, "per channel: differences relative to max(|value|, floor)"));
+    box.append(table(["channel", "unit", "max diff", "min diff", "RMS diff", "floor", "verdict"],
+      names.map((k) => { const c = V.channels[k]; return [k, c.unit, pct(c.max_diff), pct(c.min_diff), pct(c.rms_diff), fmt(c.floor), c.converged ? "converged" : "NOT converged"]; })));
+    app.append(box);
   }
   // --- 3D view, its time cursor shared with the charts both ways
   let player = null, syncing = false;
