@@ -59,6 +59,9 @@ pub struct RunArgs {
     /// With --check: the relative difference a converged channel may show [%] (default 2).
     #[arg(long, requires = "check", value_parser = crate::bounded::share_pct)]
     pub(crate) check_threshold: Option<f64>,
+    /// Plans: cases run at once (default: the machine's cores).
+    #[arg(long, value_parser = crate::bounded::jobs)]
+    pub(crate) jobs: Option<usize>,
 }
 
 pub fn run(a: &RunArgs) -> CliResult {
@@ -123,7 +126,8 @@ pub fn run(a: &RunArgs) -> CliResult {
             None => None,
         };
         crate::interrupt::install();
-        let res = run_job(&job, companion.as_ref().zip(check), &a.out, a.json)?;
+        let res = run_job(&job, companion.as_ref().zip(check), &a.out, a.json)
+            .map_err(|e| -> Box<dyn std::error::Error> { e })?;
         if a.json && job.scene.is_some() {
             // The summary plus the assumed inputs, as the text output lists them.
             // Plain data: serialisation cannot fail.
@@ -154,35 +158,76 @@ pub fn run(a: &RunArgs) -> CliResult {
         }
     }
     crate::interrupt::install();
-    let mut code = 0;
-    let mut table = PlanRun::new(&p, &a.file);
-    for c in p
+    let cases: Vec<_> = p
         .cases
         .iter()
         .filter(|c| a.case.is_empty() || a.case.contains(&c.name))
-    {
+        .collect();
+    let jobs = a
+        .jobs
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    // Cases run in parallel as a sweep's do; each writes its own folder, and the console
+    // lists them afterwards in the plan's order, as a one-at-a-time run would.
+    let run_case = |c: &plan::Case, quiet: bool| -> Result<Option<RunResult>, DynError> {
         let out = a.out.join(&c.name);
         if crate::interrupt::requested() {
-            table.push(c, &out, None);
-            continue;
+            return Ok(None);
         }
         let mut changes = c.changes.clone();
         changes.run_modes.clone_from(&run_modes);
-        let build = || -> Result<Job, Box<dyn std::error::Error>> {
+        let build = || -> Result<Job, DynError> {
             let mut job = Job::from_scene(scene::load_with(&c.scene, &changes, &loader)?)?;
             if let Some(r) = a.animation_rate_hz {
                 job.settings.animation_rate = r;
             }
             Ok(job)
         };
-        let job = build()?;
-        let companion = match check {
-            Some(_) => Some(build()?.tightened(convergence::TIGHTEN)),
-            None => None,
+        let go = || -> Result<RunResult, DynError> {
+            let job = build()?;
+            let companion = match check {
+                Some(_) => Some(build()?.tightened(convergence::TIGHTEN)),
+                None => None,
+            };
+            run_job(&job, companion.as_ref().zip(check), &out, a.json || quiet)
         };
-        let res = run_job(&job, companion.as_ref().zip(check), &a.out, a.json)?;
-        code = code.max(exit_code(&res, &out));
-        table.push(c, &out, Some(&res));
+        go().map(Some)
+    };
+    let results: Vec<Result<Option<RunResult>, DynError>> = if jobs > 1 && cases.len() > 1 {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(jobs)
+            .build()
+            .map_err(|e| format!("thread pool: {e}"))?;
+        let bar = crate::progress(cases.len() as u64, a.json);
+        let res: Vec<Result<Option<RunResult>, DynError>> = pool.install(|| {
+            use rayon::prelude::*;
+            cases
+                .par_iter()
+                .map(|c| {
+                    let r = run_case(c, true);
+                    bar.0.inc(1);
+                    r
+                })
+                .collect()
+        });
+        bar.0.finish_and_clear();
+        if !a.json {
+            for r in res.iter().flatten().flatten() {
+                print_summary(r);
+            }
+        }
+        res
+    } else {
+        cases.iter().map(|c| run_case(c, false)).collect()
+    };
+    let mut code = 0;
+    let mut table = PlanRun::new(&p, &a.file);
+    for (c, r) in cases.iter().zip(results) {
+        let out = a.out.join(&c.name);
+        let res = r.map_err(|e| -> Box<dyn std::error::Error> { e })?;
+        if let Some(res) = &res {
+            code = code.max(exit_code(res, &out));
+        }
+        table.push(c, &out, res.as_ref());
     }
     let csv = table.write(&a.out)?;
     if a.json {
@@ -248,6 +293,9 @@ fn list_names(a: &RunArgs, loader: &Loader, run_modes: Option<Arc<RunModes>>) ->
     Ok(0)
 }
 
+/// An error a plan's case may end with, on any thread.
+type DynError = Box<dyn std::error::Error + Send + Sync>;
+
 /// `--check`: its relative threshold.
 #[derive(Clone, Copy, Debug)]
 struct Check {
@@ -271,7 +319,7 @@ fn run_job(
     check: Option<(&Job, Check)>,
     out: &Path,
     json: bool,
-) -> Result<RunResult, Box<dyn std::error::Error>> {
+) -> Result<RunResult, DynError> {
     if !json {
         for w in &job.warnings {
             eprintln!("warning: {w}");
