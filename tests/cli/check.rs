@@ -2,8 +2,8 @@
 
 use super::{towride, towride_json};
 
-/// (max, min) of a column of a run's outputs.csv.
-fn extremes(dir: &std::path::Path, name: &str) -> (f64, f64) {
+/// (time, value) of every sample of a column of a run's outputs.csv.
+fn column(dir: &std::path::Path, name: &str) -> Vec<(f64, f64)> {
     let mut r = csv::Reader::from_path(dir.join("outputs.csv")).unwrap();
     let h = r.headers().unwrap().clone();
     let c = h
@@ -11,8 +11,18 @@ fn extremes(dir: &std::path::Path, name: &str) -> (f64, f64) {
         .position(|x| x.split(" [").next() == Some(name))
         .unwrap_or_else(|| panic!("no column {name}"));
     r.records()
-        .map(|x| x.unwrap()[c].parse::<f64>().unwrap())
-        .fold((f64::NEG_INFINITY, f64::INFINITY), |(a, b), v| {
+        .map(|x| {
+            let x = x.unwrap();
+            (x[0].parse().unwrap(), x[c].parse().unwrap())
+        })
+        .collect()
+}
+
+/// (max, min) of a column of a run's outputs.csv.
+fn extremes(dir: &std::path::Path, name: &str) -> (f64, f64) {
+    column(dir, name)
+        .into_iter()
+        .fold((f64::NEG_INFINITY, f64::INFINITY), |(a, b), (_, v)| {
             (a.max(v), b.min(v))
         })
 }
@@ -146,17 +156,10 @@ fn a_loose_bdf_run_is_flagged_where_its_numbers_are_shown() {
 
 /// The late (t > `after`) largest magnitude of a column of a run's outputs.csv.
 fn late_peak(dir: &std::path::Path, name: &str, after: f64) -> f64 {
-    let mut r = csv::Reader::from_path(dir.join("outputs.csv")).unwrap();
-    let h = r.headers().unwrap().clone();
-    let c = h
-        .iter()
-        .position(|x| x.split(" [").next() == Some(name))
-        .unwrap_or_else(|| panic!("no column {name}"));
-    r.records()
-        .map(|x| x.unwrap())
-        .filter(|x| x[0].parse::<f64>().unwrap() > after)
-        .map(|x| x[c].parse::<f64>().unwrap().abs())
-        .fold(0.0, f64::max)
+    column(dir, name)
+        .into_iter()
+        .filter(|(t, _)| *t > after)
+        .fold(0.0, |m, (_, v)| m.max(v.abs()))
 }
 
 #[test]

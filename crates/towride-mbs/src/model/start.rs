@@ -124,11 +124,15 @@ pub fn at_speed(
     if settle_s <= 0.0 {
         return Ok((y0, yp0, rep));
     }
-    // 3. Settle, at BDF order <= 2: the settle is there to let transients die, and on
-    // flat road the steps grow to several ms, where orders 3-5 are unstable for the
-    // lightly damped 20-60 Hz bushing modes (their stability regions leave out the
-    // imaginary axis) and would hand the run a ringing start. BDF2 is A-stable.
+    // 3. Settle with the BDF at order <= 2, whatever the run's method: the settle is
+    // there to let transients die, and on flat road the steps grow to several ms, where
+    // orders 3-5 are unstable for the lightly damped 20-60 Hz bushing modes (their
+    // stability regions leave out the imaginary axis) and would hand the run a ringing
+    // start. BDF2 is A-stable; against Radau IIA it settles further in less time
+    // (default scene: residual acceleration 2.5e-5 against 1.5e-2 m/s^2, 0.016 against
+    // 0.057 s).
     let settle_opts = SolverOptions {
+        method: towride_solver::Method::Variable,
         max_order: opts.max_order.min(2),
         ..opts.clone()
     };

@@ -112,37 +112,50 @@ impl CleatRig {
     }
 }
 
-impl DaeProblem for CleatRig {
-    fn size(&self) -> usize {
-        self.n + 1
-    }
+/// The DAE of a rig whose rim moves on a prescribed path and spins free or driven: the
+/// tyre's equations and, last, the rim's spin (its moment balance, or a held speed). The
+/// rig type needs fields `n`, `tyre`, `road`, `spin`, `rim_iyy` and a method
+/// `kin(t, omega) -> WheelKinematics`.
+macro_rules! spinning_rig_dae {
+    ($rig:ty) => {
+        impl towride_solver::DaeProblem for $rig {
+            fn size(&self) -> usize {
+                self.n + 1
+            }
 
-    fn residual(&self, t: f64, y: &[f64], yp: &[f64], res: &mut [f64]) {
-        let n = self.n;
-        let kin = self.kin(t, y[n]);
-        let hub = self
-            .tyre
-            .residual(t, &kin, &self.road, &y[..n], &yp[..n], &mut res[..n]);
-        res[n] = match self.spin {
-            Spin::Free => (self.rim_iyy * yp[n] - hub.torque.y) / self.rim_iyy,
-            Spin::Driven => yp[n],
-        };
-    }
+            fn residual(&self, t: f64, y: &[f64], yp: &[f64], res: &mut [f64]) {
+                let n = self.n;
+                let kin = self.kin(t, y[n]);
+                let hub = self
+                    .tyre
+                    .residual(t, &kin, &self.road, &y[..n], &yp[..n], &mut res[..n]);
+                res[n] = match self.spin {
+                    $crate::tyre::rig::Spin::Free => {
+                        (self.rim_iyy * yp[n] - hub.torque.y) / self.rim_iyy
+                    }
+                    $crate::tyre::rig::Spin::Driven => yp[n],
+                };
+            }
 
-    fn var_kinds(&self) -> Vec<VarKind> {
-        let mut k = self.tyre.var_kinds();
-        k.push(VarKind::Differential);
-        k
-    }
+            fn var_kinds(&self) -> Vec<towride_solver::VarKind> {
+                let mut k = self.tyre.var_kinds();
+                k.push(towride_solver::VarKind::Differential);
+                k
+            }
 
-    fn var_name(&self, i: usize) -> String {
-        if i < self.n {
-            self.tyre.state_names()[i].clone()
-        } else {
-            "rim_omega_rad_s".into()
+            fn var_name(&self, i: usize) -> String {
+                if i < self.n {
+                    self.tyre.state_names()[i].clone()
+                } else {
+                    "rim_omega_rad_s".into()
+                }
+            }
         }
-    }
+    };
 }
+pub(crate) use spinning_rig_dae;
+
+spinning_rig_dae!(CleatRig);
 
 /// Wheel with a vertical degree of freedom, constant forward speed, free spin.
 pub struct QuarterRig {

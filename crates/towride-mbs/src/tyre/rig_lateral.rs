@@ -16,7 +16,7 @@ use nalgebra::Vector3;
 
 use crate::input::InputError;
 use crate::road::Road;
-use towride_solver::{DaeProblem, SolverError, SolverOptions, VarKind};
+use towride_solver::{SolverError, SolverOptions};
 
 use super::rig::{free_rolling_spin, height_for_load, integrate, sample_of, RigRun, Spin};
 use super::{Tyre, WheelKinematics};
@@ -122,37 +122,7 @@ impl LateralRig {
     }
 }
 
-impl DaeProblem for LateralRig {
-    fn size(&self) -> usize {
-        self.n + 1
-    }
-
-    fn residual(&self, t: f64, y: &[f64], yp: &[f64], res: &mut [f64]) {
-        let n = self.n;
-        let kin = self.kin(t, y[n]);
-        let hub = self
-            .tyre
-            .residual(t, &kin, &self.road, &y[..n], &yp[..n], &mut res[..n]);
-        res[n] = match self.spin {
-            Spin::Free => (self.rim_iyy * yp[n] - hub.torque.y) / self.rim_iyy,
-            Spin::Driven => yp[n],
-        };
-    }
-
-    fn var_kinds(&self) -> Vec<VarKind> {
-        let mut k = self.tyre.var_kinds();
-        k.push(VarKind::Differential);
-        k
-    }
-
-    fn var_name(&self, i: usize) -> String {
-        if i < self.n {
-            self.tyre.state_names()[i].clone()
-        } else {
-            "rim_omega_rad_s".into()
-        }
-    }
-}
+super::rig::spinning_rig_dae!(LateralRig);
 
 /// One steady point of a slip-angle sweep.
 #[derive(Clone, Debug, serde::Serialize)]
