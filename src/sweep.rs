@@ -37,6 +37,14 @@ pub struct SweepArgs {
     /// OUT/cases/<case id>/ (linked from the sweep's report.html).
     #[arg(long)]
     keep_histories: bool,
+    /// Give every case a convergence verdict: run it again at rtol and atol ten times
+    /// tighter (twice the time) and record `converged [-]`, the worst difference [%] and
+    /// the count of unconverged channels as figures (see `run --check`).
+    #[arg(long)]
+    check: bool,
+    /// With --check: the relative difference a converged channel may show [%] (default 2).
+    #[arg(long, requires = "check", value_parser = crate::bounded::share_pct)]
+    check_threshold: Option<f64>,
 }
 
 #[derive(Subcommand, Debug)]
@@ -86,6 +94,12 @@ pub fn run(a: &SweepArgs) -> CliResult {
         jobs,
         resume: a.resume,
         keep_histories: a.keep_histories,
+        check: a.check.then(|| {
+            a.check_threshold
+                .map_or(towride_app::job::convergence::DEFAULT_THRESHOLD, |p| {
+                    p / 100.0
+                })
+        }),
     };
     let res = run_sweep_with(&sweep, shard, &a.out, &opts, &pb)?;
     let csv_path = res.summary_csv.clone().unwrap_or_default();

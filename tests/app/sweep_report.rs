@@ -24,6 +24,7 @@ const KEEP: Options = Options {
     jobs: 1,
     resume: false,
     keep_histories: true,
+    check: None,
 };
 
 /// The largest value of column `name` of a case's outputs.csv.

@@ -206,3 +206,37 @@ fn tight_tolerance_runs_carry_no_late_oscillation_and_no_lateral_drift() {
         std::fs::remove_dir_all(&d).ok();
     }
 }
+
+#[test]
+fn a_checked_sweep_records_each_case_verdict_and_refuses_to_mix_on_resume() {
+    let d = std::env::temp_dir().join(format!("towride_check_sweep_{}", std::process::id()));
+    let out = d.to_str().unwrap();
+    let sweep = "scenes/examples/pendulum_sweep.toml";
+    let v = towride_json(&["sweep", sweep, "--check", "--out", out, "--json"]);
+    let rows = v["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 6);
+    for r in rows {
+        let fig = |name: &str| {
+            r["figures"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .find(|f| f[0] == name)
+                .and_then(|f| f[1].as_f64())
+                .unwrap_or_else(|| panic!("no figure {name}: {r}"))
+        };
+        // The pendulum at rtol 1e-8 against 1e-9: converged, every channel.
+        assert_eq!(fig("converged [-]"), 1.0, "{r}");
+        assert_eq!(fig("unconverged channels [-]"), 0.0);
+        let worst = fig("convergence worst difference [%]");
+        assert!((0.0..2.0).contains(&worst), "{worst}");
+    }
+    let csv = std::fs::read_to_string(d.join("summary.csv")).unwrap();
+    assert!(csv.lines().next().unwrap().contains("converged [-]"));
+    // Resuming without --check would join unchecked cases to checked ones: refused.
+    let o = towride(&["sweep", sweep, "--resume", "--out", out]);
+    assert_eq!(o.status.code(), Some(2), "{o:?}");
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(e.contains("--check") && e.contains("summary.csv"), "{e}");
+    std::fs::remove_dir_all(&d).ok();
+}

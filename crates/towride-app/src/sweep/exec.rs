@@ -16,7 +16,7 @@ use rayon::prelude::*;
 
 use super::{Case, Sweep};
 use crate::error::{Error, Result};
-use crate::job::{Job, RunResult};
+use crate::job::{convergence, Job, RunResult};
 use crate::scene::{channels, SceneError};
 use towride_mbs::input::Loader;
 use towride_mbs::progress::Progress;
@@ -129,7 +129,7 @@ where
 /// Runs one case: the file (a mechanism or a scene) read through `loader`, integrated,
 /// and its figures. A run the solver stops is a failed case.
 pub fn run_case(path: &Path, loader: &Loader, stop: &dyn Progress) -> Result<Figures> {
-    run_case_kept(path, loader, stop, None)
+    run_case_kept(path, loader, stop, None, None)
 }
 
 /// [`run_case`], keeping the run's files (also those of a run the solver stopped) in
@@ -139,6 +139,7 @@ fn run_case_kept(
     loader: &Loader,
     stop: &dyn Progress,
     keep: Option<(&Path, usize)>,
+    check: Option<f64>,
 ) -> Result<Figures> {
     let job = Job::from_file(path, loader)?;
     // Only a kept case writes a report with the 3D view.
@@ -148,12 +149,29 @@ fn run_case_kept(
         job.without_view()
     };
     let mut r = job.run(stop)?;
+    if let (Some(threshold), true) = (check, r.failure().is_none()) {
+        // The convergence verdict against the same case at a tighter tolerance.
+        let companion = Job::from_file(path, loader)?
+            .without_view()
+            .tightened(convergence::TIGHTEN);
+        let tight = companion.run(stop)?;
+        r.summary.convergence = convergence::verdict(&r, &tight, job.solver.rtol, threshold);
+    }
     if let (Some((cases, index)), None) = (keep, r.samples.interrupted) {
         super::cases::keep(&mut r, &job.system, cases, index)?;
     }
     r.require_completed()?;
     Ok(figures(&r))
 }
+
+/// The figures of a case's convergence verdict (`sweep --check`): 1 or 0, the largest
+/// relative difference of any judged channel's max, min or RMS [%], and how many
+/// channels failed.
+pub const CONVERGED: &str = "converged [-]";
+/// See [`CONVERGED`].
+pub const CONVERGENCE_WORST: &str = "convergence worst difference [%]";
+/// See [`CONVERGED`].
+pub const UNCONVERGED: &str = "unconverged channels [-]";
 
 /// The figures a sweep records of a run (named `<channel> <field> [unit]`, the field
 /// as in `summary.json`: `max`, `min`, `abs_peak`). A mechanism: every channel's max and
@@ -171,6 +189,7 @@ pub fn figures(r: &RunResult) -> Figures {
             out.push((format!("{name} min [{}]", c.unit), c.extremes.min));
         }
         out.push(("steps".into(), s.solver.steps as f64));
+        verdict_figures(r, &mut out);
         return out;
     }
     let twin = |c: &crate::job::ChannelSummary| c.twin.as_ref().and_then(|t| s.channels.get(t));
@@ -208,7 +227,23 @@ pub fn figures(r: &RunResult) -> Figures {
     }
     out.push(("steps".into(), s.solver.steps as f64));
     out.push(("run wall time [s]".into(), s.start_wall_s + s.wall_s));
+    verdict_figures(r, &mut out);
     out
+}
+
+/// Appends the convergence verdict's figures when the run has one.
+fn verdict_figures(r: &RunResult, out: &mut Figures) {
+    let Some(v) = &r.summary.convergence else {
+        return;
+    };
+    let worst = v
+        .channels
+        .values()
+        .map(|c| c.max_diff.max(c.min_diff).max(c.rms_diff))
+        .fold(0.0f64, f64::max);
+    out.push((CONVERGED.into(), if v.converged { 1.0 } else { 0.0 }));
+    out.push((CONVERGENCE_WORST.into(), 100.0 * worst));
+    out.push((UNCONVERGED.into(), v.failing.len() as f64));
 }
 
 /// The figure of the crossbeam's largest deflection: the length of the ball's
@@ -516,7 +551,16 @@ pub fn run_sweep(
     jobs: usize,
     progress: &dyn Progress,
 ) -> Result<SweepRun> {
-    run_with(sweep, shard, jobs, Vec::new(), None, progress, &|_| {})
+    run_with(
+        sweep,
+        shard,
+        jobs,
+        Vec::new(),
+        None,
+        None,
+        progress,
+        &|_| {},
+    )
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -526,6 +570,7 @@ fn run_with(
     jobs: usize,
     prior: Vec<CaseRow>,
     keep: Option<&Path>,
+    check: Option<f64>,
     progress: &dyn Progress,
     done: &(dyn Fn(&CaseRow) + Sync),
 ) -> Result<SweepRun> {
@@ -538,7 +583,7 @@ fn run_with(
     let wall = Instant::now();
     let resumed = prior.len();
     let run = |c: &Case, path: &Path, loader: &Loader, stop: &dyn Progress| {
-        run_case_kept(path, loader, stop, keep.map(|k| (k, c.index)))
+        run_case_kept(path, loader, stop, keep.map(|k| (k, c.index)), check)
     };
     let mut rows = run_cases(sweep, &cases, jobs, &run, progress, done)?;
     rows.extend(prior);
@@ -600,6 +645,7 @@ pub fn run_sweep_in(
         jobs,
         resume,
         keep_histories: false,
+        check: None,
     };
     run_sweep_with(sweep, shard, dir, &opts, progress)
 }
@@ -614,6 +660,9 @@ pub struct Options {
     /// Keep each case's files in `dir/cases/<case id>/` ([`super::cases`]); a resumed
     /// run also runs again the completed cases whose folder is missing.
     pub keep_histories: bool,
+    /// Give every case a convergence verdict (`run --check`) at this relative threshold:
+    /// each case runs twice, the second time at a tolerance ten times tighter.
+    pub check: Option<f64>,
 }
 
 /// [`run_sweep_in`] with all options; also writes the sweep's HTML page and figure
@@ -641,6 +690,24 @@ pub fn run_sweep_with(
     if let Some(k) = keep {
         prior.retain(|r| r.status != "completed" || super::cases::is_kept(k, r.index));
     }
+    // A resumed sweep keeps its earlier cases only when they were checked as these will
+    // be: a summary must not mix cases with and without a verdict.
+    let checked = |r: &CaseRow| r.figures.iter().any(|(n, _)| n == CONVERGED);
+    if let Some(r) = prior
+        .iter()
+        .find(|r| r.status == "completed" && checked(r) != opts.check.is_some())
+    {
+        return Err(SceneError::Merge {
+            file: csv.clone(),
+            message: format!(
+                "case {} was run {} --check and this run is {} it: resume it as it was started, or remove the summary",
+                r.index,
+                if checked(r) { "with" } else { "without" },
+                if opts.check.is_some() { "with" } else { "without" }
+            ),
+        }
+        .into());
+    }
     let jobs = opts.jobs;
     // The journal holds what the summary will hold; rewritten so a resumed run's old
     // entries stay with its new ones.
@@ -656,7 +723,7 @@ pub fn run_sweep_with(
             let _ = journal_line(&mut f, r);
         }
     };
-    let mut res = run_with(sweep, shard, jobs, prior, keep, progress, &done)?;
+    let mut res = run_with(sweep, shard, jobs, prior, keep, opts.check, progress, &done)?;
     res.write_to(sweep, &csv)?;
     let _ = std::fs::remove_file(&journal);
     res.report = Some(match super::page::write(&csv, &sweep.name) {

@@ -13,6 +13,15 @@
   const kept = T.rows.filter((r) => r.link).length;
   app.append(el("p", {}, `${T.rows.length} cases: ${done} completed, ${T.rows.length - done} failed or interrupted; ` +
     (kept ? `${kept} with their own report (histories kept).` : "histories not kept (run the sweep with --keep-histories to link each case's report).")));
+  // The convergence verdicts of a sweep run with --check, said before any figure.
+  const cv = T.figures.indexOf("converged [-]");
+  if (cv >= 0) {
+    const judged = T.rows.filter((r) => r.figures[cv] != null);
+    const bad = judged.filter((r) => r.figures[cv] !== 1);
+    app.append(el("p", { id: "convergence", class: bad.length ? "failed" : "" }, bad.length
+      ? `Convergence (--check): ${bad.length} of ${judged.length} cases NOT converged (cases ${bad.map((r) => r.case).join(", ")}): some of their figures depend on the tolerance; the case's own run --check names the channels.`
+      : `Convergence (--check): all ${judged.length} checked cases converged.`));
+  }
   if (T.figures.some((f) => / (abs_peak|max|min) \[/.test(f)))
     app.append(el("p", { id: "naming", class: "hint" }, "Figures: max and min of a channel, abs_peak = max(|max|, |min|) (its larger magnitude, whichever side); <channel>_lp<fc>: the channel through the scene's acquisition low-pass at fc Hz, as the instrument saw it (a case's summary.json names the filter)."));
 
