@@ -466,6 +466,15 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
     outputs.extend(more);
     channels.extend(more_channels);
     let acquisition = acquisition(&src, f.acquisition.as_ref())?;
+    // Steps no longer than half the period of the band's upper edge unless the file sets
+    // h_max: the channels are reported up to the cutoff, so the integrator, not only its
+    // interpolant, must resolve what lies there. On flat road Radau IIA grows its steps to
+    // 14-20 ms, where the 46 Hz lateral hitch mode (zeta 0.045) is not resolved and its
+    // tolerance-level content changes with the step sequence (hitch_fy 0.22 N, 0.004 N at
+    // a 5 ms limit; docs/performance.md).
+    if let (Some(a), false) = (&acquisition, solver_sets("h_max")) {
+        solver.h_max = solver.h_max.min(0.5 / a.cutoff_hz);
+    }
     if let Some(a) = &acquisition {
         // A band-limited twin is named by suffix: no channel may already carry its name.
         let suffix = a.suffix();
