@@ -16,13 +16,15 @@ use rayon::prelude::*;
 
 use super::{Case, Sweep};
 use crate::error::{Error, Result};
-use crate::job::{convergence, Job, RunResult};
+use crate::job::{convergence, Job};
 use crate::scene::{channels, SceneError};
 use towride_mbs::input::Loader;
 use towride_mbs::progress::Progress;
 
-/// Named figures of one case (extremes, energies), in a stable order.
-pub type Figures = Vec<(String, f64)>;
+pub use super::figures::{
+    figures, Figures, CONVERGED, CONVERGENCE_WORST, CROSSBEAM_DEFLECTION, CROSSBEAM_ENERGY,
+    UNCONVERGED,
+};
 
 /// What a case produced.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -163,94 +165,6 @@ fn run_case_kept(
     r.require_completed()?;
     Ok(figures(&r))
 }
-
-/// The figures of a case's convergence verdict (`sweep --check`): 1 or 0, the largest
-/// relative difference of any judged channel's max, min or RMS [%], and how many
-/// channels failed.
-pub const CONVERGED: &str = "converged [-]";
-/// See [`CONVERGED`].
-pub const CONVERGENCE_WORST: &str = "convergence worst difference [%]";
-/// See [`CONVERGED`].
-pub const UNCONVERGED: &str = "unconverged channels [-]";
-
-/// The figures a sweep records of a run (named `<channel> <field> [unit]`, the field
-/// as in `summary.json`: `max`, `min`, `abs_peak`). A mechanism: every channel's max and
-/// min and the steps. A vehicle scene: the hitch force components' max, min and |peak|
-/// raw and the |peak| of their band-limited twins; each accelerometer's |peak|
-/// band-limited (as the instrument saw it) and raw; the crossbeam's largest deflection
-/// and strain energy; solver effort. No signed peak: a larger pull and a larger push
-/// both read as a larger |peak|.
-pub fn figures(r: &RunResult) -> Figures {
-    let s = &r.summary;
-    let mut out = Figures::new();
-    if s.scene.is_none() {
-        for (name, c) in &s.channels {
-            out.push((format!("{name} max [{}]", c.unit), c.extremes.max));
-            out.push((format!("{name} min [{}]", c.unit), c.extremes.min));
-        }
-        out.push(("steps".into(), s.solver.steps as f64));
-        verdict_figures(r, &mut out);
-        return out;
-    }
-    let twin = |c: &crate::job::ChannelSummary| c.twin.as_ref().and_then(|t| s.channels.get(t));
-    for n in [channels::HITCH_FX, channels::HITCH_FY, channels::HITCH_FZ] {
-        if let Some(c) = s.channels.get(n) {
-            let e = &c.extremes;
-            out.push((format!("{n} max [N]"), e.max));
-            out.push((format!("{n} min [N]"), e.min));
-            out.push((format!("{n} abs_peak [N]"), e.abs_peak));
-            if let (Some(b), Some(t)) = (twin(c), &c.twin) {
-                out.push((format!("{t} abs_peak [N]"), b.extremes.abs_peak));
-            }
-        }
-    }
-    for (name, c) in &s.channels {
-        if channels::band(name) != Some(channels::Band::Sensor)
-            || c.signal != crate::job::Signal::Raw
-        {
-            continue;
-        }
-        if let (Some(b), Some(t)) = (twin(c), &c.twin) {
-            out.push((format!("{t} abs_peak [{}]", c.unit), b.extremes.abs_peak));
-        }
-        out.push((format!("{name} abs_peak [{}]", c.unit), c.extremes.abs_peak));
-    }
-    let [dx, dy, dz] = channels::HITCH_DEFLECTION;
-    if let (Some(x), Some(y), Some(z)) = (r.channel(dx), r.channel(dy), r.channel(dz)) {
-        let d = (0..x.len()).fold(0.0f64, |m, k| {
-            m.max((x[k] * x[k] + y[k] * y[k] + z[k] * z[k]).sqrt())
-        });
-        out.push((CROSSBEAM_DEFLECTION.into(), d));
-    }
-    if let Some(c) = s.channels.get(channels::HITCH_STRAIN_ENERGY) {
-        out.push((CROSSBEAM_ENERGY.into(), c.extremes.max));
-    }
-    out.push(("steps".into(), s.solver.steps as f64));
-    out.push(("run wall time [s]".into(), s.start_wall_s + s.wall_s));
-    verdict_figures(r, &mut out);
-    out
-}
-
-/// Appends the convergence verdict's figures when the run has one.
-fn verdict_figures(r: &RunResult, out: &mut Figures) {
-    let Some(v) = &r.summary.convergence else {
-        return;
-    };
-    let worst = v
-        .channels
-        .values()
-        .map(|c| c.max_diff.max(c.min_diff).max(c.rms_diff))
-        .fold(0.0f64, f64::max);
-    out.push((CONVERGED.into(), if v.converged { 1.0 } else { 0.0 }));
-    out.push((CONVERGENCE_WORST.into(), 100.0 * worst));
-    out.push((UNCONVERGED.into(), v.failing.len() as f64));
-}
-
-/// The figure of the crossbeam's largest deflection: the length of the ball's
-/// displacement vector, at its largest.
-pub const CROSSBEAM_DEFLECTION: &str = "crossbeam |deflection| max [m]";
-/// The figure of the crossbeam's largest strain energy.
-pub const CROSSBEAM_ENERGY: &str = "crossbeam strain energy max [J]";
 
 /// Writes the summary CSV: case, parameters, status, wall time, every figure, error
 /// (whole or not at all).

@@ -21,6 +21,7 @@
 
 pub mod cases;
 pub mod exec;
+pub mod figures;
 pub mod page;
 
 use std::path::{Path, PathBuf};
