@@ -15,6 +15,7 @@ mod analyse;
 mod bench;
 mod bounded;
 mod compare;
+mod inputs;
 mod interrupt;
 mod modes;
 mod out;

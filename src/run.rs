@@ -11,7 +11,7 @@ use towride_app::report::plan_run::PlanRun;
 use towride_app::scene::plan;
 use towride_app::scene::{self, channels, Changes, SceneError};
 use towride_mbs::flex::feedback::RunModes;
-use towride_mbs::input::{Loader, Override};
+use towride_mbs::input::Loader;
 
 use crate::CliResult;
 
@@ -31,11 +31,8 @@ pub struct RunArgs {
     /// Plans: list the cases and stop.
     #[arg(long)]
     pub(crate) list: bool,
-    /// Replace a value of any file the run reads: FILE:PATH=VALUE (FILE matched by the
-    /// end of its path; PATH `table.key`, `.tir` `SECTION.KEY`, CSV `column[row]`).
-    /// Repeatable.
-    #[arg(long = "set", value_name = "FILE:PATH=VALUE")]
-    pub(crate) set: Vec<String>,
+    #[command(flatten)]
+    pub(crate) inputs: crate::inputs::InputArgs,
     /// Scenes: list what `[[output]]` tables can ask for (named quantities, bodies,
     /// markers, joints, elements) and stop.
     #[arg(long)]
@@ -65,12 +62,7 @@ pub struct RunArgs {
 }
 
 pub fn run(a: &RunArgs) -> CliResult {
-    let overrides = a
-        .set
-        .iter()
-        .map(|s| Override::from_argument(s))
-        .collect::<Result<Vec<_>, _>>()?;
-    let loader = Loader::with_overrides(overrides);
+    let loader = a.inputs.loader()?;
     let at = towride_mbs::input::InputError {
         file: "command line".into(),
         line: None,
@@ -104,8 +96,25 @@ pub fn run(a: &RunArgs) -> CliResult {
     }
     let check = Check::of(a);
     if !plan::is_plan(&a.file) {
+        // Plan-only options would change nothing here: say so rather than ignore them.
+        let plan_only = [
+            (!a.case.is_empty(), "--case"),
+            (a.list, "--list"),
+            (a.jobs.is_some(), "--jobs"),
+        ];
+        if let Some((_, flag)) = plan_only.iter().find(|(given, _)| *given) {
+            return Err(towride_mbs::input::InputError {
+                field: flag.to_string(),
+                message: format!(
+                    "{flag} chooses among a plan's cases; {} is not a plan (no [plan] table)",
+                    a.file.display()
+                ),
+                ..at
+            }
+            .into());
+        }
         let build = || -> Result<Job, Box<dyn std::error::Error>> {
-            Ok(if scene::is_scene(&a.file) {
+            let mut job = if scene::is_scene(&a.file) {
                 let changes = Changes {
                     animation_rate_hz: a.animation_rate_hz,
                     run_modes: run_modes.clone(),
@@ -118,7 +127,9 @@ pub fn run(a: &RunArgs) -> CliResult {
                     job.settings.animation_rate = r;
                 }
                 job
-            })
+            };
+            job.produced_by = crate::inputs::stamp(&job.produced_by);
+            Ok(job)
         };
         let job = build()?;
         let companion = match check {
@@ -180,6 +191,7 @@ pub fn run(a: &RunArgs) -> CliResult {
             if let Some(r) = a.animation_rate_hz {
                 job.settings.animation_rate = r;
             }
+            job.produced_by = crate::inputs::stamp(&job.produced_by);
             Ok(job)
         };
         let go = || -> Result<RunResult, DynError> {

@@ -22,6 +22,18 @@ pub enum Method {
     Radau5,
 }
 
+impl Method {
+    /// `[solver]` keys this method does not read: a file that sets one under it would
+    /// change nothing, so readers refuse it.
+    pub fn unused_keys(self) -> &'static [&'static str] {
+        match self {
+            Method::Variable => &["radau"],
+            Method::FixedCoefficient => &["radau", "vector_error_weights"],
+            Method::Radau5 => &["max_order", "stability_limit_detection"],
+        }
+    }
+}
+
 /// Settings of the Radau IIA integrator (RADAU5's WORK and IWORK entries of the same
 /// meaning; defaults are RADAU5's).
 #[derive(Clone, Debug, PartialEq)]

@@ -23,12 +23,14 @@
 
 pub mod band;
 pub mod convergence;
+mod produced;
 pub mod ringing;
 mod summary;
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+pub use produced::ProducedBy;
 pub use summary::{
     Acquisition, ChannelSummary, Extremes, LiftOff, RunStatus, RunSummary, SceneInfo, Signal,
     SolverSummary, StepLimiter, Unknowns, SCHEMA_VERSION,
@@ -94,6 +96,9 @@ pub struct Job {
     pub scene: Option<Box<Scene>>,
     /// One line per redundant constraint row the assembly dropped.
     pub warnings: Vec<String>,
+    /// What produced the run (overrides from the files; version and command line from
+    /// the caller, [`ProducedBy::stamped`]).
+    pub produced_by: ProducedBy,
 }
 
 /// A finished (or stopped) run: the sampled channels and the summary.
@@ -141,7 +146,10 @@ impl Job {
             animation_rate: scene::DEFAULT_ANIMATION_RATE_HZ,
         };
         let name = mech.model.name.clone();
-        Job::assemble(path, name, mech.model, mech.solver, settings, start, None)
+        let overrides = mech.overrides;
+        let mut job = Job::assemble(path, name, mech.model, mech.solver, settings, start, None)?;
+        job.set_overrides(overrides);
+        Ok(job)
     }
 
     /// A scene file with some settings changed (`Changes::default()` for none).
@@ -175,8 +183,19 @@ impl Job {
         )?;
         if let Some(sc) = &job.scene {
             job.solver = sc.solver_for(&job.system);
+            let o = sc.overrides.clone();
+            job.set_overrides(o);
         }
         Ok(job)
+    }
+
+    /// Records the overrides that took effect; the caller's change the run's name, so
+    /// that a title written for 50 km/h does not stand over a run at 40.
+    fn set_overrides(&mut self, overrides: Vec<towride_mbs::input::Applied>) {
+        if let Some(said) = produced::caller_changes(&overrides) {
+            self.name = format!("{} ({said})", self.name);
+        }
+        self.produced_by.overrides = overrides;
     }
 
     fn assemble(
@@ -200,6 +219,7 @@ impl Job {
             start,
             scene,
             warnings,
+            produced_by: ProducedBy::default(),
         })
     }
 

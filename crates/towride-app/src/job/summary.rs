@@ -375,6 +375,8 @@ pub struct RunSummary {
     /// --check`); `None` when not asked for.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub convergence: Option<super::convergence::Verdict>,
+    /// What produced the run: version, commit, command line, overrides in effect.
+    pub produced_by: super::ProducedBy,
     /// The CSV written, once written.
     pub outputs_csv: Option<String>,
     /// The plot page written (or why not), once written.
@@ -458,6 +460,7 @@ impl RunSummary {
                 .acquisition()
                 .map(|f| Acquisition::of(&f, job.settings.sample_rate)),
             channels: channels(samples, job.acquisition().as_ref()),
+            produced_by: job.produced_by.clone(),
             outputs_csv: None,
             plots: None,
             report: None,

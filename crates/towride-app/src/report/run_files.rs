@@ -73,6 +73,9 @@ pub fn write_run(run: &mut RunResult, system: &System, dir: &Path) -> Result<()>
         run.summary.report = Some(format!("not written: {e}"));
     }
     run.summary.report_wall_s = Some(wall.elapsed().as_secs_f64());
+    // What reproduces the run's inputs from the files on disk (`--overrides FILE`).
+    let ov = dir.join("overrides.toml");
+    atomic::write(&ov, run.summary.produced_by.overrides_toml()).map_err(|e| Error::io(&ov, e))?;
     let path = dir.join("summary.json");
     let text = run.summary.to_json();
     atomic::write(&path, text).map_err(|e| Error::io(&path, e))

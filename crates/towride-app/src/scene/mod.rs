@@ -182,6 +182,9 @@ pub const DEFAULT_ANIMATION_RATE_HZ: f64 = 200.0;
 /// A scene ready to run.
 #[derive(Clone, Debug)]
 pub struct Scene {
+    /// The overrides that took effect (the scene's `[[override]]` tables and the
+    /// caller's), as `overrides.toml` records them.
+    pub overrides: Vec<towride_mbs::input::Applied>,
     /// Scene name (the file's, or the plan case's).
     pub name: String,
     /// The scene file.
@@ -285,6 +288,24 @@ fn overrides_in(src: &Source, f: &File) -> Vec<Override> {
             },
         })
         .collect()
+}
+
+/// The hitch variant the scene asks the builder for: the caller's (a sweep's, a plan's)
+/// or the scene's own `hitch_variant`, unless the caller overrides the hitch file's
+/// `hitch.variant`, which then decides (the command line beats the scene file; two
+/// callers setting it both is an error).
+fn hitch_variant(
+    loader: &Loader,
+    caller: Option<u32>,
+    scene: Option<u32>,
+) -> Result<Option<u32>, InputError> {
+    match (loader.caller_override("hitch.variant"), caller) {
+        (Some(ov), Some(n)) => Err(ov.origin.at_path(format!(
+            "the hitch variant is set twice: also to {n} by the case being run (a sweep or plan value); keep one"
+        ))),
+        (Some(_), None) => Ok(None),
+        (None, c) => Ok(c.or(scene)),
+    }
 }
 
 /// The `[[override]]` tables of the scene file at `path` (as `load` applies them).
@@ -391,6 +412,7 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
     if !solver_sets("radau") {
         solver.radau = towride_solver::RadauOptions::costly_jacobian();
     }
+    towride_mbs::model::spec::solver_keys_used(&src, solver.method)?;
     let atol_scale = if atol_given {
         None
     } else {
@@ -427,7 +449,7 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
         speed,
         x_offset,
         load_case: o.load_case.clone().or(f.scene.load_case.clone()),
-        hitch_variant: o.hitch_variant.or(f.scene.hitch_variant),
+        hitch_variant: hitch_variant(&loader, o.hitch_variant, f.scene.hitch_variant)?,
         tyre_kind: f.scene.tyre_model,
         joints_as_bushings: f.scene.joints_as_bushings.clone(),
         ball_coupling: f.scene.ball_coupling,
@@ -496,6 +518,7 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
     v.model.accelerations = f.run.accelerations;
     loader.check_used()?;
     Ok(Scene {
+        overrides: loader.applied(),
         name: o.name.clone().unwrap_or(f.scene.name.clone()),
         file: path.to_path_buf(),
         vehicle: v,

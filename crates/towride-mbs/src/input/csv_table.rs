@@ -91,7 +91,8 @@ pub fn read_columns(
         }
         rows.push(Row { line, values });
     }
-    for e in loader.matching(file) {
+    let entries = super::loader::in_force(file, loader.matching(file)?, |p| p.replace(' ', ""))?;
+    for e in entries {
         let o = &e.ov;
         let cell = o
             .path
@@ -128,7 +129,14 @@ pub fn read_columns(
                 o.origin
                     .at_path(format!("`{}` is not a finite number", o.value))
             })?;
-        e.placed();
+        // The same plausibility bound as a value written in the file.
+        super::bounds::for_key(col)
+            .check(r.values[c])
+            .map_err(|b| {
+                o.origin
+                    .at_path(format!("{}: {}", file.display(), b.message))
+            })?;
+        e.placed(file);
     }
     Ok(rows)
 }

@@ -12,8 +12,8 @@ pub(crate) mod overrides;
 pub mod provenance;
 pub mod tir;
 
-pub use loader::{read_text, Loader};
-pub use overrides::{value_text, Origin, Override};
+pub use loader::{normalized, read_text, Applied, Layer, Loader};
+pub use overrides::{read_file as read_overrides, value_text, Origin, Override};
 
 use std::fmt;
 use std::ops::Range;
@@ -224,6 +224,19 @@ pub struct Source {
     pub path: PathBuf,
     text: String,
     doc: ImDocument<String>,
+    /// Values overrides put in place of the file's: errors about them are theirs.
+    set_by: Vec<SetBy>,
+}
+
+/// A value of a [`Source`] set by an override, not by its file.
+#[derive(Clone, Debug)]
+pub struct SetBy {
+    /// The path set (`table.key`, `array[2].key`).
+    pub path: String,
+    /// The value, as written in the override.
+    pub value: String,
+    /// Where the override was written.
+    pub origin: Origin,
 }
 
 impl Source {
@@ -236,12 +249,23 @@ impl Source {
 
     /// Parses `text` as if read from `path` (used by tests and generated inputs).
     pub fn from_text(path: &Path, text: String) -> Result<Source, InputError> {
+        Source::from_text_set_by(path, text, Vec::new())
+    }
+
+    /// Parses `text`, in which overrides set the values `set_by` (errors about those
+    /// values, and about fields inside them, are located at the override).
+    pub fn from_text_set_by(
+        path: &Path,
+        text: String,
+        set_by: Vec<SetBy>,
+    ) -> Result<Source, InputError> {
         match ImDocument::parse(text.clone()) {
             Ok(doc) => {
                 let src = Source {
                     path: path.to_path_buf(),
                     text,
                     doc,
+                    set_by,
                 };
                 src.check_bounds()?;
                 Ok(src)
@@ -413,13 +437,35 @@ impl Source {
             // the key written on its line.
             field = line.map_or(String::new(), |l| syntax_field(&self.text, l));
         }
-        InputError {
+        self.blamed(InputError {
             file: self.path.clone(),
             line,
             column,
             field,
             message: e.message().trim().to_string(),
             kind: Default::default(),
+        })
+    }
+
+    /// `e` moved to the override that set its field, if one did.
+    fn blamed(&self, e: InputError) -> InputError {
+        let under = |p: &str| {
+            e.field == p
+                || e.field.starts_with(&format!("{p}."))
+                || e.field.starts_with(&format!("{p}["))
+        };
+        match self.set_by.iter().rev().find(|s| under(&s.path)) {
+            Some(s) => s
+                .origin
+                .at_path(format!(
+                    "{} `{}` = {}: {}",
+                    self.path.display(),
+                    e.field,
+                    s.value,
+                    e.message
+                ))
+                .with_kind(e.kind),
+            None => e,
         }
     }
 
@@ -430,14 +476,14 @@ impl Source {
             Some(s) => line_col(&self.text, s.start),
             None => (None, None),
         };
-        InputError {
+        self.blamed(InputError {
             file: self.path.clone(),
             line,
             column,
             field: path_string(path),
             message: message.into(),
             kind: Default::default(),
-        }
+        })
     }
 
     /// A [`FieldError`] of the value at `base`, located at its field.

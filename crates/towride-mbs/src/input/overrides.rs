@@ -45,12 +45,12 @@ impl Override {
     /// Parses a command-line `FILE:PATH=VALUE`.
     pub fn from_argument(arg: &str) -> Result<Override, InputError> {
         let bad = |m: &str| Origin::Argument(arg.to_string()).error(m.to_string());
-        let (lhs, value) = arg
-            .split_once('=')
-            .ok_or_else(|| bad("write FILE:PATH=VALUE, e.g. hitch.toml:hitch.variant=7"))?;
-        let (file, path) = lhs
-            .rsplit_once(':')
-            .ok_or_else(|| bad("write FILE:PATH=VALUE, e.g. hitch.toml:hitch.variant=7"))?;
+        let (lhs, value) = arg.split_once('=').ok_or_else(|| {
+            bad("write FILE:PATH=VALUE, e.g. front_mcpherson.toml:spring.stiffness_n_m=2.5e4")
+        })?;
+        let (file, path) = lhs.rsplit_once(':').ok_or_else(|| {
+            bad("write FILE:PATH=VALUE, e.g. front_mcpherson.toml:spring.stiffness_n_m=2.5e4")
+        })?;
         if file.trim().is_empty() || path.trim().is_empty() || value.trim().is_empty() {
             return Err(bad("FILE, PATH and VALUE must not be empty"));
         }
@@ -121,6 +121,72 @@ impl Origin {
     pub fn at_path(&self, message: String) -> InputError {
         self.error(message)
     }
+
+    /// Where the override was written, in words: `--set ARG`, `FILE:LINE field`, or
+    /// what in towride set it.
+    pub fn describe(&self) -> String {
+        match self {
+            Origin::File { path, .. } => {
+                let mut s = path.file.display().to_string();
+                if let Some(l) = path.line {
+                    s += &format!(":{l}");
+                }
+                if !path.field.is_empty() {
+                    s += &format!(" `{}`", path.field);
+                }
+                s
+            }
+            Origin::Argument(a) if a.contains(":") && a.contains('=') => format!("--set {a}"),
+            Origin::Argument(a) => a.clone(),
+            Origin::Program(w) => format!("towride from {w}"),
+        }
+    }
+}
+
+/// The value a TOML path addresses, written one way (`a . b [2]` is `a.b[2]`).
+pub(crate) fn toml_key(path: &str) -> String {
+    path.split('.')
+        .map(|p| p.trim().replace(' ', ""))
+        .collect::<Vec<_>>()
+        .join(".")
+}
+
+/// Reads an overrides file (`--overrides FILE`, a run's `overrides.toml`): top-level
+/// `"FILE:PATH" = VALUE` lines, each an override located at its line.
+pub fn read_file(path: &Path) -> Result<Vec<Override>, InputError> {
+    let src = super::Source::read(path)?;
+    let table: toml::Table = src.parse()?;
+    let mut out = Vec::new();
+    for (key, v) in &table {
+        let at = src.error(&crate::path![key.as_str()], "");
+        let bad = |m: &str| InputError {
+            message: m.to_string(),
+            ..at.clone()
+        };
+        if v.is_table() || v.as_array().is_some_and(|a| a.iter().any(|x| x.is_table())) {
+            return Err(bad(
+                "write each override as a top-level \"FILE:PATH\" = VALUE line, not a table",
+            ));
+        }
+        let Some((file, p)) = key.rsplit_once(':') else {
+            return Err(bad(
+                "the key names FILE:PATH, e.g. \"vehicles/fabia/front_mcpherson.toml:spring.stiffness_n_m\"",
+            ));
+        };
+        if file.trim().is_empty() || p.trim().is_empty() {
+            return Err(bad("FILE and PATH must not be empty"));
+        }
+        out.push(Override {
+            file: file.trim().into(),
+            path: p.trim().into(),
+            value: value_text(v),
+            origin: Origin::File {
+                file: Box::new(at.clone()),
+                path: Box::new(at),
+            },
+        });
+    }
+    Ok(out)
 }
 
 /// Applies `entries` (the overrides matching `path`) to the TOML `text`.
@@ -158,7 +224,7 @@ pub(crate) fn apply_toml(
                 ))
             })?,
         }
-        e.placed();
+        e.placed(path);
     }
     Ok(doc.to_string())
 }

@@ -51,28 +51,37 @@ impl TirFile {
     pub fn read(path: &Path, loader: &crate::input::Loader) -> Result<TirFile, InputError> {
         let text = crate::input::loader::read_text(path)?;
         let mut t = TirFile::parse(path, &text)?;
-        for e in loader.matching(path) {
+        let entries =
+            crate::input::loader::in_force(path, loader.matching(path)?, |p| p.trim().to_string())?;
+        for e in entries {
             let o = &e.ov;
-            let (sec, key) = o.path.split_once('.').ok_or_else(|| {
+            let (sec, key) = o.path.trim().split_once('.').ok_or_else(|| {
                 o.origin.at_path(format!(
                     "a .tir value is addressed as `SECTION.KEY`, not `{}`",
                     o.path
                 ))
             })?;
+            let secs: Vec<String> = t.sections.keys().cloned().collect();
             let s = t.sections.get_mut(sec).ok_or_else(|| {
-                o.origin
-                    .at_path(format!("{} has no section [{sec}]", path.display()))
+                let known = secs.iter().map(|k| k.as_str());
+                o.origin.at_path(format!(
+                    "{} has no section [{sec}]{}",
+                    path.display(),
+                    crate::model::suggest::did_you_mean(sec, known)
+                ))
             })?;
-            let line = s.line;
-            s.keys
-                .entry(key.to_string())
-                .and_modify(|v| v.value = o.value.trim().to_string())
-                .or_insert(Entry {
-                    value: o.value.trim().to_string(),
-                    line,
-                    column: 1,
-                });
-            e.placed();
+            // Only a value the file has: a misspelt key would otherwise be added, read
+            // by nothing, and the run would go on with the file's value.
+            let keys: Vec<String> = s.keys.keys().cloned().collect();
+            let v = s.keys.get_mut(key).ok_or_else(|| {
+                o.origin.at_path(format!(
+                    "{} has no key {key} in [{sec}]{}",
+                    path.display(),
+                    crate::model::suggest::did_you_mean(key, keys.iter().map(|k| k.as_str()))
+                ))
+            })?;
+            v.value = o.value.trim().to_string();
+            e.placed(path);
         }
         Ok(t)
     }

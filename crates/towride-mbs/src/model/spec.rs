@@ -213,6 +213,8 @@ pub struct Mechanism {
     pub run: RunSpec,
     /// Integrator settings.
     pub solver: SolverOptions,
+    /// The overrides that took effect (placed, not superseded).
+    pub overrides: Vec<crate::input::Applied>,
 }
 
 /// Reads and validates a mechanism file, read through `loader` (its overrides; one
@@ -221,8 +223,9 @@ pub fn load(path: &Path, loader: &Loader) -> Result<Mechanism, InputError> {
     let loader = loader.fresh();
     let src = loader.toml(path)?;
     let file: File = src.parse()?;
-    let m = build(&src, file)?;
+    let mut m = build(&src, file)?;
     loader.check_used()?;
+    m.overrides = loader.applied();
     Ok(m)
 }
 
@@ -246,6 +249,7 @@ pub fn build(src: &Source, f: File) -> Result<Mechanism, InputError> {
     b.set_joints_as_bushings(f.model.joints_as_bushings.clone())
         .map_err(|e| src.locate(&path![], e.into_field()))?;
     check_run(src, &f.run)?;
+    solver_keys_used(src, f.solver.method)?;
     f.solver
         .validate(1)
         .map_err(|e| src.error(&path!["solver"], e.to_string()))?;
@@ -351,6 +355,7 @@ pub fn build(src: &Source, f: File) -> Result<Mechanism, InputError> {
         model: m,
         run: f.run,
         solver: f.solver,
+        overrides: Vec::new(),
     })
 }
 
@@ -482,4 +487,36 @@ pub fn output_of(
             .unwrap_or(format!("{default_name}.{}", o.quantity)),
         request,
     ))
+}
+
+/// Refuses `[solver]` keys the file's method does not read (`[solver.radau]` under a BDF
+/// method, `max_order` under Radau IIA): the value would silently change nothing.
+pub fn solver_keys_used(src: &Source, method: towride_solver::Method) -> Result<(), InputError> {
+    let raw: Option<toml::Table> = src.text().parse().ok();
+    let Some(solver) = raw
+        .as_ref()
+        .and_then(|t| t.get("solver")?.as_table().cloned())
+    else {
+        return Ok(());
+    };
+    for key in method.unused_keys() {
+        if solver.contains_key(*key) {
+            return Err(src.error(
+                &path!["solver", *key],
+                format!(
+                    "the method in use ({}) does not read `{key}`; remove it or choose a method that does",
+                    method_name(method)
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn method_name(m: towride_solver::Method) -> &'static str {
+    match m {
+        towride_solver::Method::Variable => "variable-coefficient BDF",
+        towride_solver::Method::FixedCoefficient => "fixed-coefficient BDF",
+        towride_solver::Method::Radau5 => "Radau IIA",
+    }
 }

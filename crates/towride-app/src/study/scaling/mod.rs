@@ -327,6 +327,7 @@ fn generated_job(file: &Path, model: Model, g: &Generated) -> Result<Job> {
             accelerations: Accelerations::Interpolant,
         },
         solver: g.solver.clone(),
+        overrides: Vec::new(),
     };
     Job::from_mechanism(file, mech)
 }

@@ -188,7 +188,7 @@ pub fn candidates(scene: &Path, groups: &[String]) -> Result<Vec<Param>, crate::
         if f.extension().is_some_and(|e| e == "tir") {
             let first = out.len();
             tir_values(&text, &rel, g, &mut out);
-            for ov in effective.overrides_of(f) {
+            for ov in effective.overrides_of(f)? {
                 let x = ov.value.trim().parse::<f64>();
                 let p = out[first..].iter_mut().find(|p| p.path == ov.path);
                 if let (Some(p), Ok(x)) = (p, x) {

@@ -144,12 +144,16 @@ pub(super) fn build(
     ];
     let overrides = values
         .iter()
-        .map(|(k, v, _, _)| {
+        .map(|(k, v, _, why)| {
             Override::program(
                 &name,
                 k,
                 format!("{v:e}"),
-                &format!("{}: {k}", field("size")),
+                &format!(
+                    "{} `{}` ({why})",
+                    towride_mbs::input::normalized(&ctx.src.path).display(),
+                    field("size")
+                ),
             )
         })
         .collect();
