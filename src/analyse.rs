@@ -6,7 +6,6 @@ use std::path::PathBuf;
 use clap::Args;
 
 use towride_app::job::Job;
-use towride_mbs::input::Loader;
 use towride_mbs::model;
 use towride_mbs::progress::Silent;
 
@@ -25,10 +24,12 @@ pub struct LinearArgs {
     /// Folder for the HTML page (`linear.html`: mode table and animated mode shapes).
     #[arg(long, default_value = "out")]
     out: PathBuf,
+    #[command(flatten)]
+    inputs: crate::inputs::InputArgs,
 }
 
 pub fn linear(a: &LinearArgs) -> CliResult {
-    let mut job = Job::from_file(&a.file, &Loader::new())?.without_view();
+    let mut job = Job::from_file(&a.file, &a.inputs.loader()?)?.without_view();
     if let Some(t) = a.at.filter(|t| *t > 0.0) {
         // The state of a run at t, started as the file says.
         job.settings.t_end = t;
@@ -137,10 +138,12 @@ pub struct DoctorArgs {
     /// Print JSON.
     #[arg(long)]
     json: bool,
+    #[command(flatten)]
+    inputs: crate::inputs::InputArgs,
 }
 
 pub fn doctor(a: &DoctorArgs) -> CliResult {
-    let job = Job::from_file(&a.file, &Loader::new())?;
+    let job = Job::from_file(&a.file, &a.inputs.loader()?)?;
     let rep = model::doctor::examine(&job.system, &job.solver, a.step);
     if a.json {
         println!("{}", serde_json::to_string_pretty(&rep)?);

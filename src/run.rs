@@ -233,6 +233,8 @@ pub fn run(a: &RunArgs) -> CliResult {
     };
     let mut code = 0;
     let mut table = PlanRun::new(&p, &a.file);
+    let results_len = results.len();
+    let started = results.iter().filter(|r| !matches!(r, Ok(None))).count();
     for (c, r) in cases.iter().zip(results) {
         let out = a.out.join(&c.name);
         let res = r.map_err(|e| -> Box<dyn std::error::Error> { e })?;
@@ -240,6 +242,15 @@ pub fn run(a: &RunArgs) -> CliResult {
             code = code.max(exit_code(res, &out));
         }
         table.push(c, &out, res.as_ref());
+    }
+    // Cases never started because of an interruption: the plan did not complete.
+    let not_run = results_len - started;
+    if crate::interrupt::requested() && not_run > 0 {
+        eprintln!(
+            "interrupted: {not_run} of {} cases not run (their rows say so); run the plan again with --case to finish them",
+            cases.len()
+        );
+        code = code.max(crate::interrupt::EXIT);
     }
     let csv = table.write(&a.out)?;
     if a.json {

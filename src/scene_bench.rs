@@ -50,6 +50,8 @@ pub struct BenchSceneArgs {
     pub out: PathBuf,
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    pub inputs: crate::inputs::InputArgs,
 }
 
 pub fn run_bench(a: &BenchSceneArgs) -> CliResult {
@@ -75,6 +77,7 @@ pub fn run_bench(a: &BenchSceneArgs) -> CliResult {
         methods: a.methods.iter().map(|&m| m.into()).collect(),
         equal_error: a.equal_error.clone(),
         equal_band_error: a.equal_band_error.clone(),
+        loader: a.inputs.loader()?,
     };
     let pb = crate::progress(0, a.json);
     let mut b = bench::run(scene, &settings, &pb)?;

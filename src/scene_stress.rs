@@ -27,6 +27,8 @@ pub struct StressArgs {
     pub out: PathBuf,
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    pub inputs: crate::inputs::InputArgs,
 }
 
 /// The |peak| against the reference's: an error for a same-physics case (`+0.12 % err`),
@@ -50,6 +52,7 @@ pub fn run_stress(a: &StressArgs) -> CliResult {
     let pb = crate::progress(0, a.json);
     let st = stress::run(
         &a.scene,
+        &a.inputs.loader()?,
         a.only.as_deref(),
         a.method.map(Into::into),
         jobs,

@@ -10,7 +10,6 @@ use std::path::PathBuf;
 use clap::Args;
 use towride_app::report::tyre_lateral::LateralSummary;
 use towride_app::report::tyre_rig::RigSummary;
-use towride_mbs::input::Loader;
 use towride_mbs::tyre::rig::{RigCase, RigSetup};
 use towride_mbs::tyre::rig_lateral::read_reference;
 
@@ -27,10 +26,15 @@ pub struct TyreRigArgs {
     /// Directory for `<name>.csv` (history) and `<name>.png` (plot).
     #[arg(long)]
     out: Option<PathBuf>,
+    #[command(flatten)]
+    inputs: crate::inputs::InputArgs,
 }
 
 pub fn run(a: &TyreRigArgs) -> CliResult {
-    let case = RigCase::from_file(&a.file, &Loader::new())?;
+    let loader = a.inputs.loader()?;
+    let case = RigCase::from_file(&a.file, &loader)?;
+    // An override that reached no file the rig read would otherwise change nothing.
+    loader.check_used()?;
     let rtol = a.rtol.unwrap_or(case.rtol);
     let run = case
         .run(Some(rtol))

@@ -11,7 +11,7 @@ use towride_app::validate::descriptor::{AcqFilter, Unit};
 use towride_app::validate::folder::{find_descriptors, summary_json};
 use towride_app::validate::synth::{make_synthetic, SensorModel, SynthRun, TriggerLayout};
 use towride_app::validate::{
-    default_simulator, init, plan, report, validate_folder, write_summary, Options,
+    default_simulator, init, plan, report, simulator_with, validate_folder, write_summary, Options,
 };
 
 #[derive(Args, Debug)]
@@ -27,6 +27,8 @@ pub struct ValidateArgs {
     /// Print per run and channel figures as JSON.
     #[arg(long)]
     json: bool,
+    #[command(flatten)]
+    inputs: crate::inputs::InputArgs,
     /// Skip the corrections (speed from the foils, cross-correlation shift).
     #[arg(long)]
     no_correct: bool,
@@ -129,7 +131,7 @@ pub fn run(a: &ValidateArgs) -> CliResult {
         .as_ref()
         .ok_or("give a run descriptor (RUN.toml) or a folder")?;
     let files = find_descriptors(path)?;
-    let sim = default_simulator();
+    let sim = simulator_with(a.inputs.loader()?);
     let opts = Options {
         correct: !a.no_correct,
         max_shift_s: a.max_shift_ms * 1e-3,

@@ -14,6 +14,7 @@ mod validate_sim;
 mod basics;
 mod check;
 mod modes;
+mod overrides;
 mod provenance;
 mod reliability;
 mod sensitivity;

@@ -61,7 +61,7 @@ use crate::vehicle::sensors::{self, SensorSpec};
 use crate::vehicle::{self, build::Builder, BallCoupling, CrossMember, Options, Vehicle};
 use towride_mbs::flex::feedback::RunModes;
 use towride_mbs::input::Origin;
-use towride_mbs::input::{InputError, InputErrorKind, Loader, Override, Source};
+use towride_mbs::input::{InputError, InputErrorKind, Layer, Loader, Override, Source};
 use towride_mbs::model::builder::ModelBuilder;
 use towride_mbs::model::elements::JointBushing;
 use towride_mbs::model::{Model, System};
@@ -291,20 +291,30 @@ fn overrides_in(src: &Source, f: &File) -> Vec<Override> {
 }
 
 /// The hitch variant the scene asks the builder for: the caller's (a sweep's, a plan's)
-/// or the scene's own `hitch_variant`, unless the caller overrides the hitch file's
-/// `hitch.variant`, which then decides (the command line beats the scene file; two
-/// callers setting it both is an error).
+/// or the scene's own `hitch_variant`, unless an override of the hitch file's
+/// `hitch.variant` of a higher layer decides (the command line beats the scene file);
+/// two of one layer setting it is an error, as for any value set twice.
 fn hitch_variant(
     loader: &Loader,
     caller: Option<u32>,
     scene: Option<u32>,
 ) -> Result<Option<u32>, InputError> {
-    match (loader.caller_override("hitch.variant"), caller) {
-        (Some(ov), Some(n)) => Err(ov.origin.at_path(format!(
-            "the hitch variant is set twice: also to {n} by the case being run (a sweep or plan value); keep one"
-        ))),
-        (Some(_), None) => Ok(None),
-        (None, c) => Ok(c.or(scene)),
+    let twice = |ov: &Override, by: &str| {
+        Err(ov.origin.at_path(format!(
+            "the hitch variant is set twice: also by {by}; keep one"
+        )))
+    };
+    match (loader.override_at("hitch.variant"), caller, scene) {
+        (Some((ov, Layer::Caller)), Some(n), _) => twice(
+            ov,
+            &format!("the case being run (a sweep or plan value, {n})"),
+        ),
+        (Some((_, Layer::Caller)), None, _) => Ok(None),
+        (Some((ov, Layer::Scene)), None, Some(n)) => {
+            twice(ov, &format!("the scene's hitch_variant = {n}"))
+        }
+        (Some((_, Layer::Scene)), None, None) => Ok(None),
+        (_, c, s) => Ok(c.or(s)),
     }
 }
 
@@ -329,7 +339,20 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
     let f: File = src.parse()?;
     // The file's overrides first, so that the caller's (`run --set`, a sweep case, a
     // sensitivity study) win where both set a value.
-    let loader = loader.under(overrides_in(&src, &f));
+    let own = overrides_in(&src, &f);
+    // The scene is read before its own overrides exist: one of the scene would change
+    // nothing.
+    let me = towride_mbs::input::normalized(path);
+    if let Some(o) = own
+        .iter()
+        .find(|o| me.ends_with(towride_mbs::input::normalized(Path::new(&o.file))))
+    {
+        return Err(o.origin.at_file(format!(
+            "a scene's [[override]] cannot change the scene itself ({}): write the value in the scene",
+            path.display()
+        )));
+    }
+    let loader = loader.under(own);
     let dir = path.parent().unwrap_or(Path::new("."));
     // Modes from an earlier run: the command line's choice wins over the file's.
     let run_modes = match (&f.scene.modes_from, &o.run_modes) {
@@ -353,7 +376,7 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
         if full.is_file() {
             Ok(full)
         } else {
-            Err(src.error(p, format!("no file {}", full.display())))
+            Err(src.error(p, towride_mbs::input::no_file(&full)))
         }
     };
     let vehicle_file = existing(&path!["scene", "vehicle"], &f.scene.vehicle)?;
@@ -466,7 +489,16 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
                     format!("{} ({})", e.message, e.file.display()),
                 )
                 .with_kind(e.kind.clone()),
-            _ => e,
+            // The same for a load case the scene names.
+            _ => match (&o.load_case, &f.scene.load_case, &e.kind) {
+                (None, Some(_), InputErrorKind::NoLoadCase) => src
+                    .error(
+                        &path!["scene", "load_case"],
+                        format!("{} ({})", e.message, e.file.display()),
+                    )
+                    .with_kind(e.kind.clone()),
+                _ => e,
+            },
         }
     })?;
     let extra = {

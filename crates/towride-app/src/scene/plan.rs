@@ -148,7 +148,7 @@ pub fn load(path: &Path) -> Result<Plan, InputError> {
         if !scene.is_file() {
             return Err(src.error(
                 &path!["obstacle", i, "scene"],
-                format!("no file {}", scene.display()),
+                towride_mbs::input::no_file(&scene),
             ));
         }
         if f.obstacle[..i].iter().any(|q| q.name == o.name) {

@@ -43,6 +43,8 @@ pub struct Settings {
     pub equal_error: Vec<f64>,
     /// The same for the sensors' in-band error.
     pub equal_band_error: Vec<f64>,
+    /// Reads the scene's files (the command line's overrides).
+    pub loader: Loader,
 }
 
 impl Default for Settings {
@@ -56,6 +58,7 @@ impl Default for Settings {
             methods: vec![Method::Variable, Method::FixedCoefficient, Method::Radau5],
             equal_error: vec![1e-2, 2e-3],
             equal_band_error: vec![2e-2, 1e-2],
+            loader: Loader::new(),
         }
     }
 }
@@ -190,8 +193,8 @@ fn method_label(m: Method) -> String {
     }
 }
 
-fn run_at(scene: &Path, f: impl FnOnce(&mut SolverOptions)) -> Result<RunResult> {
-    Job::from_scene_file(scene, &Changes::default(), &Loader::new())?
+fn run_at(scene: &Path, loader: &Loader, f: impl FnOnce(&mut SolverOptions)) -> Result<RunResult> {
+    Job::from_scene_file(scene, &Changes::default(), loader)?
         .without_view()
         .tune(f)?
         .run(&Silent)
@@ -240,7 +243,7 @@ pub fn run(scene: &Path, s: &Settings, progress: &dyn Progress) -> Result<Bench>
     // The reference tightens the absolute tolerances with the relative one: with the
     // scene's atol the crossbeam's modal coordinates (micrometres) would be held only to
     // atol, and their 200-300 Hz modes ring at that level in the raw accelerations.
-    let reference = run_at(scene, |o| {
+    let reference = run_at(scene, &s.loader, |o| {
         let f = s.reference_tol / o.rtol;
         if f < 1.0 {
             o.atol.iter_mut().for_each(|x| *x *= f);
@@ -267,9 +270,9 @@ pub fn run(scene: &Path, s: &Settings, progress: &dyn Progress) -> Result<Bench>
         cases
             .par_iter()
             .map(|&(m, t)| {
-                let mut r = run_at(scene, tuned(m, t));
+                let mut r = run_at(scene, &s.loader, tuned(m, t));
                 for _ in 1..s.repeat.max(1) {
-                    let again = run_at(scene, tuned(m, t));
+                    let again = run_at(scene, &s.loader, tuned(m, t));
                     if let (Ok(best), Ok(x)) = (&mut r, again) {
                         if total_wall(&x) < total_wall(best) {
                             best.summary.wall_s = x.summary.wall_s;
@@ -290,7 +293,7 @@ pub fn run(scene: &Path, s: &Settings, progress: &dyn Progress) -> Result<Bench>
         &s.equal_band_error,
         ErrorMeasure::SensorBand,
     ));
-    let (step_histories, histories) = step_histories(scene, &s.methods)?;
+    let (step_histories, histories) = step_histories(scene, &s.methods, &s.loader)?;
     let job = &reference.summary;
     Ok(Bench {
         schema_version: SCHEMA_VERSION,
@@ -374,11 +377,15 @@ fn at_equal(
 pub type Histories = Vec<(Method, Vec<(f64, f64, usize)>)>;
 
 /// Runs each method at the scene's own settings with the step history recorded.
-fn step_histories(scene: &Path, methods: &[Method]) -> Result<(Vec<HistorySummary>, Histories)> {
+fn step_histories(
+    scene: &Path,
+    methods: &[Method],
+    loader: &Loader,
+) -> Result<(Vec<HistorySummary>, Histories)> {
     let mut hist = Vec::new();
     let mut summary = Vec::new();
     for &m in methods {
-        let r = run_at(scene, |o| {
+        let r = run_at(scene, loader, |o| {
             o.method = m;
             o.record_steps = true;
         })?;

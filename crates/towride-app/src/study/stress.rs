@@ -233,12 +233,13 @@ pub fn cases() -> Vec<Case> {
 /// the scene's).
 pub fn run(
     scene: &Path,
+    loader: &Loader,
     only: Option<&str>,
     method: Option<Method>,
     jobs: usize,
     progress: &dyn Progress,
 ) -> Result<Stress> {
-    let reference = Job::from_scene_file(scene, &Changes::default(), &Loader::new())?
+    let reference = Job::from_scene_file(scene, &Changes::default(), loader)?
         .without_view()
         .tune(|o| o.rtol = REFERENCE_RTOL)?
         .run(&Silent)?;
@@ -262,7 +263,7 @@ pub fn run(
     let outcomes: Vec<Outcome> = pool(jobs)?.install(|| {
         all.par_iter()
             .map(|c| {
-                let r = run_case(scene, c, method);
+                let r = run_case(scene, loader, c, method);
                 progress.inc(1);
                 outcome(c, r, &refdata)
             })
@@ -288,8 +289,8 @@ pub fn run(
     })
 }
 
-fn run_case(scene: &Path, c: &Case, method: Option<Method>) -> Result<RunResult> {
-    let loader = Loader::with_overrides(c.props.clone());
+fn run_case(scene: &Path, base: &Loader, c: &Case, method: Option<Method>) -> Result<RunResult> {
+    let loader = base.extended(c.props.clone());
     Job::from_scene_file(scene, &c.scene, &loader)?
         .without_view()
         .tune(|o: &mut SolverOptions| {

@@ -93,5 +93,10 @@ pub trait Simulator {
 /// The simulator the command line uses: the vehicle model driven through a scene file
 /// (the analytic stand-in of [`standin`] remains for tests of the pipeline itself).
 pub fn default_simulator() -> Box<dyn Simulator> {
-    Box::new(vehicle_sim::VehicleSimulator)
+    Box::new(vehicle_sim::VehicleSimulator::default())
+}
+
+/// The vehicle model reading its files through `loader` (the command line's overrides).
+pub fn simulator_with(loader: towride_mbs::input::Loader) -> Box<dyn Simulator> {
+    Box::new(vehicle_sim::VehicleSimulator { loader })
 }

@@ -20,8 +20,11 @@ const LEAD_IN_S: f64 = 0.5;
 const TRAVEL_M: f64 = 7.5;
 const RING_DOWN_S: f64 = 1.0;
 
-#[derive(Clone, Copy, Debug, Default)]
-pub struct VehicleSimulator;
+#[derive(Clone, Debug, Default)]
+pub struct VehicleSimulator {
+    /// Reads the scene's files (with the caller's overrides).
+    pub loader: Loader,
+}
 
 impl Simulator for VehicleSimulator {
     fn simulate(
@@ -44,7 +47,7 @@ impl Simulator for VehicleSimulator {
             obstacle_ahead_m: Some(ahead),
             ..Default::default()
         };
-        let r = Job::from_scene_file(scene, &changes, &Loader::new())?
+        let r = Job::from_scene_file(scene, &changes, &self.loader)?
             .without_view()
             .run(&Silent)?;
         r.require_completed()?;

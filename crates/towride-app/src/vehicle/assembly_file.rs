@@ -107,7 +107,7 @@ fn part(
     }
     let f = dir.join(&part.file);
     if !f.is_file() {
-        return Err(src.error(&at(p, "file"), format!("no file {}", f.display())));
+        return Err(src.error(&at(p, "file"), towride_mbs::input::no_file(&f)));
     }
     Ok(f)
 }
@@ -121,7 +121,7 @@ fn tyre(src: &Source, dir: &Path, p: &[Seg], part: &Part) -> Result<TyreSpec, In
         .ok_or_else(|| src.error(&at, "name the tyre's .tir file"))?;
     let f = dir.join(t);
     if !f.is_file() {
-        return Err(src.error(&at, format!("no file {}", f.display())));
+        return Err(src.error(&at, towride_mbs::input::no_file(&f)));
     }
     Ok(TyreSpec::File(f))
 }

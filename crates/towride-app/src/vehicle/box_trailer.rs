@@ -133,8 +133,13 @@ fn read(file: &Path, case: Option<&str>, loader: &Loader) -> Result<Props, Input
                 let names: Vec<&str> = f.load_case.iter().map(|c| c.name.as_str()).collect();
                 src.error(
                     &path!["load_case"],
-                    format!("no load case '{name}' (cases: {})", names.join(", ")),
+                    format!(
+                        "no load case '{name}' (cases: {}){}",
+                        names.join(", "),
+                        towride_mbs::model::suggest::did_you_mean(name, names.iter().copied())
+                    ),
                 )
+                .with_kind(towride_mbs::input::InputErrorKind::NoLoadCase)
             })?,
     };
     let mut payload = None;

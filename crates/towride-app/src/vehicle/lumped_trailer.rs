@@ -126,8 +126,13 @@ fn read(src: &Source, file: &Path, case: Option<&str>) -> Result<Props, InputErr
                 let names: Vec<&str> = f.load_case.iter().map(|c| c.name.as_str()).collect();
                 src.error(
                     &path!["load_case"],
-                    format!("no load case '{name}' (cases: {})", names.join(", ")),
+                    format!(
+                        "no load case '{name}' (cases: {}){}",
+                        names.join(", "),
+                        towride_mbs::model::suggest::did_you_mean(name, names.iter().copied())
+                    ),
                 )
+                .with_kind(towride_mbs::input::InputErrorKind::NoLoadCase)
             })?)
         }
         // The first case when none is asked for, none when the file has none.

@@ -31,7 +31,7 @@ pub fn load(
 ) -> Result<ModalData, InputError> {
     let (loader, run_modes) = (&b.loader, b.run_modes.as_deref());
     if !fe.is_file() {
-        return Err(src.error(fe_at, format!("no file {}", fe.display())));
+        return Err(src.error(fe_at, towride_mbs::input::no_file(fe)));
     }
     let mesh = Mesh::read(fe, variant, loader)?;
     let rule = match selection {

@@ -107,7 +107,7 @@ pub fn read(
     let coupling = modal_body::coupling(src, &at(p, "inertia_coupling"), &c.inertia_coupling)?;
     let fe = file.parent().unwrap_or(Path::new(".")).join(&c.fe_file);
     if !fe.is_file() {
-        return Err(src.error(&at(p, "fe_file"), format!("no file {}", fe.display())));
+        return Err(src.error(&at(p, "fe_file"), towride_mbs::input::no_file(&fe)));
     }
     let sel_at = at(p, "selection");
     let selection = c.selection.as_ref().map(|s| (sel_at.as_slice(), s));

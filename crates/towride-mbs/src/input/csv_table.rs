@@ -11,6 +11,29 @@ pub struct Row {
     pub line: Option<usize>,
     /// The requested columns' values, in the order asked for.
     pub values: Vec<f64>,
+    /// The override that changed a value of this row (`column[row] = value`, where it
+    /// was written): errors about the row are its.
+    pub set_by: Option<(String, super::Origin)>,
+}
+
+/// Moves an error located at a row an override changed to the override (the file's line
+/// still holds the old value): wrap a reader's checks of `rows` in it.
+pub fn blamed(file: &Path, rows: &[Row], e: InputError) -> InputError {
+    let hit = rows
+        .iter()
+        .find(|r| r.line.is_some() && r.line == e.line && e.file == file);
+    match hit.and_then(|r| r.set_by.as_ref()) {
+        Some((what, origin)) => origin
+            .at_path(format!(
+                "{}:{} ({what}): field `{}`: {}",
+                file.display(),
+                e.line.unwrap_or(0),
+                e.field,
+                e.message
+            ))
+            .with_kind(e.kind),
+        None => e,
+    }
 }
 
 /// Reads `file` (`#` comments, trimmed fields) and returns the columns `names` of every
@@ -89,7 +112,11 @@ pub fn read_columns(
                 .map_err(|e| err(line, name, e.message))?;
             values.push(v);
         }
-        rows.push(Row { line, values });
+        rows.push(Row {
+            line,
+            values,
+            set_by: None,
+        });
     }
     let entries = super::loader::in_force(file, loader.matching(file)?, |p| p.replace(' ', ""))?;
     for e in entries {
@@ -136,6 +163,10 @@ pub fn read_columns(
                 o.origin
                     .at_path(format!("{}: {}", file.display(), b.message))
             })?;
+        r.set_by = Some((
+            format!("{} = {}", o.path.trim(), o.value.trim()),
+            o.origin.clone(),
+        ));
         e.placed(file);
     }
     Ok(rows)

@@ -253,20 +253,21 @@ impl Loader {
         out
     }
 
-    /// The caller's override (not superseded) placed at `path` of a file ending with
-    /// `file`, if any: for a setting that another input also decides (a scene's
-    /// `hitch_variant` and the hitch file's `hitch.variant`).
-    pub fn caller_override(&self, path: &str) -> Option<&Override> {
+    /// The override of the highest layer whose path is `path` (in whichever file), and
+    /// its layer: for a setting another input also decides (a scene's `hitch_variant`
+    /// and the hitch file's `hitch.variant`).
+    pub fn override_at(&self, path: &str) -> Option<(&Override, Layer)> {
+        let rank = |l: Layer| match l {
+            Layer::Scene => 0,
+            Layer::Caller => 1,
+            Layer::Program => 2,
+        };
         self.entries
             .iter()
             .rev()
-            .find(|e| e.layer == Layer::Caller && e.ov.path.trim() == path)
-            .map(|e| &e.ov)
-    }
-
-    /// The overrides in force.
-    pub fn overrides(&self) -> impl Iterator<Item = &Override> {
-        self.entries.iter().map(|e| &e.ov)
+            .filter(|e| e.ov.path.trim() == path)
+            .max_by_key(|e| rank(e.layer))
+            .map(|e| (&e.ov, e.layer))
     }
 
     /// The overrides whose `file` matches `path`, marked as having found their file.

@@ -51,6 +51,9 @@ pub enum InputErrorKind {
         /// The variant asked for.
         number: u32,
     },
+    /// A trailer file lacks the load case asked for (the message lists those it
+    /// defines).
+    NoLoadCase,
 }
 
 impl InputError {
@@ -459,7 +462,7 @@ impl Source {
                 .origin
                 .at_path(format!(
                     "{} `{}` = {}: {}",
-                    self.path.display(),
+                    normalized(&self.path).display(),
                     e.field,
                     s.value,
                     e.message
@@ -509,7 +512,7 @@ impl Source {
         if full.is_file() {
             Ok(full)
         } else {
-            Err(self.error(path, format!("no file {}", full.display())))
+            Err(self.error(path, no_file(&full)))
         }
     }
 
@@ -623,6 +626,28 @@ impl Source {
             }
         }
     }
+}
+
+/// "no file X", with the files of X's folder closest to its name (a misspelt name).
+pub fn no_file(full: &Path) -> String {
+    let name = full
+        .file_name()
+        .map(|n| n.to_string_lossy().to_string())
+        .unwrap_or_default();
+    let dir = full.parent().filter(|d| !d.as_os_str().is_empty());
+    let siblings: Vec<String> = std::fs::read_dir(dir.unwrap_or(Path::new(".")))
+        .map(|rd| {
+            rd.flatten()
+                .take(10_000)
+                .map(|e| e.file_name().to_string_lossy().to_string())
+                .collect()
+        })
+        .unwrap_or_default();
+    format!(
+        "no file {}{}",
+        normalized(full).display(),
+        crate::model::suggest::did_you_mean(&name, siblings.iter().map(|s| s.as_str()))
+    )
 }
 
 /// 1-based (line, column) of a byte offset.

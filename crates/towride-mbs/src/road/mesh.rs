@@ -115,11 +115,15 @@ impl HeightField {
         let err = |line: Option<usize>, field: &str, msg: String| {
             crate::input::csv_table::error(file, line, field, msg)
         };
-        let pts: Vec<(f64, f64, f64, Option<usize>)> =
-            crate::input::csv_table::read_columns(file, &["x_m", "y_m", "z_m"], loader)?
-                .into_iter()
-                .map(|r| (r.values[0], r.values[1], r.values[2], r.line))
-                .collect();
+        let rows = crate::input::csv_table::read_columns(file, &["x_m", "y_m", "z_m"], loader)?;
+        let pts: Vec<(f64, f64, f64, Option<usize>)> = rows
+            .iter()
+            .map(|r| (r.values[0], r.values[1], r.values[2], r.line))
+            .collect();
+        // Errors at a row an override changed are the override's.
+        let err = |line: Option<usize>, field: &str, msg: String| {
+            crate::input::csv_table::blamed(file, &rows, err(line, field, msg))
+        };
         let uniq = |mut v: Vec<f64>| {
             v.sort_by(f64::total_cmp);
             v.dedup();

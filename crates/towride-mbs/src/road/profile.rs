@@ -69,19 +69,20 @@ impl TrackProfile {
         let err = |line: Option<usize>, field: &str, msg: String| {
             crate::input::csv_table::error(file, line, field, msg)
         };
+        let rows =
+            crate::input::csv_table::read_columns(file, &["x_m", "z_left_m", "z_right_m"], loader)?;
         let (mut x, mut l, mut r) = (Vec::new(), Vec::new(), Vec::new());
-        for row in
-            crate::input::csv_table::read_columns(file, &["x_m", "z_left_m", "z_right_m"], loader)?
-        {
+        for row in &rows {
             let line = row.line;
             let xi = row.values[0];
             if let Some(&prev) = x.last() {
                 if xi <= prev {
-                    return Err(err(
+                    let e = err(
                         line,
                         "x_m",
                         format!("must increase strictly ({xi} after {prev})"),
-                    ));
+                    );
+                    return Err(crate::input::csv_table::blamed(file, &rows, e));
                 }
             }
             x.push(xi);

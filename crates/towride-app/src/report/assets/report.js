@@ -27,6 +27,16 @@
       [[h.max_n, h.t_max_s, h.min_n, h.t_min_s, h.abs_peak_n, h.t_abs_peak_s, h.rms_n, opt(h.dominant_hz, fmt), opt(h.damping_ratio, (z) => `${fmt(100 * z)} %`),
         opt(h.decay, (d) => `${fmt(d.from_s)}-${fmt(d.to_s)} (${d.half_cycles} half cycles)`)]]));
   }
+  // --- what produced the run: version, commit, command line, overrides in effect
+  const P = S.produced_by;
+  if (P) {
+    app.append(el("h3", { id: "produced-by" }, "Produced by"));
+    app.append(el("p", {}, `towride ${P.towride_version || "?"} (commit ${P.git_commit || "unknown"})` +
+      (P.command_line && P.command_line.length ? ` · command line: ${P.command_line.join(" ")}` : "")));
+    app.append(P.overrides.length
+      ? table(["file", "path", "value", "written at", "layer"], P.overrides.map((o) => [o.file, o.path, o.value, o.origin, o.layer]))
+      : el("p", { class: "hint" }, "No overrides: the run read its files as they are."));
+  }
   // --- convergence verdict (run --check), failing channels first
   const V = S.convergence;
   app.append(el("h3", { id: "convergence" }, "Convergence"));

@@ -56,6 +56,10 @@ pub(super) struct Car {
     pub spring_tops: [V; 2],
 }
 
+/// The lowest static stability factor t/2h accepted: margin below the 1.0 of the most
+/// top-heavy vans (NHTSA, Rollover Resistance notice, ch. V).
+const MIN_SSF: f64 = 0.8;
+
 /// The car of `f` with tyres of model `kind`.
 pub(super) fn translate(ctx: &Ctx, f: &File, kind: TyreKind) -> Result<Car, InputError> {
     let src = &ctx.src;
@@ -73,6 +77,19 @@ pub(super) fn translate(ctx: &Ctx, f: &File, kind: TyreKind) -> Result<Car, Inpu
     let l = src.positive(&path!["geometry", "wheelbase_m"], gm.wheelbase_m)?;
     let tf = src.positive(&path!["geometry", "front_track_m"], gm.front_track_m)?;
     let tr = src.positive(&path!["geometry", "rear_track_m"], gm.rear_track_m)?;
+    // A centre of mass too high for the track: the static stability factor t/2h of
+    // cars and vans lies near 1.0-1.5 (NHTSA, Rollover Resistance notice, ch. V); below
+    // MIN_SSF the vehicle would tip over at a lateral acceleration no car tips at.
+    let ssf = 0.25 * (tf + tr) / h;
+    if ssf < MIN_SSF {
+        return Err(src.error(
+            &path!["mass", "cg_height_m"],
+            format!(
+                "{h} m over a mean track of {:.2} m gives a static stability factor t/2h of {ssf:.2}; cars and vans have 1.0-1.5 (NHTSA), this file needs at least {MIN_SSF}",
+                0.5 * (tf + tr)
+            ),
+        ));
+    }
     let rear_kg = total - front_kg;
     let (load_f, load_r) = (0.5 * front_kg * ctx.g, 0.5 * rear_kg * ctx.g);
     // The car: origin on the ground under the front axle centre, x forward.

@@ -180,7 +180,7 @@ pub(crate) fn describe(
     if !dpath.is_file() {
         return Err(src.error(
             &path!["vehicle", "defaults"],
-            format!("no file {}", dpath.display()),
+            towride_mbs::input::no_file(&dpath),
         ));
     }
     let defaults = defaults::read(&dpath, loader)?;

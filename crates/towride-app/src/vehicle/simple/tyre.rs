@@ -100,7 +100,7 @@ pub(super) fn build(
     if !base.is_file() {
         return Err(ctx
             .src
-            .error(&at("base"), format!("no file {}", base.display())));
+            .error(&at("base"), towride_mbs::input::no_file(&base)));
     }
     let name = base
         .file_name()
