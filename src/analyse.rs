@@ -7,6 +7,7 @@ use clap::Args;
 
 use towride_app::job::Job;
 use towride_mbs::model;
+use towride_mbs::model::linear::{Mode, RootKind};
 use towride_mbs::progress::Silent;
 
 use crate::CliResult;
@@ -81,8 +82,12 @@ fn print_linear(
         return Ok(0);
     }
     println!(
-        "{}: linearised about the {at}; {} degrees of freedom",
-        sys.model.name, lin.dof
+        "{}: linearised about the {at}; {} degrees of freedom and {} first-order states (tyres, controllers): {} eigenvalues, {} modes (a conjugate pair listed once)",
+        sys.model.name,
+        lin.dof,
+        lin.first_order_states,
+        lin.eigenvalues,
+        lin.modes.len()
     );
     match lin.stiffness_ratio {
         Some(s) => println!(
@@ -91,11 +96,38 @@ fn print_linear(
         ),
         None => println!("stiffness ratio S: undefined (fewer than two damped roots)"),
     }
+    let zero: Vec<&Mode> = lin
+        .modes
+        .iter()
+        .filter(|m| m.kind == RootKind::Zero)
+        .collect();
+    if !zero.is_empty() {
+        // Free motions (lateral position, heading, travel): no vibration, no zeta.
+        let names: Vec<String> = zero
+            .iter()
+            .map(|m| format!("{} {}", m.index, m.name))
+            .collect();
+        println!(
+            "{} zero roots (below {} Hz: motions without restoring force, not vibrations): {}",
+            zero.len(),
+            RootKind::zero_hz(),
+            names.join("; ")
+        );
+    }
+    for m in lin.modes.iter().filter(|m| m.kind == RootKind::Unstable) {
+        println!(
+            "UNSTABLE root of this frozen state: mode {} {} grows at Re = {:.4} 1/s (doubles in {:.3} s)",
+            m.index,
+            m.name,
+            m.real,
+            m.doubling_time_s.unwrap_or(f64::NAN)
+        );
+    }
     println!(
         "{:>4} {:>14} {:>14} {:>9}  {:<34} dominant bodies / elements",
         "mode", "undamped [Hz]", "damped [Hz]", "zeta", "dominant motion (kinetic share)"
     );
-    for m in &lin.modes {
+    for m in lin.modes.iter().filter(|m| m.kind != RootKind::Zero) {
         let bodies: Vec<String> = m
             .bodies
             .iter()
@@ -113,12 +145,17 @@ fn print_linear(
         } else {
             m.name.clone()
         };
+        let zeta = if m.kind == RootKind::Unstable {
+            "UNSTABLE".to_string()
+        } else {
+            format!("{:.4}", m.damping_ratio)
+        };
         println!(
-            "{:>4} {:>14.6} {:>14.6} {:>9.4}  {:<34} {} / {}",
+            "{:>4} {:>14.6} {:>14.6} {:>9}  {:<34} {} / {}",
             m.index,
             m.undamped_hz,
             m.damped_hz,
-            m.damping_ratio,
+            zeta,
             name,
             bodies.join(", "),
             elems.join(", ")

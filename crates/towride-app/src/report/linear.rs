@@ -33,7 +33,11 @@ pub fn linear_report(sys: &System, y: &[f64], lin: &Linearisation, at: &str) -> 
     string(&mut d, &sys.model.name);
     d.push_str(",\"at\":");
     string(&mut d, at);
-    let _ = write!(d, ",\"dof\":{},\"stiffness_ratio\":", lin.dof);
+    let _ = write!(
+        d,
+        ",\"dof\":{},\"first_order_states\":{},\"eigenvalues\":{},\"stiffness_ratio\":",
+        lin.dof, lin.first_order_states, lin.eigenvalues
+    );
     match lin.stiffness_ratio {
         Some(s) if s.is_finite() => {
             let _ = write!(d, "{s}");

@@ -23,6 +23,8 @@ pub fn blamed(file: &Path, rows: &[Row], e: InputError) -> InputError {
         .iter()
         .find(|r| r.line.is_some() && r.line == e.line && e.file == file);
     match hit.and_then(|r| r.set_by.as_ref()) {
+        // towride's own values keep the file's place (see `Source`).
+        Some((_, super::Origin::Program(_) | super::Origin::Derived(_))) => e,
         Some((what, origin)) => origin
             .at_path(format!(
                 "{}:{} ({what}): field `{}`: {}",

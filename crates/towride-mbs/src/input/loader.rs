@@ -105,7 +105,7 @@ impl Entry {
 
     fn new(ov: Override, layer: Layer) -> Arc<Entry> {
         // Values towride derives are a layer of their own, whoever adds them.
-        let layer = if matches!(ov.origin, super::Origin::Program(_)) {
+        let layer = if matches!(ov.origin, super::Origin::Derived(_)) {
             Layer::Program
         } else {
             layer
@@ -192,7 +192,7 @@ impl Loader {
     }
 
     /// This loader plus `more` overrides of the caller's layer (towride's own, with an
-    /// [`super::Origin::Program`], are of theirs); the record of use is shared with
+    /// [`super::Origin::Derived`], are of theirs); the record of use is shared with
     /// `self`.
     pub fn extended(&self, more: Vec<Override>) -> Loader {
         let mut entries = self.entries.clone();

@@ -10,6 +10,7 @@ pub mod csv_table;
 pub(crate) mod loader;
 pub(crate) mod overrides;
 pub mod provenance;
+pub mod suggest;
 pub mod tir;
 
 pub use loader::{normalized, read_text, Applied, Layer, Loader};
@@ -458,6 +459,17 @@ impl Source {
                 || e.field.starts_with(&format!("{p}["))
         };
         match self.set_by.iter().rev().find(|s| under(&s.path)) {
+            // towride's own values (a stress case, a study): the file and field say
+            // more than "towride", and the message says the value was set.
+            Some(s) if matches!(s.origin, Origin::Program(_) | Origin::Derived(_)) => InputError {
+                message: format!(
+                    "{} (value {} set by {})",
+                    e.message,
+                    s.value,
+                    s.origin.describe()
+                ),
+                ..e
+            },
             Some(s) => s
                 .origin
                 .at_path(format!(
@@ -646,7 +658,7 @@ pub fn no_file(full: &Path) -> String {
     format!(
         "no file {}{}",
         normalized(full).display(),
-        crate::model::suggest::did_you_mean(&name, siblings.iter().map(|s| s.as_str()))
+        crate::input::suggest::did_you_mean(&name, siblings.iter().map(|s| s.as_str()))
     )
 }
 

@@ -32,6 +32,16 @@ pub struct Override {
 }
 
 impl Override {
+    /// A value towride derives from other inputs (`what` says from which).
+    pub fn derived(file: &str, path: &str, value: impl Into<String>, what: &str) -> Override {
+        Override {
+            file: file.into(),
+            path: path.into(),
+            value: value.into(),
+            origin: Origin::Derived(what.into()),
+        }
+    }
+
     /// An override set by the program itself (`what` says which part of it).
     pub fn program(file: &str, path: &str, value: impl Into<String>, what: &str) -> Override {
         Override {
@@ -76,8 +86,12 @@ pub enum Origin {
     },
     /// A command-line argument.
     Argument(String),
-    /// Set by the program (a stress case, the validation's lead-in).
+    /// Set by the program for the caller (a stress case, a sensitivity study, the
+    /// validation's lead-in): the caller's layer.
     Program(String),
+    /// A value towride derives from other inputs (a `simple` vehicle's tyre): a layer
+    /// of its own, which no other override may replace.
+    Derived(String),
 }
 
 impl Origin {
@@ -95,7 +109,7 @@ impl Origin {
                 message,
                 kind: Default::default(),
             },
-            Origin::Program(w) => InputError {
+            Origin::Program(w) | Origin::Derived(w) => InputError {
                 file: "towride".into(),
                 line: None,
                 column: None,
@@ -138,7 +152,8 @@ impl Origin {
             }
             Origin::Argument(a) if a.contains(":") && a.contains('=') => format!("--set {a}"),
             Origin::Argument(a) => a.clone(),
-            Origin::Program(w) => format!("towride from {w}"),
+            Origin::Program(w) => format!("towride ({w})"),
+            Origin::Derived(w) => format!("towride from {w}"),
         }
     }
 }

@@ -67,7 +67,7 @@ impl TirFile {
                 o.origin.at_path(format!(
                     "{} has no section [{sec}]{}",
                     path.display(),
-                    crate::model::suggest::did_you_mean(sec, known)
+                    crate::input::suggest::did_you_mean(sec, known)
                 ))
             })?;
             // Only a value the file has: a misspelt key would otherwise be added, read
@@ -77,7 +77,7 @@ impl TirFile {
                 o.origin.at_path(format!(
                     "{} has no key {key} in [{sec}]{}",
                     path.display(),
-                    crate::model::suggest::did_you_mean(key, keys.iter().map(|k| k.as_str()))
+                    crate::input::suggest::did_you_mean(key, keys.iter().map(|k| k.as_str()))
                 ))
             })?;
             v.value = o.value.trim().to_string();

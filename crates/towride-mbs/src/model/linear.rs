@@ -40,8 +40,15 @@ pub struct Mode {
     pub undamped_hz: f64,
     /// Im lambda / 2 pi [Hz]; 0 for a real (overdamped or static) root.
     pub damped_hz: f64,
-    /// Damping ratio -Re lambda / |lambda| (1 for a real negative root).
+    /// Damping ratio -Re lambda / |lambda| (1 for a real negative root); meaningless
+    /// for a zero root (`kind` rigid), whose angle is round-off.
     pub damping_ratio: f64,
+    /// What the root is: a zero root of a free motion, an unstable root, an
+    /// oscillation or a real decaying root.
+    pub kind: RootKind,
+    /// Re lambda > 0: the growth rate [1/s] and the time the motion takes to double
+    /// [s] (ln 2 / Re lambda); `None` otherwise.
+    pub doubling_time_s: Option<f64>,
     /// Kinetic-energy share per body, largest first (shares > 1 %).
     pub bodies: Vec<Share>,
     /// Strain-energy share per force element, largest first (shares > 1 %).
@@ -61,6 +68,52 @@ pub struct Mode {
     /// part only; not serialised.
     #[serde(skip)]
     pub shape: Vec<f64>,
+}
+
+/// The kind of a root of the linearised model.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RootKind {
+    /// |lambda| below [`ZERO_ROOT_HZ`]: a motion without restoring force (a vehicle's
+    /// lateral position, heading, travel), not a vibration; its damping ratio is
+    /// round-off.
+    Zero,
+    /// Re lambda > 0 beyond round-off: the frozen state is unstable in this motion
+    /// (it grows by e^(Re lambda t) as long as the state holds).
+    Unstable,
+    /// A complex pair: a damped oscillation.
+    Oscillation,
+    /// A real negative root: a decay without oscillation (overdamped, first-order).
+    Decay,
+}
+
+impl RootKind {
+    /// The frequency below which a root is a zero root [Hz] ([`ZERO_ROOT_HZ`]).
+    pub fn zero_hz() -> f64 {
+        ZERO_ROOT_HZ
+    }
+}
+
+/// Roots slower than this [Hz] are zero roots: a period of over 1000 s is no vibration
+/// of a vehicle crossing an obstacle, and round-off of a singular stiffness matrix puts
+/// its free motions' roots at 1e-8..1e-5 Hz.
+pub const ZERO_ROOT_HZ: f64 = 1e-3;
+
+/// The kind of the root lambda = re + i im (rad/s), and the doubling time of a growing
+/// one; `scale` is the largest |lambda| of the model (round-off is relative to it).
+fn classify(re: f64, im: f64, scale: f64) -> (RootKind, Option<f64>) {
+    let mag = re.hypot(im);
+    if mag / (2.0 * std::f64::consts::PI) < ZERO_ROOT_HZ {
+        return (RootKind::Zero, None);
+    }
+    if re > 1e-9 * scale.max(1.0) {
+        return (RootKind::Unstable, Some(std::f64::consts::LN_2 / re));
+    }
+    if im > 0.0 {
+        (RootKind::Oscillation, None)
+    } else {
+        (RootKind::Decay, None)
+    }
 }
 
 /// The motions a body's kinetic energy is split into: translations along world x, y, z,
@@ -276,6 +329,12 @@ pub struct Linearisation {
     pub t: f64,
     /// Degrees of freedom after the constraints.
     pub dof: usize,
+    /// First-order states (tyre deflections and slips, controllers): with the 2 x `dof`
+    /// states of the second-order part they give the eigenvalues, each conjugate pair
+    /// listed once as a mode.
+    pub first_order_states: usize,
+    /// Eigenvalues of the state matrix (2 x dof + first-order states).
+    pub eigenvalues: usize,
     /// Eigenvalues, by ascending undamped frequency.
     pub modes: Vec<Mode>,
     /// |Re lambda|max / |Re lambda|min over roots with a non-zero real part; `None` when
@@ -461,6 +520,8 @@ pub fn linearise(sys: &System, t: f64, y: &[f64]) -> Result<Linearisation, Model
             undamped_hz: mag / (2.0 * std::f64::consts::PI),
             damped_hz: l.im / (2.0 * std::f64::consts::PI),
             damping_ratio: if mag > 0.0 { -l.re / mag } else { 0.0 },
+            kind: RootKind::Decay,
+            doubling_time_s: None,
             bodies,
             elements: elems,
             name,
@@ -476,6 +537,9 @@ pub fn linearise(sys: &System, t: f64, y: &[f64]) -> Result<Linearisation, Model
     let big = modes
         .iter()
         .fold(0.0f64, |acc, m| acc.max(m.real.hypot(m.imag)));
+    for m in &mut modes {
+        (m.kind, m.doubling_time_s) = classify(m.real, m.imag, big);
+    }
     let reals: Vec<f64> = modes
         .iter()
         .map(|m| m.real.abs())
@@ -492,6 +556,8 @@ pub fn linearise(sys: &System, t: f64, y: &[f64]) -> Result<Linearisation, Model
     Ok(Linearisation {
         t,
         dof: nd,
+        first_order_states: ne,
+        eigenvalues: ns,
         modes,
         stiffness_ratio,
     })
@@ -562,4 +628,25 @@ fn element_stiffness(sys: &System, t: f64, y: &[f64]) -> Vec<(String, DMatrix<f6
         out.push((name, ke));
     }
     out
+}
+
+#[cfg(test)]
+mod root_kinds {
+    use super::{classify, RootKind};
+
+    #[test]
+    fn zero_unstable_oscillating_and_decaying_roots_are_told_apart() {
+        let scale = 2.0 * std::f64::consts::PI * 200.0;
+        // Round-off roots of free motions, whatever their angle.
+        for (re, im) in [(-5e-8, 0.0), (8.5e-7, 0.0), (1e-6, 3e-6)] {
+            assert_eq!(classify(re, im, scale), (RootKind::Zero, None));
+        }
+        // A frozen state growing at 0.5 1/s doubles in ln 2 / 0.5 s.
+        let (k, t) = classify(0.5, 0.0, scale);
+        assert_eq!(k, RootKind::Unstable);
+        assert!((t.unwrap() - std::f64::consts::LN_2 / 0.5).abs() < 1e-15);
+        assert_eq!(classify(0.2, 10.0, scale).0, RootKind::Unstable);
+        assert_eq!(classify(-1.0, 10.0, scale).0, RootKind::Oscillation);
+        assert_eq!(classify(-30.0, 0.0, scale).0, RootKind::Decay);
+    }
 }

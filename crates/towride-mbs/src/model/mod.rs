@@ -24,7 +24,7 @@ pub mod run;
 pub mod spec;
 pub mod start;
 pub mod statics;
-pub mod suggest;
+pub use crate::input::suggest;
 pub mod system;
 
 pub use desc::Model;

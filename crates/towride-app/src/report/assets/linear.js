@@ -5,7 +5,9 @@
   const D = JSON.parse(document.getElementById("data").textContent);
   const V = D.view;
   const app = document.getElementById("app");
-  app.append(el("p", {}, `${D.dof} degrees of freedom · stiffness ratio S = ${D.stiffness_ratio == null ? "undefined" : fmt(D.stiffness_ratio)} · ${D.modes.length} eigenvalues (one per conjugate pair)`));
+  const zero = D.modes.filter((m) => m.kind === "zero"), unstable = D.modes.filter((m) => m.kind === "unstable");
+  app.append(el("p", {}, `${D.dof} degrees of freedom and ${D.first_order_states} first-order states (tyres, controllers): ${D.eigenvalues} eigenvalues, ${D.modes.length} modes (a conjugate pair listed once) · stiffness ratio S = ${D.stiffness_ratio == null ? "undefined" : fmt(D.stiffness_ratio)}`));
+  if (unstable.length) app.append(el("p", { class: "failed", id: "unstable" }, `UNSTABLE roots of this frozen state: ${unstable.map((m) => `mode ${m.index} ${m.name}, growth rate ${fmt(m.real)} 1/s (doubles in ${fmt(m.doubling_time_s)} s)`).join("; ")}.`));
 
   // --- the view
   app.append(el("h2", { id: "view" }, "Mode shapes"));
@@ -69,10 +71,13 @@
     pick.addEventListener("change", () => select(+pick.value));
     amp.addEventListener("change", () => select(+pick.value));
     window.towrideView = { view, player, select };
-    // Browser test: the image at two phases of the first mode.
+    // Opens on `#mode=N` (the mode numbered N in the table) or the first oscillation
+    // with a shape, not on a zero root. Browser test: the image at two phases.
     if (V.modes.length) {
       const m = /mode=(\d+)/.exec(location.hash);
-      select(m ? Math.min(+m[1], V.modes.length - 1) : 0);
+      const byNumber = m ? D.modes.find((x) => x.index === +m[1] && x.view >= 0) : null;
+      const first = D.modes.find((x) => x.kind === "oscillation" && x.view >= 0);
+      select(byNumber ? byNumber.view : first ? first.view : 0);
       player.setTime(0.0);
       const pa = view.probe();
       player.setTime(0.25);
@@ -84,19 +89,29 @@
   // --- the table
   app.append(el("h2", { id: "modes" }, "Modes"));
   app.append(el("p", { class: "hint" }, "Name: the body and direction with the largest share of the mode's kinetic energy (translations along and rotations about world axes, the elastic part of a modal body, named by what its dominant FE mode does: bending, torsion or stretch, the axis, and the section holding most of its strain energy); shares of kinetic energy per body and of strain energy per force element, largest first."));
-  const rows = D.modes.map((m) => [m.index, m.undamped_hz, m.damped_hz, m.damping_ratio, m.name,
+  const zeta = (m) => (m.kind === "unstable" ? `UNSTABLE (doubles in ${fmt(m.doubling_time_s)} s)` : m.damping_ratio);
+  const rowsOf = (ms) => ms.map((m) => [m.index, m.undamped_hz, m.damped_hz, zeta(m), m.name,
     m.name_share > 0 ? `${(100 * m.name_share).toFixed(0)} %` : "",
     m.bodies.slice(0, 3).map((b) => `${b.name} ${(100 * b.share).toFixed(0)} %`).join(", "),
     m.elements.slice(0, 2).map((b) => `${b.name} ${(100 * b.share).toFixed(0)} %`).join(", ")]);
-  const tab = table(["mode", "undamped [Hz]", "damped [Hz]", "ζ", "dominant motion", "share", "bodies (kinetic)", "elements (strain)"], rows);
-  tab.id = "mode-table";
-  [...tab.querySelectorAll("tr")].slice(1).forEach((tr, i) => {
-    const k = D.modes[i].view;
+  const head = ["mode", "undamped [Hz]", "damped [Hz]", "ζ", "dominant motion", "share", "bodies (kinetic)", "elements (strain)"];
+  const clickable = (t, ms) => [...t.querySelectorAll("tr")].slice(1).forEach((tr, i) => {
+    const k = ms[i].view;
+    if (ms[i].kind === "unstable") tr.setAttribute("class", "failed");
     if (k >= 0 && view) {
       tr.style.cursor = "pointer";
       tr.addEventListener("click", () => { select(k); host.scrollIntoView(); });
     }
   });
+  // Zero roots apart: free motions without restoring force, whose ζ is round-off.
+  if (zero.length) {
+    const zt = table(["mode", "|λ| / 2π [Hz]", "motion"], zero.map((m) => [m.index, m.undamped_hz.toExponential(1), m.name]));
+    app.append(el("details", { id: "zero-roots" }, el("summary", {}, `${zero.length} zero roots (below 1e-3 Hz): motions without restoring force (lateral position, heading, travel), not vibrations`), zt));
+  }
+  const shown = D.modes.filter((m) => m.kind !== "zero");
+  const tab = table(head, rowsOf(shown));
+  tab.id = "mode-table";
+  clickable(tab, shown);
   app.append(tab);
   document.body.setAttribute("data-ready", "1");
 })();

@@ -145,7 +145,7 @@ pub(super) fn build(
     let overrides = values
         .iter()
         .map(|(k, v, _, why)| {
-            Override::program(
+            Override::derived(
                 &name,
                 k,
                 format!("{v:e}"),
