@@ -179,6 +179,17 @@ pub fn run(a: &ValidateArgs) -> CliResult {
                 ),
                 None => println!("{}: rating {u:.3} uncorrected", r.name),
             }
+            let quiet = &r
+                .corrected
+                .as_ref()
+                .unwrap_or(&r.uncorrected)
+                .without_signal;
+            if !quiet.is_empty() {
+                println!(
+                    "  left out of the mean rating (no signal above the sensor noise): {}",
+                    quiet.join(", ")
+                );
+            }
             let low = |x: &dyn std::fmt::Debug| format!("{x:?}").to_lowercase();
             let mut more = format!(
                 "  speed from the {}, {} Hz ({} time base)",

@@ -22,6 +22,7 @@ mod slurm;
 mod sweep;
 mod tyre_rig;
 mod validate_folder;
+mod validate_signal;
 
 /// Runs the binary from the repository's root with `args`.
 fn towride(args: &[&str]) -> std::process::Output {

@@ -41,7 +41,23 @@ pub struct ChannelFigures {
     /// Simulated samples in the evaluation window at which a sensor of the channel's
     /// range would clip (gravity included on z).
     pub simulated_clipped_samples: usize,
+    /// RMS of the measured channel over its interval divided by its RMS on the quiet
+    /// road before the obstacle (`None` without enough quiet samples).
+    pub signal_to_noise: Option<f64>,
+    /// The measured channel stands above its noise ([`SIGNAL_MIN`]): only such channels
+    /// enter the mean rating (a channel of sensor noise alone rates its noise).
+    pub has_signal: bool,
 }
+
+/// Smallest ratio of a channel's RMS over its interval to its RMS on the quiet road for
+/// the channel to count as carrying a signal: noise alone gives about 1.
+pub const SIGNAL_MIN: f64 = 3.0;
+/// The quiet road: from this long before the obstacle [s] ...
+const QUIET_FROM_S: f64 = 0.5;
+/// ... to this long before it [s] (the filters' lead).
+const QUIET_TO_S: f64 = 0.05;
+/// Fewest quiet samples a noise estimate needs.
+const QUIET_MIN_SAMPLES: usize = 20;
 
 /// One comparison of a run (corrected or uncorrected).
 #[derive(Clone, Debug, Serialize)]
@@ -60,8 +76,10 @@ pub struct Comparison {
     pub shift_correlation: Option<f64>,
     /// When the front wheels reach the obstacle, on the recording's clock [s].
     pub obstacle_time_s: f64,
-    /// Mean overall rating over the channels.
+    /// Mean overall rating over the channels with a signal (`has_signal`).
     pub mean_rating: f64,
+    /// Channels left out of the mean: no signal above their noise.
+    pub without_signal: Vec<String>,
     /// Figures per channel.
     pub channels: Vec<ChannelFigures>,
     /// The compared curves on the evaluation window (for plots).
@@ -163,7 +181,10 @@ pub(super) fn compare(
                     .filter(|v| (*v / G_MPS2 + g0).abs() >= super::measurement::CLIP_SHARE * r)
                     .count()
             });
+            let snr = noise_rms(rec, n, t_obs).map(|q| rms(&m) / q);
             ChannelFigures {
+                signal_to_noise: snr,
+                has_signal: snr.is_none_or(|r| r >= SIGNAL_MIN),
                 channel: n.to_string(),
                 peak_measured_mps2: pm,
                 t_peak_measured_s: tpm,
@@ -179,8 +200,14 @@ pub(super) fn compare(
             }
         })
         .collect();
+    let rated: Vec<&ChannelFigures> = channels.iter().filter(|c| c.has_signal).collect();
     let mean_rating =
-        channels.iter().map(|c| c.rating.overall).sum::<f64>() / channels.len().max(1) as f64;
+        rated.iter().map(|c| c.rating.overall).sum::<f64>() / rated.len().max(1) as f64;
+    let without_signal = channels
+        .iter()
+        .filter(|c| !c.has_signal)
+        .map(|c| c.channel.clone())
+        .collect();
     Comparison {
         label,
         speed_mps,
@@ -189,11 +216,31 @@ pub(super) fn compare(
         shift_correlation: correlation,
         obstacle_time_s: t_obs - shift,
         mean_rating,
+        without_signal,
         channels,
         time_s: t,
         measured,
         simulated,
     }
+}
+
+/// RMS of the measured channel `name` on the quiet road before the obstacle at `t_obs`
+/// (the recording's clock; the pipeline has zeroed its mean there).
+fn noise_rms(rec: &Recorded, name: &str, t_obs: f64) -> Option<f64> {
+    let c = rec.channels.get(name)?;
+    let quiet: Vec<f64> = rec
+        .time_s
+        .iter()
+        .zip(c)
+        .filter(|(t, _)| **t >= t_obs - QUIET_FROM_S && **t <= t_obs - QUIET_TO_S)
+        .map(|(_, v)| *v)
+        .collect();
+    let q = rms(&quiet);
+    (quiet.len() >= QUIET_MIN_SAMPLES && q > 0.0).then_some(q)
+}
+
+fn rms(y: &[f64]) -> f64 {
+    (y.iter().map(|v| v * v).sum::<f64>() / y.len().max(1) as f64).sqrt()
 }
 
 /// Index range where |m| or |s| exceeds `share` of its own largest magnitude, widened by

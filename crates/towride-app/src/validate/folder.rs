@@ -91,6 +91,8 @@ fn figures(c: &Comparison, f: &ChannelFigures) -> Value {
         "speed_mps": c.speed_mps,
         "clipped_samples": f.clipped_samples,
         "simulated_clipped_samples": f.simulated_clipped_samples,
+        "signal_to_noise": f.signal_to_noise,
+        "has_signal": f.has_signal,
     })
 }
 
@@ -145,6 +147,8 @@ pub fn run_json(r: &RunValidation) -> Value {
         "shift_correlation": r.corrected.as_ref().and_then(|c| c.shift_correlation),
         "mean_rating_corrected": r.corrected.as_ref().map(|c| c.mean_rating),
         "mean_rating_uncorrected": r.uncorrected.mean_rating,
+        // Channels of sensor noise alone: rated, but left out of the means.
+        "without_signal": r.corrected.as_ref().unwrap_or(&r.uncorrected).without_signal,
         "notes": r.notes,
         "wall_s": r.wall_s,
         "channels": channels,

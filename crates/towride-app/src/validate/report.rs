@@ -148,6 +148,21 @@ pub(crate) fn header(run: &RunValidation) -> Vec<(String, Rgb)> {
         );
     }
     lines.push((s, BLUE));
+    let quiet = &run
+        .corrected
+        .as_ref()
+        .unwrap_or(&run.uncorrected)
+        .without_signal;
+    if !quiet.is_empty() {
+        lines.push((
+            format!(
+                "left out of the mean rating, no signal above the sensor noise (RMS < {} x the quiet road's): {}",
+                super::compare::SIGNAL_MIN,
+                quiet.join(", ")
+            ),
+            BLACK,
+        ));
+    }
     if !run.notes.is_empty() {
         lines.push((
             format!(
