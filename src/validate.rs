@@ -211,6 +211,12 @@ pub fn run(a: &ValidateArgs) -> CliResult {
                 more.push_str(&format!("; {clipped} clipped samples left out"));
             }
             println!("{more}");
+            for d in &r.speed.channel_dropouts_s {
+                eprintln!(
+                    "warning: {}: the speed channel drops out from {:.3} to {:.3} s (a step no car makes); left out of the speed",
+                    r.name, d[0], d[1]
+                );
+            }
         }
         println!(
             "{} run(s) validated, {} failed, {:.2} s; wrote {} and {}{}",

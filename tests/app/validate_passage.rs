@@ -142,6 +142,7 @@ fn passage_and_wheelbase_from_the_signals_over_20_cases_at_10_to_60_kmh() {
             &rec.speed,
             p.front_onset_s - 0.25,
             p.front_onset_s + 2.0,
+            &[],
         );
         assert!(
             (drift_pct - 100.0 * drift).abs() < 0.5,
@@ -184,4 +185,38 @@ fn no_visible_passage_is_an_error_not_an_answer() {
             "{e}"
         );
     }
+}
+
+/// Issue 31 item 12: a logger's speed that falls to a quarter for 0.4 s while the car
+/// keeps its speed is a dropout, found and left out of the mean; a real deceleration
+/// of 3 m/s^2 over the same window is not.
+#[test]
+fn a_speed_dropout_is_found_and_left_out_and_a_deceleration_is_not() {
+    use towride_app::validate::speed::{channel_stats, dropouts};
+    let rate = 100.0;
+    let t: Vec<f64> = (0..300).map(|k| k as f64 / rate).collect();
+    let v0 = 11.1;
+    // Speed sensor noise of +-0.05 m/s (a deterministic pattern).
+    let noise = |k: usize| 0.05 * ((k as f64 * 1.7).sin());
+    let mut v: Vec<f64> = (0..300).map(|k| v0 + noise(k)).collect();
+    for (k, x) in v.iter_mut().enumerate() {
+        if (120..160).contains(&k) {
+            *x = 0.25 * v0;
+        }
+    }
+    let d = dropouts(&t, &v, 0.0, 3.0);
+    assert_eq!(d.len(), 1, "{d:?}");
+    assert!(
+        (d[0][0] - 1.20).abs() < 1e-9 && (d[0][1] - 1.59).abs() < 1e-9,
+        "{d:?}"
+    );
+    let (mean, range, _) = channel_stats(&t, &v, 0.0, 3.0, &d);
+    assert!((mean - v0).abs() < 0.01, "{mean}");
+    assert!(range[0] > v0 - 0.1, "{range:?}");
+    // Averaged in, the dropout would have cost 10 % of the speed.
+    let (blind, _, _) = channel_stats(&t, &v, 0.0, 3.0, &[]);
+    assert!(blind < 0.92 * v0, "{blind}");
+    // Braking at 3 m/s^2 from 12 m/s: 9 m/s of change over the window, gradual.
+    let braking: Vec<f64> = t.iter().map(|&ti| 12.0 - 3.0 * ti).collect();
+    assert!(dropouts(&t, &braking, 0.0, 3.0).is_empty());
 }

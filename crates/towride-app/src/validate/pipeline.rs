@@ -384,6 +384,7 @@ fn speed_info(
         channel_range_mps: None,
         channel_drift_pct: None,
         window_s: None,
+        channel_dropouts_s: Vec::new(),
     };
     if let Some(v) = &meas.speed_mps {
         // The passage: from just before the front axle's onset to just after the last
@@ -402,7 +403,10 @@ fn speed_info(
             }
             None => (t[0], t[t.len() - 1]),
         };
-        let (mean, range, drift) = channel_stats(t, v, lo, hi);
+        // A logger's dropout is no deceleration: left out of the mean, and said.
+        let drops = super::speed::dropouts(t, v, lo, hi);
+        let (mean, range, drift) = channel_stats(t, v, lo, hi, &drops);
+        info.channel_dropouts_s = drops;
         info.channel_mean_mps = Some(mean);
         info.channel_range_mps = Some(range);
         info.channel_drift_pct = Some(drift);

@@ -130,6 +130,13 @@ pub(crate) fn header(run: &RunValidation) -> Vec<(String, Rgb)> {
     if let (Some(w), Some(l)) = (run.implied_wheelbase_m, run.wheelbase_m) {
         let _ = write!(s, "; implied wheelbase {w:.3} m (model {l:.3} m)");
     }
+    for d in &run.speed.channel_dropouts_s {
+        let _ = write!(
+            s,
+            "; speed channel dropout {:.3}-{:.3} s left out",
+            d[0], d[1]
+        );
+    }
     lines.push((s, BLACK));
     let u = run.uncorrected.mean_rating;
     let mut s = format!("mean rating uncorrected {u:.3} ({})", grade(u));
