@@ -162,6 +162,33 @@ fn what_is_not_a_regular_file_is_refused_at_once() {
     refused(&["provenance", p], &["pipe.csv", "is a named pipe"]);
     refused(&["provenance", "/dev/zero"], &["/dev/zero", "is a device"]);
     refused(&["provenance", "/dev/null"], &["/dev/null", "is a device"]);
+    // Larger than the caps (sparse files: nothing is written or read): refused by size.
+    let big = d.join("big.toml");
+    std::fs::File::create(&big)
+        .unwrap()
+        .set_len((64 << 20) + 1)
+        .unwrap();
+    refused(
+        &["provenance", big.to_str().unwrap()],
+        &["big.toml", "is 65 MiB, more than the 64 MiB read"],
+    );
+    let huge = d.join("huge.csv");
+    std::fs::File::create(&huge)
+        .unwrap()
+        .set_len((1 << 30) + 1)
+        .unwrap();
+    refused(
+        &[
+            "validate",
+            "init",
+            huge.to_str().unwrap(),
+            "--scene",
+            scene,
+            "--out",
+            o,
+        ],
+        &["huge.csv", "more than the 1024 MiB read"],
+    );
     // A comparison's outputs.csv a pipe.
     let (a, b) = (d.join("a"), d.join("b"));
     std::fs::create_dir_all(&a).unwrap();
