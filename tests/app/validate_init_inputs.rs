@@ -103,17 +103,18 @@ fn repeated_column_names_and_long_rows_are_errors() {
     );
 }
 
-/// The header used to be looked up column by column with a scan of the header each:
-/// 100 000 columns took over 10 minutes, 30 000 about a minute; now well under a second.
+/// The header is looked up for each separator in turn: tried with `;` first, a
+/// comma-separated header is one cell, and it was normalised again for each of the
+/// columns looked up: 100 000 columns took over 10 minutes; now well under a second.
 #[test]
 fn a_wide_recording_is_sniffed_in_linear_time() {
-    let n = 30_000;
+    let n = 20_000;
     let mut t = String::from("time [s]");
     for k in 0..n {
-        t.push_str(&format!(";p{k} [bar]"));
+        t.push_str(&format!(",p{k} [bar]"));
     }
     t.push('\n');
-    let row = ";1.5".repeat(n);
+    let row = ",1.5".repeat(n);
     for k in 0..10 {
         t.push_str(&format!("{}{row}\n", k as f64 * 1e-3));
     }
