@@ -31,7 +31,7 @@ pub fn run(a: &CompareArgs) -> CliResult {
         .iter()
         .map(|d| load(d))
         .collect::<Result<Vec<_>, _>>()?;
-    let mut c = compare(&runs);
+    let mut c = compare(&runs)?;
     if c.channels.is_empty() {
         return Err("the runs have no channel in common".into());
     }
@@ -70,8 +70,32 @@ pub fn run(a: &CompareArgs) -> CliResult {
             }
         );
     }
+    for n in &c.not_comparable {
+        println!(
+            "  {:<26} {:<12} {}: {}",
+            span(&n.channels),
+            n.run,
+            n.reason,
+            n.detail
+        );
+    }
+    for v in &c.conversions {
+        println!(
+            "  {:<26} {:<12} read in {} and compared in {} (x {:e})",
+            v.channel, v.run, v.from, v.to, v.factor
+        );
+    }
     for f in &c.files {
         println!("wrote {}", f.display());
     }
     Ok(0)
+}
+
+/// `first .. last` of a list of channels (`hitch_eta_1 .. hitch_eta_16`).
+fn span(names: &[String]) -> String {
+    match names {
+        [] => String::new(),
+        [one] => one.clone(),
+        [a, .., b] => format!("{a} .. {b}"),
+    }
 }

@@ -7,6 +7,8 @@ use std::path::{Path, PathBuf};
 
 use clap::{Args, Subcommand};
 
+use towride_mbs::input::regular::same_file;
+
 use towride_app::validate::descriptor::{AcqFilter, Unit};
 use towride_app::validate::folder::{find_descriptors, summary_json};
 use towride_app::validate::synth::{make_synthetic, SensorModel, SynthRun, TriggerLayout};
@@ -59,8 +61,9 @@ struct InitArgs {
     /// Where to write the descriptor (default: beside DATA, same stem, .toml).
     #[arg(long)]
     out: Option<PathBuf>,
-    /// Sample rate [Hz] when the file has no time column and no comment declaring it.
-    #[arg(long)]
+    /// Sample rate [Hz] when the file has no time column and no comment declaring it
+    /// (an error for a file with a time column).
+    #[arg(long, value_parser = crate::bounded::rate_hz)]
     rate_hz: Option<f64>,
     /// Overwrite an existing descriptor.
     #[arg(long)]
@@ -240,6 +243,18 @@ fn init(a: &InitArgs) -> CliResult {
         .out
         .clone()
         .unwrap_or_else(|| a.data.with_extension("toml"));
+    // Whatever --force says: `validate init run.toml` would put the draft over the
+    // recording itself (the default --out is DATA with .toml).
+    for (what, input) in [("the recording", &a.data), ("the scene", &a.scene)] {
+        if same_file(&out, input) {
+            return Err(format!(
+                "--out {} is {what} {} (the same file): a draft never overwrites its input; give another --out",
+                out.display(),
+                input.display()
+            )
+            .into());
+        }
+    }
     if out.exists() && !a.force {
         return Err(format!("{} exists; give --force to overwrite it", out.display()).into());
     }

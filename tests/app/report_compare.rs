@@ -26,7 +26,7 @@ fn differences_match_the_closed_form() {
     // Another grid: the reference is interpolated at these samples.
     let b = run_dir("b", 5e-4, 1.1);
     let runs = vec![load(&a).unwrap(), load(&b).unwrap()];
-    let mut c = compare(&runs);
+    let mut c = compare(&runs).unwrap();
     assert_eq!(c.channels, ["hitch_fx", "speed"]);
     let d = &c.differences[0];
     assert_eq!((d.channel.as_str(), d.unit.as_str()), ("hitch_fx", "N"));
@@ -78,7 +78,7 @@ fn like_is_compared_with_like() {
         dir
     };
     let (a, b) = (dir("up", 30.936, 20.0), dir("down", 25.0, 35.114));
-    let c = compare(&[load(&a).unwrap(), load(&b).unwrap()]);
+    let c = compare(&[load(&a).unwrap(), load(&b).unwrap()]).unwrap();
     let d = &c.differences[0];
     let close = |x: f64, y: f64| (x - y).abs() < 1e-9;
     assert!(

@@ -262,7 +262,7 @@ fn report_opens_in_chromium_without_errors_and_draws_every_chart() {
     // The comparison page of this run against itself opens without errors too.
     let run = towride_app::report::compare::load(&dir).unwrap();
     let runs = vec![run.clone(), run];
-    let mut c = towride_app::report::compare::compare(&runs);
+    let mut c = towride_app::report::compare::compare(&runs).unwrap();
     let cmp = dir.join("cmp");
     towride_app::report::compare::write(&runs, &mut c, &cmp, "png").unwrap();
     let url = format!("file://{}", cmp.join("compare.html").display());

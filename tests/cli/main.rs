@@ -13,6 +13,7 @@ mod validate_sim;
 
 mod basics;
 mod check;
+mod inputs;
 mod modes;
 mod overrides;
 mod provenance;

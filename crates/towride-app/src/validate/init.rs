@@ -129,9 +129,10 @@ fn layout(lines: &[String]) -> Option<(char, usize, Option<usize>)> {
     best.map(|(_, s, h, u)| (s, h, u))
 }
 
-/// A sample rate declared in a comment line before the header (`2000 Hz`, `5 kHz`).
-fn declared_rate(lines: &[String]) -> Option<f64> {
-    for l in lines {
+/// A sample rate declared in a comment line before the header (`2000 Hz`, `5 kHz`), and
+/// the line's 0-based index.
+fn declared_rate(lines: &[String]) -> Option<(f64, usize)> {
+    for (n, l) in lines.iter().enumerate() {
         let words: Vec<&str> = l
             .split(|c: char| c.is_whitespace() || c == ':' || c == '=')
             .filter(|w| !w.is_empty())
@@ -152,12 +153,32 @@ fn declared_rate(lines: &[String]) -> Option<f64> {
             };
             if let Ok(v) = num.replace(',', ".").parse::<f64>() {
                 if v > 0.0 && v.is_finite() {
-                    return Some(v * f);
+                    return Some((v * f, n));
                 }
             }
         }
     }
     None
+}
+
+/// `rate` [Hz] within the bounds `validate` applies to a descriptor's `sample_rate_hz`
+/// (so a draft is never refused later), positive; `line`: where it was declared.
+fn checked_rate(
+    file: &Path,
+    line: Option<usize>,
+    rate: f64,
+    what: &str,
+) -> Result<f64, InputError> {
+    let b = towride_mbs::input::bounds::for_key("sample_rate_hz");
+    if rate > 0.0 && b.accepts(rate) {
+        return Ok(rate);
+    }
+    let why = if rate.is_finite() && rate <= 0.0 {
+        format!("must be positive, got {rate}; accepted: {}", b.range())
+    } else {
+        b.message(rate)
+    };
+    Err(err(file, line, None, what, format!("sample rate {why}")))
 }
 
 /// Sniffs `file`; `rate_hz`: the sample rate when the file has no time column (else read
@@ -183,22 +204,54 @@ pub fn sniff(file: &Path, rate_hz: Option<f64>) -> Result<Sniff, InputError> {
         let unit_ok = unit.as_deref().is_none_or(|u| time_factor(u).is_some());
         unit_ok && (l == "t" || l.starts_with("time") || l.starts_with("zeit") || l == "timestamp")
     });
+    let header_cells = cells(&lines[h], sep);
+    // Two columns of one name: every later reader would take the first for both.
+    let mut seen = std::collections::HashMap::new();
     for (k, (n, _)) in names.iter().enumerate() {
         if n.is_empty() {
             return Err(err(
                 file,
                 Some(h + 1),
-                None,
+                Some(header_cells[k].1),
                 "",
                 format!("column {} has no name", k + 1),
             ));
         }
+        if let Some(first) = seen.insert(super::csv_reader::normalised(n), k) {
+            return Err(err(
+                file,
+                Some(h + 1),
+                Some(header_cells[k].1),
+                n,
+                format!(
+                    "column {} repeats the name of column {}: give every column its own name",
+                    k + 1,
+                    first + 1
+                ),
+            ));
+        }
     }
-    let rate = match time {
-        Some(_) => None,
-        None => Some(rate_hz.or_else(|| declared_rate(&lines[..h])).ok_or_else(|| {
-            err(file, Some(h + 1), None, "", "no time column and no sample rate: give the rate (--rate-hz) or a comment `# sample rate: 2000 Hz`".into())
-        })?),
+    let rate = match (time, rate_hz) {
+        (Some(k), Some(_)) => {
+            return Err(err(
+                file,
+                Some(h + 1),
+                Some(header_cells[k].1),
+                &names[k].0,
+                format!(
+                    "the file has a time column `{}`; --rate-hz applies only to files without one",
+                    names[k].0
+                ),
+            ))
+        }
+        (Some(_), None) => None,
+        (None, Some(r)) => Some(checked_rate(file, None, r, "--rate-hz")?),
+        (None, None) => {
+            let (r, n) = declared_rate(&lines[..h]).ok_or_else(|| {
+                err(file, Some(h + 1), None, "", "no time column and no sample rate: give the rate (--rate-hz) or a comment `# sample rate: 2000 Hz`".into())
+            })?;
+            Some(checked_rate(file, Some(n + 1), r, "sample rate")?)
+        }
     };
     let spec = TimeSpec {
         column: time.map(|k| names[k].0.clone()),
@@ -560,9 +613,9 @@ mod tests {
         assert!(m("FR Sprung acceleration").is_err());
         assert_eq!(
             declared_rate(&["# Sample rate: 5 kHz".into()]),
-            Some(5000.0)
+            Some((5000.0, 0))
         );
-        assert_eq!(declared_rate(&["# rate 2000 Hz".into()]), Some(2000.0));
+        assert_eq!(declared_rate(&["# rate 2000 Hz".into()]), Some((2000.0, 0)));
         assert_eq!(
             relative(Path::new("/a/b/c.toml"), Path::new("/a/d")),
             PathBuf::from("../b/c.toml")

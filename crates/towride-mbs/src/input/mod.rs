@@ -10,6 +10,7 @@ pub mod csv_table;
 pub(crate) mod loader;
 pub(crate) mod overrides;
 pub mod provenance;
+pub mod regular;
 pub mod suggest;
 pub mod tir;
 

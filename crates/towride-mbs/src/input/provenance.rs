@@ -20,8 +20,9 @@ use std::path::Path;
 
 use toml_edit::{ImDocument, Item, Value};
 
+use crate::input::regular::{read_regular_text, PROPERTY_FILE_MAX_BYTES};
 use crate::input::tir::TirFile;
-use crate::input::{line_col, loader, path_string, InputError, Seg};
+use crate::input::{line_col, path_string, InputError, Seg};
 
 /// Where a value comes from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize)]
@@ -187,7 +188,19 @@ pub fn survey(paths: &[std::path::PathBuf]) -> Result<Survey, InputError> {
     }
     let mut list = Vec::new();
     for p in paths {
+        let before = list.len();
         walk(p, &mut list)?;
+        // A survey of nothing would pass with exit 0 and "0 numbers without a class".
+        if list.len() == before {
+            return Err(InputError {
+                file: p.to_path_buf(),
+                line: None,
+                column: None,
+                field: String::new(),
+                message: "no property file (.toml or .tir) in this folder".into(),
+                kind: Default::default(),
+            });
+        }
     }
     let mut files = Vec::new();
     for f in list {
@@ -220,7 +233,18 @@ pub fn survey(paths: &[std::path::PathBuf]) -> Result<Survey, InputError> {
 type Scan = (Vec<ProvenanceEntry>, Vec<Untagged>);
 
 fn scan(path: &Path) -> Result<Scan, InputError> {
-    let text = loader::read_text(path)?;
+    // Not `loader::read_text`: a pipe or `/dev/zero` named here must not hang.
+    let text = read_regular_text(path, PROPERTY_FILE_MAX_BYTES)?;
+    if text.trim().is_empty() {
+        return Err(InputError {
+            file: path.to_path_buf(),
+            line: None,
+            column: None,
+            field: String::new(),
+            message: "is empty: no values to classify".into(),
+            kind: Default::default(),
+        });
+    }
     if path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("tir"))

@@ -46,10 +46,29 @@
   if (hf) { pick.value = hf; draw(); }
   app.append(el("h2", {}, `Differences against ${C.runs[0]}`));
   app.append(el("p", { class: "hint" }, `Like with like: each run's max, min and |peak| = max(|max|, |min|) against ${C.runs[0]}'s; a difference is this run's less ${C.runs[0]}'s.`));
+  if (C.not_comparable.length) {
+    const n = C.not_comparable.reduce((k, x) => k + x.channels.length, 0);
+    app.append(el("p", { class: "hint" }, `${n} modal coordinates are left out: not comparable (different modal bases), see `,
+      el("a", { href: "#not-comparable" }, "Not comparable"), " below."));
+  }
   app.append(table(["channel", "unit", "run", `max ${C.runs[0]}`, "max", "max difference", `min ${C.runs[0]}`, "min", "min difference",
     `|peak| ${C.runs[0]}`, "|peak|", "|peak| difference", "RMS difference", "convergence (run --check)"],
     C.differences.map((d) => [d.channel, d.unit, d.run, d.reference_max, d.max, d.max_difference, d.reference_min, d.min, d.min_difference,
       d.reference_abs_peak, d.abs_peak, d.abs_peak_difference, d.rms_difference,
       d.converged == null ? "not checked" : d.converged ? "converged" : "NOT converged"])));
+  // Modal coordinates of another Craig-Bampton basis: amplitudes of other mode shapes,
+  // left out of the table above.
+  if (C.not_comparable.length) {
+    app.append(el("h2", { id: "not-comparable" }, "Not comparable"));
+    app.append(el("p", { class: "hint" }, "Modal coordinates are amplitudes of a run's own mode shapes: across different modal bases (another hitch variant, other modes kept) they mean nothing, so they are not in the table of differences."));
+    app.append(table(["channels", "run", "", "bases"], C.not_comparable.map((n) =>
+      [n.channels.length > 1 ? `${n.channels[0]} … ${n.channels[n.channels.length - 1]} (${n.channels.length})` : n.channels.join(""),
+        n.run, n.reason, n.detail])));
+  }
+  if (C.conversions.length) {
+    app.append(el("h2", {}, "Units converted"));
+    app.append(table(["channel", "run", "read in", "compared in", "factor"],
+      C.conversions.map((v) => [v.channel, v.run, v.from, v.to, v.factor])));
+  }
   setTimeout(() => document.body.setAttribute("data-ready", chart ? "1" : "0"), 0);
 })();

@@ -10,17 +10,27 @@ use serde::Serialize;
 use super::figure::{render, Figure, Panel, Style, Trace};
 use crate::scene::channels;
 use crate::Error;
-use towride_mbs::input::csv_table;
+use towride_mbs::input::regular::same_file;
+
+mod basis;
+mod load;
+mod units;
+
+pub use basis::Basis;
+pub use load::load;
 
 /// Version of the comparison document. 2: the signed `peak`, `reference_peak` and
 /// `peak_difference` are gone for max, min and |peak| of each run and their differences.
-pub const SCHEMA_VERSION: u32 = 2;
+/// 3: `not_comparable` (modal coordinates of different bases) and `conversions`.
+pub const SCHEMA_VERSION: u32 = 3;
 
 /// One run's outputs as written by `run`.
 #[derive(Clone, Debug)]
 pub struct Run {
     /// The folder's name (the legend label).
     pub label: String,
+    /// Its `outputs.csv` (for errors).
+    pub file: PathBuf,
     /// Sample times [s].
     pub times: Vec<f64>,
     /// (name, unit, samples) per channel.
@@ -28,6 +38,9 @@ pub struct Run {
     /// Its convergence verdict (`run --check`, in its summary.json) per judged channel:
     /// (name, converged); `None` when the run was not checked.
     pub verdict: Option<Vec<(String, bool)>>,
+    /// The Craig-Bampton basis of each modal body (from summary.json; empty when not
+    /// recorded).
+    pub bases: Vec<Basis>,
 }
 
 impl Run {
@@ -36,81 +49,6 @@ impl Run {
         let v = self.verdict.as_ref()?;
         v.iter().find(|(n, _)| n == channel).map(|(_, ok)| *ok)
     }
-}
-
-/// The convergence verdict in `dir/summary.json`, if it has one.
-fn verdict(dir: &Path) -> Option<Vec<(String, bool)>> {
-    let text = std::fs::read_to_string(dir.join("summary.json")).ok()?;
-    let v: serde_json::Value = serde_json::from_str(&text).ok()?;
-    let channels = v.get("convergence")?.get("channels")?.as_object()?;
-    Some(
-        channels
-            .iter()
-            .map(|(n, c)| (n.clone(), c["converged"].as_bool().unwrap_or(false)))
-            .collect(),
-    )
-}
-
-fn bad(file: &Path, line: Option<usize>, field: &str, message: String) -> Error {
-    csv_table::error(file, line, field, message).into()
-}
-
-/// Reads `dir/outputs.csv` (headers `name [unit]`, the first column time).
-pub fn load(dir: &Path) -> Result<Run, Error> {
-    let file = dir.join("outputs.csv");
-    let mut r = csv::Reader::from_path(&file).map_err(|e| bad(&file, None, "", e.to_string()))?;
-    let headers = r
-        .headers()
-        .map_err(|e| bad(&file, Some(1), "", e.to_string()))?
-        .clone();
-    let mut names = Vec::new();
-    for h in headers.iter() {
-        let (name, unit) = h
-            .rsplit_once(" [")
-            .and_then(|(n, u)| Some((n, u.strip_suffix(']')?)))
-            .ok_or_else(|| bad(&file, Some(1), h, "header is not 'name [unit]'".into()))?;
-        names.push((name.to_string(), unit.to_string()));
-    }
-    if names.first().map(|n| n.0.as_str()) != Some("time") {
-        return Err(bad(
-            &file,
-            Some(1),
-            "",
-            "the first column is not time".into(),
-        ));
-    }
-    let mut cols = vec![Vec::new(); names.len()];
-    for (k, rec) in r.records().enumerate() {
-        let rec = rec.map_err(|e| bad(&file, Some(k + 2), "", e.to_string()))?;
-        for (c, v) in rec.iter().enumerate() {
-            let x: f64 = v.trim().parse().map_err(|_| {
-                bad(
-                    &file,
-                    Some(k + 2),
-                    &names[c.min(names.len() - 1)].0,
-                    format!("'{v}' is not a number"),
-                )
-            })?;
-            cols[c].push(x);
-        }
-    }
-    let times = std::mem::take(&mut cols[0]);
-    let channels = names
-        .into_iter()
-        .zip(cols)
-        .skip(1)
-        .map(|((n, u), v)| (n, u, v))
-        .collect();
-    let label = dir.file_name().map_or_else(
-        || dir.display().to_string(),
-        |n| n.to_string_lossy().into_owned(),
-    );
-    Ok(Run {
-        label,
-        times,
-        channels,
-        verdict: verdict(dir),
-    })
 }
 
 /// One channel of one run against the first run's.
@@ -149,6 +87,39 @@ pub struct Difference {
     pub converged: Option<bool>,
 }
 
+/// Modal coordinates of a run that do not compare with the reference's.
+#[derive(Clone, Debug, Serialize)]
+pub struct NotComparable {
+    /// The run (folder name).
+    pub run: String,
+    /// The modal body.
+    pub body: String,
+    /// Its modal coordinates in either run (`hitch_eta_1`, ...).
+    pub channels: Vec<String>,
+    /// `not comparable (different modal bases)`.
+    pub reason: String,
+    /// The two bases: variant and kept modes.
+    pub detail: String,
+}
+
+/// A run's channel read in another unit and converted to the reference's.
+#[derive(Clone, Debug, Serialize)]
+pub struct Conversion {
+    /// The run (folder name).
+    pub run: String,
+    /// Channel.
+    pub channel: String,
+    /// The unit in the run's file.
+    pub from: String,
+    /// The reference's unit, the one compared in.
+    pub to: String,
+    /// The factor applied.
+    pub factor: f64,
+}
+
+/// The reason given for modal coordinates of different bases.
+pub const DIFFERENT_BASES: &str = "not comparable (different modal bases)";
+
 /// The comparison: what `compare` prints with `--json`.
 #[derive(Clone, Debug, Serialize)]
 pub struct Comparison {
@@ -156,10 +127,15 @@ pub struct Comparison {
     pub schema_version: u32,
     /// The run folders, the first the reference.
     pub runs: Vec<String>,
-    /// Channels every run has, in the first run's order.
+    /// Channels every run has and every run's can be compared with the reference's, in
+    /// the first run's order.
     pub channels: Vec<String>,
     /// Per channel, each later run against the first.
     pub differences: Vec<Difference>,
+    /// Modal coordinates left out: another modal basis than the reference's.
+    pub not_comparable: Vec<NotComparable>,
+    /// Channels converted to the reference's unit (another SI prefix).
+    pub conversions: Vec<Conversion>,
     /// The files written.
     pub files: Vec<PathBuf>,
 }
@@ -193,22 +169,119 @@ fn interp(t: &[f64], y: &[f64], x: f64) -> Option<f64> {
     Some(y[k - 1] + (y[k] - y[k - 1]) * (x - t0) / (t1 - t0))
 }
 
-/// Compares `runs` (at least two) channel by channel against the first.
-pub fn compare(runs: &[Run]) -> Comparison {
+/// Modal coordinates of `runs[1..]` that do not compare with `runs[0]`'s.
+fn modal_mismatches(runs: &[Run]) -> Vec<NotComparable> {
     let first = &runs[0];
+    let mut out = Vec::new();
+    for r in &runs[1..] {
+        let mut bodies: Vec<&str> = first
+            .bases
+            .iter()
+            .chain(&r.bases)
+            .map(|b| b.body.as_str())
+            .collect();
+        bodies.dedup();
+        for body in bodies {
+            let Some(detail) = basis::mismatch(body, &first.bases, &r.bases) else {
+                continue;
+            };
+            let owns = |n: &String| n.strip_prefix(body).is_some_and(|x| x.starts_with("_eta_"));
+            let mut chans: Vec<String> = first
+                .channels
+                .iter()
+                .map(|c| c.0.clone())
+                .filter(owns)
+                .collect();
+            for c in r.channels.iter().map(|c| &c.0).filter(|n| owns(n)) {
+                if !chans.contains(c) {
+                    chans.push(c.clone());
+                }
+            }
+            out.push(NotComparable {
+                run: r.label.clone(),
+                body: body.to_string(),
+                channels: chans,
+                reason: DIFFERENT_BASES.into(),
+                detail: format!("{body}: {detail}"),
+            });
+        }
+    }
+    out
+}
+
+/// Compares `runs` (at least two) channel by channel against the first, in the first's
+/// units (another SI prefix converted). Errors: a run whose times do not overlap the
+/// first's, a channel in a unit that does not convert (file and column named).
+pub fn compare(runs: &[Run]) -> Result<Comparison, Error> {
+    let first = &runs[0];
+    let not_comparable = modal_mismatches(runs);
+    let left_out = |name: &str| {
+        not_comparable
+            .iter()
+            .any(|n| n.channels.iter().any(|c| c == name))
+    };
     let common: Vec<&(String, String, Vec<f64>)> = first
         .channels
         .iter()
         .filter(|c| {
-            runs[1..]
-                .iter()
-                .all(|r| r.channels.iter().any(|d| d.0 == c.0))
+            !left_out(&c.0)
+                && runs[1..]
+                    .iter()
+                    .all(|r| r.channels.iter().any(|d| d.0 == c.0))
         })
         .collect();
+    let (t0, t1) = (first.times[0], first.times[first.times.len() - 1]);
+    // Times in common: at least one sample of each run within the reference's span
+    // (else the RMS of the difference is of nothing).
+    for r in &runs[1..] {
+        if !r.times.iter().any(|t| (t0..=t1).contains(t)) {
+            let (a, b) = (r.times[0], r.times[r.times.len() - 1]);
+            return Err(load::bad(
+                &r.file,
+                Some(2),
+                "time",
+                format!(
+                    "no sample of its times ({a} to {b} s) lies within the reference {}'s ({t0} to {t1} s): no time in common to compare",
+                    first.label
+                ),
+            ));
+        }
+    }
     let mut differences = Vec::new();
+    let mut conversions = Vec::new();
     for (name, unit, reference) in &common {
         for r in &runs[1..] {
-            let (_, _, v) = r.channels.iter().find(|d| &d.0 == name).expect("common");
+            let k = r
+                .channels
+                .iter()
+                .position(|d| &d.0 == name)
+                .expect("common");
+            let (_, run_unit, raw) = &r.channels[k];
+            let f = units::factor(run_unit, unit).ok_or_else(|| {
+                load::bad(
+                    &r.file,
+                    Some(1),
+                    name,
+                    format!(
+                        "unit [{run_unit}] does not convert to the reference {}'s [{unit}] (only SI prefixes of one unit are converted)",
+                        first.label
+                    ),
+                )
+            })?;
+            let scaled: Vec<f64>;
+            let v: &[f64] = if f == 1.0 {
+                raw
+            } else {
+                conversions.push(Conversion {
+                    run: r.label.clone(),
+                    channel: name.clone(),
+                    from: run_unit.clone(),
+                    to: unit.clone(),
+                    factor: f,
+                });
+                scaled = raw.iter().map(|x| x * f).collect();
+                &scaled
+            };
             let (mut sum, mut n) = (0.0, 0usize);
             for (t, y) in r.times.iter().zip(v) {
                 if let Some(yr) = interp(&first.times, reference, *t) {
@@ -230,11 +303,8 @@ pub fn compare(runs: &[Run]) -> Comparison {
                 max_difference: max - max0,
                 min_difference: min - min0,
                 abs_peak_difference: abs - abs0,
-                rms_difference: if n > 0 {
-                    (sum / n as f64).sqrt()
-                } else {
-                    f64::NAN
-                },
+                // n > 0: a sample lies within the reference's span (checked above).
+                rms_difference: (sum / n.max(1) as f64).sqrt(),
                 converged: match (first.converged(name), r.converged(name)) {
                     (Some(false), _) | (_, Some(false)) => Some(false),
                     (Some(true), Some(true)) => Some(true),
@@ -243,13 +313,15 @@ pub fn compare(runs: &[Run]) -> Comparison {
             });
         }
     }
-    Comparison {
+    Ok(Comparison {
         schema_version: SCHEMA_VERSION,
         runs: runs.iter().map(|r| r.label.clone()).collect(),
         channels: common.iter().map(|c| c.0.clone()).collect(),
         differences,
+        not_comparable,
+        conversions,
         files: Vec::new(),
-    }
+    })
 }
 
 /// The channels the PNG overlays: the hitch force and trailer acceleration when the
@@ -273,9 +345,33 @@ fn figure_channels(c: &Comparison) -> Vec<String> {
     }
 }
 
-/// Writes `compare.png` (or `.svg` by `format`) and `compare.html` into `out`.
+/// Factor that brings run `r`'s `channel` into the reference's unit.
+fn factor(c: &Comparison, r: &Run, channel: &str) -> f64 {
+    c.conversions
+        .iter()
+        .find(|x| x.run == r.label && x.channel == channel)
+        .map_or(1.0, |x| x.factor)
+}
+
+/// Writes `compare.png` (or `.svg` by `format`) and `compare.html` into `out`; refuses
+/// to write over a run's own files (`--out` a run folder holding a link to them).
 pub fn write(runs: &[Run], c: &mut Comparison, out: &Path, format: &str) -> Result<(), Error> {
     std::fs::create_dir_all(out).map_err(|e| Error::io(out, e))?;
+    let png = out.join(format!("compare.{format}"));
+    let html = out.join("compare.html");
+    for r in runs {
+        let dir = r.file.parent().unwrap_or(Path::new("."));
+        for input in [r.file.clone(), dir.join("summary.json")] {
+            if let Some(o) = [&png, &html].into_iter().find(|o| same_file(o, &input)) {
+                return Err(load::bad(
+                    o,
+                    None,
+                    "",
+                    format!("is the input {} (the same file): compare never overwrites its inputs; give another --out", input.display()),
+                ));
+            }
+        }
+    }
     let panels: Vec<Panel> = figure_channels(c)
         .iter()
         .map(|name| {
@@ -290,9 +386,14 @@ pub fn write(runs: &[Run], c: &mut Comparison, out: &Path, format: &str) -> Resu
                 .enumerate()
                 .map(|(i, r)| {
                     let v = &r.channels.iter().find(|d| &d.0 == name).expect("common").2;
+                    let f = factor(c, r, name);
                     Trace::new(
                         r.label.clone(),
-                        r.times.iter().copied().zip(v.iter().copied()).collect(),
+                        r.times
+                            .iter()
+                            .copied()
+                            .zip(v.iter().map(|x| x * f))
+                            .collect(),
                         Style::nth(i),
                     )
                 })
@@ -303,11 +404,9 @@ pub fn write(runs: &[Run], c: &mut Comparison, out: &Path, format: &str) -> Resu
             }
         })
         .collect();
-    let png = out.join(format!("compare.{format}"));
     let mut fig = Figure::new(panels, 1);
     fig.panel_height = 420;
     render(&png, &fig)?;
-    let html = out.join("compare.html");
     std::fs::write(&html, page(runs, c)).map_err(|e| Error::io(&html, e))?;
     c.files = vec![png, html];
     Ok(())
@@ -327,10 +426,20 @@ fn page(runs: &[Run], c: &Comparison) -> String {
         super::html::quantised(&mut d, r.times.iter().copied());
         d.push_str(",\"channels\":{");
         let mut first = true;
-        for (name, unit, v) in &r.channels {
+        for (name, _, v) in &r.channels {
             if !c.channels.contains(name) {
                 continue;
             }
+            // In the reference's unit: the page overlays them on one axis.
+            let (unit, f) = (
+                &runs[0]
+                    .channels
+                    .iter()
+                    .find(|d| &d.0 == name)
+                    .expect("common")
+                    .1,
+                factor(c, r, name),
+            );
             if !first {
                 d.push(',');
             }
@@ -339,7 +448,7 @@ fn page(runs: &[Run], c: &Comparison) -> String {
             d.push_str(":{\"unit\":");
             super::html::string(&mut d, unit);
             d.push_str(",\"v\":");
-            super::html::quantised(&mut d, v.iter().copied());
+            super::html::quantised(&mut d, v.iter().map(|x| x * f));
             d.push('}');
         }
         d.push_str("}}");
@@ -366,7 +475,7 @@ fn page(runs: &[Run], c: &Comparison) -> String {
         super::html::ERROR_HOOK,
         super::html::UPLOT_JS,
         super::html::COMMON_JS,
-        include_str!("assets/compare.js"),
+        include_str!("../assets/compare.js"),
     );
     h
 }
