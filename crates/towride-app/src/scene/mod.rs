@@ -267,7 +267,8 @@ pub fn is_scene(path: &Path) -> bool {
 
 /// True when the TOML file at `path` has the top-level table `key`.
 pub fn has_table(path: &Path, key: &str) -> bool {
-    std::fs::read_to_string(path)
+    // Through the bounded reader: a named pipe given as the file must not block here.
+    towride_mbs::input::read_text(path)
         .ok()
         .and_then(|t| t.parse::<toml::Table>().ok())
         .is_some_and(|t| t.contains_key(key))

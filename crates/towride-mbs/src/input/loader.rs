@@ -378,14 +378,8 @@ pub fn normalized(path: &Path) -> PathBuf {
     out.iter().collect()
 }
 
-/// The text of `path`, or a located "cannot read" error.
+/// The text of `path`, or a located "cannot read" error; what is not a regular file (a
+/// named pipe would block forever) or exceeds the property-file cap is refused.
 pub fn read_text(path: &Path) -> Result<String, InputError> {
-    std::fs::read_to_string(path).map_err(|e| InputError {
-        file: path.to_path_buf(),
-        line: None,
-        column: None,
-        field: String::new(),
-        message: format!("cannot read: {e}"),
-        kind: Default::default(),
-    })
+    super::regular::read_regular_text(path, super::regular::PROPERTY_FILE_MAX_BYTES)
 }
