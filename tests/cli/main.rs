@@ -19,6 +19,7 @@ mod reliability;
 mod sensitivity;
 mod slurm;
 mod sweep;
+mod sweep_inputs;
 mod tyre_rig;
 mod validate_folder;
 

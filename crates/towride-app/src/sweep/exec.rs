@@ -14,9 +14,10 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
+use super::fingerprint::Fingerprint;
 use super::{Case, Sweep};
 use crate::error::{Error, Result};
-use crate::job::{convergence, Job};
+use crate::job::{convergence, Job, ProducedBy};
 use crate::scene::{channels, SceneError};
 use towride_mbs::input::Loader;
 use towride_mbs::progress::Progress;
@@ -88,7 +89,8 @@ where
                         figures: vec![],
                     };
                 }
-                let loader = Loader::with_overrides(c.overrides.clone());
+                // The caller's overrides under the case's, with a record of use of its own.
+                let loader = sweep.base.fresh().extended(c.overrides.clone());
                 let out = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
                     run(c, &sweep.scene, &loader, &StopOnly(progress))
                 }));
@@ -131,7 +133,7 @@ where
 /// Runs one case: the file (a mechanism or a scene) read through `loader`, integrated,
 /// and its figures. A run the solver stops is a failed case.
 pub fn run_case(path: &Path, loader: &Loader, stop: &dyn Progress) -> Result<Figures> {
-    run_case_kept(path, loader, stop, None, None)
+    run_case_kept(path, loader, stop, None, None, None)
 }
 
 /// [`run_case`], keeping the run's files (also those of a run the solver stopped) in
@@ -142,8 +144,17 @@ fn run_case_kept(
     stop: &dyn Progress,
     keep: Option<(&Path, usize)>,
     check: Option<f64>,
+    stamp: Option<&ProducedBy>,
 ) -> Result<Figures> {
-    let job = Job::from_file(path, loader)?;
+    let mut job = Job::from_file(path, loader)?;
+    if let Some(record) = stamp {
+        // The caller's record (version, command line) with this case's overrides.
+        let overrides = std::mem::take(&mut job.produced_by.overrides);
+        job.produced_by = ProducedBy {
+            overrides,
+            ..record.clone()
+        };
+    }
     // Only a kept case writes a report with the 3D view.
     let job = if keep.is_some() {
         job
@@ -235,8 +246,9 @@ pub struct Merged {
     pub out: String,
 }
 
-/// The JSON twin of a shard's summary CSV: the sweep's name and its case count.
-fn shard_meta(csv: &Path) -> Result<(String, usize)> {
+/// The JSON twin of a shard's summary CSV: the sweep's name, its case count and its
+/// fingerprint.
+fn shard_meta(csv: &Path) -> Result<(String, usize, Fingerprint)> {
     let json = csv.with_extension("json");
     let bad = |message: String| -> Error {
         SceneError::Merge {
@@ -256,8 +268,11 @@ fn shard_meta(csv: &Path) -> Result<(String, usize)> {
     check_version(&json, v["schema_version"].as_u64(), "merge it")?;
     let name = v["sweep"].as_str().map(String::from);
     let total = v["cases_total"].as_u64().map(|n| n as usize);
+    let fp = serde_json::from_value::<Fingerprint>(v["fingerprint"].clone()).map_err(|_| {
+        bad("no fingerprint: cannot tell which sweep this shard is of (run it again)".into())
+    })?;
     match (name, total) {
-        (Some(n), Some(t)) => Ok((n, t)),
+        (Some(n), Some(t)) => Ok((n, t, fp)),
         _ => Err(bad("no `sweep` and `cases_total` fields".into())),
     }
 }
@@ -276,11 +291,22 @@ pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<Merged> {
     let first = inputs
         .first()
         .ok_or_else(|| bad(out, "nothing to merge".into()))?;
-    let (name, total) = shard_meta(first)?;
+    let (name, total, fp) = shard_meta(first)?;
+    super::guard::merge_out(out, inputs, &fp)?;
     let mut header: Option<csv::StringRecord> = None;
     let mut rows: Vec<(usize, csv::StringRecord)> = Vec::new();
     for p in inputs {
-        let (n, t) = shard_meta(p)?;
+        let (n, t, f) = shard_meta(p)?;
+        if f.hash != fp.hash {
+            return Err(bad(
+                p,
+                format!(
+                    "a shard of another sweep than {} ({})",
+                    first.display(),
+                    fp.differences(&f).join("; ")
+                ),
+            ));
+        }
         if n != name || t != total {
             return Err(bad(
                 p,
@@ -368,6 +394,14 @@ pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<Merged> {
         .map_err(|e| Error::io(out, e.into_error()))?
         .commit()
         .map_err(|e| Error::io(out, e))?;
+    // Its JSON twin says what sweep it is, as a shard's does (a later merge into the
+    // same file checks it).
+    let twin = out.with_extension("json");
+    let meta = serde_json::json!({
+        "schema_version": SCHEMA_VERSION, "sweep": name, "cases_total": total,
+        "fingerprint": fp, "merged_from": inputs,
+    });
+    crate::atomic::write(&twin, meta.to_string()).map_err(|e| Error::io(&twin, e))?;
     let report = Some(match super::page::write(out, &name) {
         Ok(files) => files.html.display().to_string(),
         Err(e) => format!("not written: {e}"),
@@ -422,6 +456,8 @@ fn legacy_figure(name: &str) -> bool {
 #[derive(serde::Serialize, serde::Deserialize)]
 struct JournalHead {
     schema_version: u32,
+    #[serde(default)]
+    fingerprint: Option<Fingerprint>,
 }
 
 /// A sweep (or one shard of it) run and summarised.
@@ -454,6 +490,8 @@ pub struct SweepRun {
     pub summary_csv: Option<String>,
     /// The sweep's HTML page, once written (`not written: ...` when it could not be).
     pub report: Option<String>,
+    /// What the sweep is ([`super::fingerprint`]): resume and merge refuse others'.
+    pub fingerprint: Option<Fingerprint>,
     /// Every case.
     pub rows: Vec<CaseRow>,
 }
@@ -465,6 +503,7 @@ pub fn run_sweep(
     jobs: usize,
     progress: &dyn Progress,
 ) -> Result<SweepRun> {
+    super::check::check(sweep, jobs)?;
     run_with(
         sweep,
         shard,
@@ -497,7 +536,8 @@ fn run_with(
     let wall = Instant::now();
     let resumed = prior.len();
     let run = |c: &Case, path: &Path, loader: &Loader, stop: &dyn Progress| {
-        run_case_kept(path, loader, stop, keep.map(|k| (k, c.index)), check)
+        let stamp = Some(&sweep.produced_by);
+        run_case_kept(path, loader, stop, keep.map(|k| (k, c.index)), check, stamp)
     };
     let mut rows = run_cases(sweep, &cases, jobs, &run, progress, done)?;
     rows.extend(prior);
@@ -522,6 +562,7 @@ fn run_with(
         wall_s: wall.elapsed().as_secs_f64(),
         summary_csv: None,
         report: None,
+        fingerprint: None,
         rows,
     })
 }
@@ -588,6 +629,11 @@ pub fn run_sweep_with(
     opts: &Options,
     progress: &dyn Progress,
 ) -> Result<SweepRun> {
+    super::guard::out_dir(dir)?;
+    // Every parameter checked against the files before any case runs; the files read
+    // are part of what the sweep is.
+    let files = super::check::check(sweep, opts.jobs)?;
+    let fp = Fingerprint::of(sweep, &files, &figures_kind(opts.check));
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     let csv = summary_path(dir, shard);
     let journal = journal_path(&csv);
@@ -597,7 +643,7 @@ pub fn run_sweep_with(
         std::fs::create_dir_all(&cases).map_err(|e| Error::io(&cases, e))?;
     }
     let mut prior = if opts.resume {
-        previous_rows(sweep, shard, &csv, &journal)?
+        previous_rows(sweep, shard, &csv, &journal, &fp)?
     } else {
         Vec::new()
     };
@@ -626,7 +672,7 @@ pub fn run_sweep_with(
     // The journal holds what the summary will hold; rewritten so a resumed run's old
     // entries stay with its new ones.
     let mut j = std::fs::File::create(&journal).map_err(|e| Error::io(&journal, e))?;
-    journal_head(&mut j).map_err(|e| Error::io(&journal, e))?;
+    journal_head(&mut j, &fp).map_err(|e| Error::io(&journal, e))?;
     for r in &prior {
         journal_line(&mut j, r).map_err(|e| Error::io(&journal, e))?;
     }
@@ -638,6 +684,7 @@ pub fn run_sweep_with(
         }
     };
     let mut res = run_with(sweep, shard, jobs, prior, keep, opts.check, progress, &done)?;
+    res.fingerprint = Some(fp);
     res.write_to(sweep, &csv)?;
     let _ = std::fs::remove_file(&journal);
     res.report = Some(match super::page::write(&csv, &sweep.name) {
@@ -651,9 +698,16 @@ pub fn run_sweep_with(
     Ok(res)
 }
 
-fn journal_head(f: &mut std::fs::File) -> std::io::Result<()> {
+/// What a case reports, for the fingerprint: the layout and the `--check` threshold.
+fn figures_kind(check: Option<f64>) -> String {
+    let check = check.map_or("no --check".to_string(), |t| format!("--check at {t}"));
+    format!("summary v{SCHEMA_VERSION}, {check}")
+}
+
+fn journal_head(f: &mut std::fs::File, fp: &Fingerprint) -> std::io::Result<()> {
     let head = JournalHead {
         schema_version: SCHEMA_VERSION,
+        fingerprint: Some(fp.clone()),
     };
     let line = serde_json::to_string(&head).map_err(std::io::Error::other)?;
     f.write_all(format!("{line}\n").as_bytes())?;
@@ -673,6 +727,7 @@ fn previous_rows(
     shard: (usize, usize),
     csv: &Path,
     journal: &Path,
+    fp: &Fingerprint,
 ) -> Result<Vec<CaseRow>> {
     let bad = |p: &Path, message: String| -> Error {
         SceneError::Merge {
@@ -684,10 +739,12 @@ fn previous_rows(
     let mut rows: Vec<CaseRow> = Vec::new();
     if csv.is_file() {
         let twin = csv.with_extension("json");
+        let mut theirs = None;
         if let Ok(text) = std::fs::read_to_string(&twin) {
             let v: serde_json::Value =
                 serde_json::from_str(&text).map_err(|e| bad(&twin, format!("not JSON: {e}")))?;
             check_version(&twin, v["schema_version"].as_u64(), "resume it")?;
+            theirs = Some(v["fingerprint"].clone());
         }
         let mut r = csv::Reader::from_path(csv).map_err(|e| Error::io(csv, e.into()))?;
         let h = r.headers().map_err(|e| bad(csv, e.to_string()))?.clone();
@@ -711,6 +768,8 @@ fn previous_rows(
         if figure_names.iter().any(|n| legacy_figure(n)) {
             check_version(csv, None, "resume it")?;
         }
+        // Named by the CSV: its rows are what would be kept.
+        super::guard::same_sweep(csv, theirs.as_ref(), fp)?;
         for (k, rec) in r.records().enumerate() {
             let line = k + 2;
             let rec = rec.map_err(|e| bad(csv, format!("line {line}: {e}")))?;
@@ -773,6 +832,8 @@ fn previous_rows(
             if version.is_some() || serde_json::from_str::<CaseRow>(first).is_ok() {
                 check_version(journal, version, "resume it")?;
             }
+            let head = serde_json::from_str::<serde_json::Value>(first).ok();
+            super::guard::same_sweep(journal, head.as_ref().map(|h| &h["fingerprint"]), fp)?;
         }
         for (k, l) in text.lines().enumerate() {
             // A line cut short by a kill is the case still running: run it again.
