@@ -112,7 +112,13 @@ pub fn run(a: &SensitivityArgs) -> CliResult {
     }
     let pb = crate::progress(0, a.json);
     crate::interrupt::install();
-    let mut study = sensitivity::run(&s, &pb)?;
+    let mut study = match sensitivity::run(&s, &pb) {
+        Err(towride_app::Error::Scene(towride_app::scene::SceneError::Interrupted { .. })) => {
+            eprintln!("interrupted before the study's base run finished: nothing to write");
+            return Ok(crate::interrupt::EXIT);
+        }
+        r => r?,
+    };
     let dir = a
         .out
         .clone()
