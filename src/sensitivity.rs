@@ -123,6 +123,7 @@ pub fn run(a: &SensitivityArgs) -> CliResult {
         .out
         .clone()
         .unwrap_or_else(|| sensitivity::default_dir(&a.file));
+    study.produced_by = crate::inputs::stamp(&study.produced_by);
     sensitivity::write::write(&mut study, &dir)?;
     // Interrupted: what ran is written, labelled, with the interrupted exit code.
     let code = if study.not_run > 0 {
@@ -141,7 +142,7 @@ pub fn run(a: &SensitivityArgs) -> CliResult {
         println!("{note}");
     }
     println!(
-        "{:?} study of {}: {} parameters, {} runs on {} threads in {:.1} s ({} failed, {} not run)",
+        "{} of {}: {} parameters, {} runs on {} threads in {:.1} s ({} failed, {} not run)",
         study.method,
         study.file,
         study.params.len(),

@@ -96,6 +96,14 @@ fn sensitivity_runs_on_the_simple_van_with_its_own_numbers() {
     ]);
     assert_eq!(v["status"], "completed", "{}", v["note"]);
     assert_eq!(v["failed"].as_array().unwrap().len(), 0);
+    // The shortened run is recorded with the study (and on its page).
+    assert_eq!(
+        v["overrides"][0],
+        "van_air/bump_50mm.toml:run.duration_s = 0.3"
+    );
+    assert!(v["produced_by"]["command_line"]
+        .to_string()
+        .contains("--set"));
     let params = v["params"].as_array().unwrap();
     assert!(params.len() >= 6, "{params:?}");
     assert!(params.iter().all(|p| p["param"]["file"]

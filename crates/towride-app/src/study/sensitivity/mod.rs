@@ -150,6 +150,12 @@ pub struct Study {
     pub status: String,
     /// What the reader must know first when the status is not "completed".
     pub note: Option<String>,
+    /// The caller's overrides under every run (`FILE:PATH = VALUE`): a study of a
+    /// shortened run is not one of the scene as filed.
+    pub overrides: Vec<String>,
+    /// Version, commit and command line of the program that made the study (the binary
+    /// fills them in before writing).
+    pub produced_by: crate::job::ProducedBy,
     /// The scene or mechanism.
     pub file: String,
     /// OAT or Morris.
@@ -499,6 +505,12 @@ pub fn run(s: &Settings, progress: &dyn Progress) -> Result<Study> {
         schema_version: SCHEMA_VERSION,
         status,
         note,
+        overrides: s
+            .base
+            .overrides()
+            .map(|o| format!("{}:{} = {}", o.file, o.path.trim(), o.value.trim()))
+            .collect(),
+        produced_by: Default::default(),
         file: s.file.display().to_string(),
         method: s.method,
         outputs,

@@ -130,13 +130,21 @@ pub fn tornado(s: &Study, path: &Path) -> Result<bool> {
     if n == 0 {
         return Ok(false);
     }
+    // A bar too short to see is left out: drawn, its round cap was a blob that looked
+    // larger than the bars above it (the table gives the value).
+    let longest = rank
+        .iter()
+        .filter_map(|p| bar(s, p, 0))
+        .fold(0.0f64, |m, v| m.max(v.abs()));
     let (mut up, mut down) = (Vec::new(), Vec::new());
     let mut labels = Vec::new();
     for (i, p) in rank.iter().enumerate() {
         let y = (n - i) as f64;
         let v = bar(s, p, 0).unwrap_or(0.0);
-        let seg = if v >= 0.0 { &mut up } else { &mut down };
-        seg.extend([(0.0, y), (v, y), (f64::NAN, f64::NAN)]);
+        if v.abs() > 0.01 * longest {
+            let seg = if v >= 0.0 { &mut up } else { &mut down };
+            seg.extend([(0.0, y), (v, y), (f64::NAN, f64::NAN)]);
+        }
         labels.push((y, short(&p.param.name)));
     }
     let what = match s.method {
@@ -242,6 +250,24 @@ pub fn page(s: &Study) -> String {
             escape(note)
         );
     }
+    let p = &s.produced_by;
+    if !p.towride_version.is_empty() {
+        let _ = writeln!(
+            h,
+            "<p>Produced by towride {} (commit {}): <code>{}</code></p>",
+            escape(&p.towride_version),
+            escape(&p.git_commit),
+            escape(&p.command_line.join(" "))
+        );
+    }
+    if !s.overrides.is_empty() {
+        // What every run was changed by (a shortened run is not the scene as filed).
+        let _ = writeln!(
+            h,
+            "<p>Overrides under every run: <code>{}</code></p>",
+            escape(&s.overrides.join(", "))
+        );
+    }
     h.push_str("<h2>Ranking of the first output</h2>\n");
     if s.ranking(0).iter().any(|p| bar(s, p, 0).is_some()) {
         h.push_str(
@@ -260,7 +286,7 @@ pub fn page(s: &Study) -> String {
             o.base
         );
     }
-    h.push_str("</table>\n<h2>Parameters, ranked by the first output</h2>\n<table><tr><th>parameter</th><th>group</th><th>kind</th><th>base</th>");
+    h.push_str("</table>\n<h2>Parameters, ranked by the first output</h2>\n<div style=\"overflow-x:auto\"><table><tr><th>parameter</th><th>group</th><th>kind</th><th>base</th>");
     for o in &s.outputs {
         match s.method {
             Method::Oat => {
@@ -279,7 +305,7 @@ pub fn page(s: &Study) -> String {
     for p in s.ranking(0) {
         let _ = write!(
             h,
-            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{:.4e}</td>",
+            "<tr><td>{}</td><td>{}</td><td>{}</td><td style=\"white-space:nowrap\">{:.4e}</td>",
             escape(&p.param.name),
             escape(&p.param.group),
             escape(&p.param.kind),
@@ -309,7 +335,7 @@ pub fn page(s: &Study) -> String {
         }
         h.push_str("</tr>\n");
     }
-    h.push_str("</table>\n");
+    h.push_str("</table></div>\n");
     if !s.failed.is_empty() {
         h.push_str("<h2>Failed runs</h2>\n<ul>\n");
         for f in &s.failed {
