@@ -7,7 +7,6 @@
 //! runs only the cases neither the summary nor the journal holds.
 
 use std::collections::BTreeSet;
-use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::time::Instant;
@@ -426,7 +425,7 @@ pub const SCHEMA_VERSION: u32 = 4;
 /// with another layout version than [`SCHEMA_VERSION`]: an older one's figures (signed
 /// peaks, other names) cannot be converted, as version 3 kept the signed peak but not
 /// the max and min. `what`: what the caller would do with it.
-fn check_version(file: &Path, version: Option<u64>, what: &str) -> Result<()> {
+pub(super) fn check_version(file: &Path, version: Option<u64>, what: &str) -> Result<()> {
     if version == Some(SCHEMA_VERSION as u64) {
         return Ok(());
     }
@@ -447,17 +446,9 @@ fn check_version(file: &Path, version: Option<u64>, what: &str) -> Result<()> {
 
 /// The signed-peak figures of sweep summaries before version 4 (`hitch_fx peak [N]`):
 /// a summary CSV whose JSON twin is gone is recognised by them.
-fn legacy_figure(name: &str) -> bool {
+pub(super) fn legacy_figure(name: &str) -> bool {
     name.strip_suffix(" peak [N]")
         .is_some_and(|n| [channels::HITCH_FX, channels::HITCH_FY, channels::HITCH_FZ].contains(&n))
-}
-
-/// The first line of a journal: the layout version of the rows after it.
-#[derive(serde::Serialize, serde::Deserialize)]
-struct JournalHead {
-    schema_version: u32,
-    #[serde(default)]
-    fingerprint: Option<Fingerprint>,
 }
 
 /// A sweep (or one shard of it) run and summarised.
@@ -577,12 +568,6 @@ pub fn summary_path(dir: &Path, shard: (usize, usize)) -> PathBuf {
     })
 }
 
-fn journal_path(csv: &Path) -> PathBuf {
-    let mut name = csv.file_name().unwrap_or_default().to_os_string();
-    name.push(".journal");
-    csv.with_file_name(name)
-}
-
 /// Runs shard `shard` of `sweep` with its files in `dir`: each finished case goes to the
 /// journal as it ends; at the end (or on interruption) the summary CSV and its JSON twin
 /// are written whole and the journal removed. With `resume`, the cases that an earlier
@@ -636,14 +621,14 @@ pub fn run_sweep_with(
     let fp = Fingerprint::of(sweep, &files, &figures_kind(opts.check));
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     let csv = summary_path(dir, shard);
-    let journal = journal_path(&csv);
+    let journal = super::resume::journal_path(&csv);
     let cases = super::cases::cases_dir(dir);
     let keep = opts.keep_histories.then_some(cases.as_path());
     if keep.is_some() {
         std::fs::create_dir_all(&cases).map_err(|e| Error::io(&cases, e))?;
     }
     let mut prior = if opts.resume {
-        previous_rows(sweep, shard, &csv, &journal, &fp)?
+        super::resume::previous_rows(sweep, shard, &csv, &journal, &fp)?
     } else {
         Vec::new()
     };
@@ -672,15 +657,15 @@ pub fn run_sweep_with(
     // The journal holds what the summary will hold; rewritten so a resumed run's old
     // entries stay with its new ones.
     let mut j = std::fs::File::create(&journal).map_err(|e| Error::io(&journal, e))?;
-    journal_head(&mut j, &fp).map_err(|e| Error::io(&journal, e))?;
+    super::resume::journal_head(&mut j, &fp).map_err(|e| Error::io(&journal, e))?;
     for r in &prior {
-        journal_line(&mut j, r).map_err(|e| Error::io(&journal, e))?;
+        super::resume::journal_line(&mut j, r).map_err(|e| Error::io(&journal, e))?;
     }
     let j = Mutex::new(j);
     let done = |r: &CaseRow| {
         if let Ok(mut f) = j.lock() {
             // A journal that cannot be written costs only the resume of this case.
-            let _ = journal_line(&mut f, r);
+            let _ = super::resume::journal_line(&mut f, r);
         }
     };
     let mut res = run_with(sweep, shard, jobs, prior, keep, opts.check, progress, &done)?;
@@ -702,156 +687,6 @@ pub fn run_sweep_with(
 fn figures_kind(check: Option<f64>) -> String {
     let check = check.map_or("no --check".to_string(), |t| format!("--check at {t}"));
     format!("summary v{SCHEMA_VERSION}, {check}")
-}
-
-fn journal_head(f: &mut std::fs::File, fp: &Fingerprint) -> std::io::Result<()> {
-    let head = JournalHead {
-        schema_version: SCHEMA_VERSION,
-        fingerprint: Some(fp.clone()),
-    };
-    let line = serde_json::to_string(&head).map_err(std::io::Error::other)?;
-    f.write_all(format!("{line}\n").as_bytes())?;
-    f.flush()
-}
-
-fn journal_line(f: &mut std::fs::File, r: &CaseRow) -> std::io::Result<()> {
-    let line = serde_json::to_string(r).map_err(std::io::Error::other)?;
-    f.write_all(format!("{line}\n").as_bytes())?;
-    f.flush()
-}
-
-/// The completed and failed cases of an earlier run of this shard: its summary CSV
-/// (when written) and its journal (when it was killed before writing one).
-fn previous_rows(
-    sweep: &Sweep,
-    shard: (usize, usize),
-    csv: &Path,
-    journal: &Path,
-    fp: &Fingerprint,
-) -> Result<Vec<CaseRow>> {
-    let bad = |p: &Path, message: String| -> Error {
-        SceneError::Merge {
-            file: p.to_path_buf(),
-            message,
-        }
-        .into()
-    };
-    let mut rows: Vec<CaseRow> = Vec::new();
-    if csv.is_file() {
-        let twin = csv.with_extension("json");
-        let mut theirs = None;
-        if let Ok(text) = std::fs::read_to_string(&twin) {
-            let v: serde_json::Value =
-                serde_json::from_str(&text).map_err(|e| bad(&twin, format!("not JSON: {e}")))?;
-            check_version(&twin, v["schema_version"].as_u64(), "resume it")?;
-            theirs = Some(v["fingerprint"].clone());
-        }
-        let mut r = csv::Reader::from_path(csv).map_err(|e| Error::io(csv, e.into()))?;
-        let h = r.headers().map_err(|e| bad(csv, e.to_string()))?.clone();
-        let np = sweep.parameters.len();
-        let cols: Vec<&str> = h.iter().collect();
-        let params: Vec<&str> = sweep.parameters.iter().map(|p| p.name.as_str()).collect();
-        if cols.len() < np + 4
-            || cols[0] != "case"
-            || cols[1..=np] != params[..]
-            || cols[np + 1] != "status"
-            || cols.last() != Some(&"error")
-        {
-            return Err(bad(
-                csv,
-                format!(
-                    "not a summary of this sweep (columns {cols:?}): remove it or run without --resume"
-                ),
-            ));
-        }
-        let figure_names = &cols[np + 3..cols.len() - 1];
-        if figure_names.iter().any(|n| legacy_figure(n)) {
-            check_version(csv, None, "resume it")?;
-        }
-        // Named by the CSV: its rows are what would be kept.
-        super::guard::same_sweep(csv, theirs.as_ref(), fp)?;
-        for (k, rec) in r.records().enumerate() {
-            let line = k + 2;
-            let rec = rec.map_err(|e| bad(csv, format!("line {line}: {e}")))?;
-            let get = |c: usize| rec.get(c).unwrap_or("");
-            let index: usize = get(0)
-                .parse()
-                .map_err(|_| bad(csv, format!("line {line}: `case` is not a case number")))?;
-            if index >= sweep.len() || index % shard.1 != shard.0 {
-                return Err(bad(
-                    csv,
-                    format!("line {line}: case {index} is not a case of this shard"),
-                ));
-            }
-            let case = sweep.case(index);
-            for (p, v) in case.values.iter().enumerate() {
-                if get(p + 1) != v.trim_matches('"') {
-                    return Err(bad(
-                        csv,
-                        format!(
-                            "line {line}: case {index} has {} = {} but the sweep file gives {v}: \
-                             the sweep changed; remove the summary or run without --resume",
-                            params[p],
-                            get(p + 1)
-                        ),
-                    ));
-                }
-            }
-            let status = get(np + 1).to_string();
-            if status != "completed" && status != "failed" {
-                continue;
-            }
-            let mut figures = Figures::new();
-            for (f, name) in figure_names.iter().enumerate() {
-                let cell = get(np + 3 + f);
-                if !cell.is_empty() {
-                    let v = cell
-                        .parse()
-                        .map_err(|_| bad(csv, format!("line {line}: `{name}` is not a number")))?;
-                    figures.push((name.to_string(), v));
-                }
-            }
-            let error = get(cols.len() - 1);
-            rows.push(CaseRow {
-                index,
-                values: case.values,
-                status,
-                error: (!error.is_empty()).then(|| error.to_string()),
-                wall_s: get(np + 2).parse().unwrap_or(0.0),
-                figures,
-            });
-        }
-    }
-    if let Ok(text) = std::fs::read_to_string(journal) {
-        // The version line first; a journal of rows without one is older than version 4.
-        let first = text.lines().find(|l| !l.trim().is_empty());
-        if let Some(first) = first {
-            let version = serde_json::from_str::<JournalHead>(first)
-                .ok()
-                .map(|h| h.schema_version as u64);
-            if version.is_some() || serde_json::from_str::<CaseRow>(first).is_ok() {
-                check_version(journal, version, "resume it")?;
-            }
-            let head = serde_json::from_str::<serde_json::Value>(first).ok();
-            super::guard::same_sweep(journal, head.as_ref().map(|h| &h["fingerprint"]), fp)?;
-        }
-        for (k, l) in text.lines().enumerate() {
-            // A line cut short by a kill is the case still running: run it again.
-            let Ok(r) = serde_json::from_str::<CaseRow>(l) else {
-                continue;
-            };
-            if r.index >= sweep.len() || sweep.case(r.index).values != r.values {
-                return Err(bad(
-                    journal,
-                    format!("line {}: case {} is not of this sweep", k + 1, r.index),
-                ));
-            }
-            if !rows.iter().any(|x| x.index == r.index) {
-                rows.push(r);
-            }
-        }
-    }
-    Ok(rows)
 }
 
 impl SweepRun {
