@@ -152,3 +152,17 @@ fn common_dir(files: &[PathBuf]) -> PathBuf {
     }
     root.unwrap_or_default()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::fnv1a;
+
+    /// The published FNV-1a 64 test vectors (Fowler, Noll and Vo): a fingerprint written
+    /// today is the one any later build computes.
+    #[test]
+    fn fnv1a_gives_the_published_values() {
+        assert_eq!(fnv1a(b""), 0xcbf2_9ce4_8422_2325);
+        assert_eq!(fnv1a(b"a"), 0xaf63_dc4c_8601_ec8c);
+        assert_eq!(fnv1a(b"foobar"), 0x8594_4171_f739_67e8);
+    }
+}
