@@ -95,3 +95,17 @@ pub fn count(s: &str) -> Result<usize, String> {
     number(s, bounds::for_key("fixed_interface_modes"), true)?;
     Ok(n)
 }
+
+/// Morris trajectories (`--trajectories`): the library's bounds (2: sigma needs two
+/// elementary effects; 1000).
+pub fn trajectories(s: &str) -> Result<usize, String> {
+    use towride_app::study::sensitivity::{MAX_TRAJECTORIES, MIN_TRAJECTORIES};
+    let n: usize = s.trim().parse().map_err(|e| format!("not a count: {e}"))?;
+    if (MIN_TRAJECTORIES..=MAX_TRAJECTORIES).contains(&n) {
+        Ok(n)
+    } else {
+        Err(format!(
+            "must lie in {MIN_TRAJECTORIES}..={MAX_TRAJECTORIES} (Morris needs two elementary effects per parameter for sigma), got {n}"
+        ))
+    }
+}

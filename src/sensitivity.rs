@@ -22,7 +22,8 @@ pub struct SensitivityArgs {
     /// vector); default: every stiffness, damping and mass of the groups.
     #[arg(long, value_delimiter = ',', conflicts_with = "group")]
     params: Vec<String>,
-    /// Groups searched for parameters (default hitch, trailer, tyres).
+    /// Groups searched for parameters (default hitch, trailer, tyres and a `simple`
+    /// vehicle's own file, `vehicle`; `--list` shows every value's group).
     #[arg(long, value_delimiter = ',')]
     group: Vec<String>,
     /// Outputs CHANNEL.abs_peak|max|min|rms|freq, CHANNEL raw or band-limited
@@ -33,19 +34,20 @@ pub struct SensitivityArgs {
     /// oat (central differences at +-10 %) or morris (elementary effects).
     #[arg(long, value_enum, default_value = "oat")]
     method: MethodArg,
-    /// Morris trajectories.
-    #[arg(long, default_value_t = 10, value_parser = crate::bounded::count)]
+    /// Morris trajectories (2 to 1000).
+    #[arg(long, default_value_t = 10, value_parser = crate::bounded::trajectories)]
     trajectories: usize,
-    /// Morris range: each value times 1 -+ this fraction.
-    #[arg(long, default_value_t = 0.3)]
-    range: f64,
+    /// Morris range: each value times 1 -+ this fraction (default 0.3); OAT varies each
+    /// value by +-10 % and refuses it.
+    #[arg(long)]
+    range: Option<f64>,
     /// Morris seed.
     #[arg(long, default_value_t = 1)]
     seed: u64,
     /// Parallel runs (default: all cores).
     #[arg(long, value_parser = crate::bounded::jobs)]
     jobs: Option<usize>,
-    /// Output folder (default out/sensitivity/<scene>).
+    /// Output folder (default out/sensitivity/<scene's path, `/` as `_`, no extension>).
     #[arg(long)]
     out: Option<PathBuf>,
     /// List the parameters found (with their groups) and stop.
@@ -54,11 +56,22 @@ pub struct SensitivityArgs {
     /// Print the study as JSON.
     #[arg(long)]
     json: bool,
+    #[command(flatten)]
+    inputs: crate::inputs::InputArgs,
 }
 
 pub fn run(a: &SensitivityArgs) -> CliResult {
-    if !(a.range > 0.0 && a.range < 1.0) {
-        return Err(format!("--range {}: a fraction between 0 and 1", a.range).into());
+    let range = match (a.method, a.range) {
+        (MethodArg::Oat, Some(r)) => {
+            return Err(format!(
+                "--range {r} applies to --method morris; OAT varies each value by +-10 %"
+            )
+            .into())
+        }
+        (_, r) => r.unwrap_or(0.3),
+    };
+    if !(range > 0.0 && range < 1.0) {
+        return Err(format!("--range {range}: a fraction between 0 and 1").into());
     }
     let jobs = a
         .jobs
@@ -74,9 +87,10 @@ pub fn run(a: &SensitivityArgs) -> CliResult {
         },
         trajectories: a.trajectories,
         levels: 4,
-        range: a.range,
+        range,
         seed: a.seed,
         jobs,
+        base: a.inputs.loader()?,
     };
     if a.list {
         let all = params::candidates(&a.file, &[])?;
@@ -98,55 +112,87 @@ pub fn run(a: &SensitivityArgs) -> CliResult {
     }
     let pb = crate::progress(0, a.json);
     crate::interrupt::install();
-    let mut study = sensitivity::run(&s, &pb)?;
+    let mut study = match sensitivity::run(&s, &pb) {
+        Err(towride_app::Error::Scene(towride_app::scene::SceneError::Interrupted { .. })) => {
+            eprintln!("interrupted before the study's base run finished: nothing to write");
+            return Ok(crate::interrupt::EXIT);
+        }
+        r => r?,
+    };
     let dir = a
         .out
         .clone()
         .unwrap_or_else(|| sensitivity::default_dir(&a.file));
+    study.produced_by = crate::inputs::stamp(&study.produced_by);
     sensitivity::write::write(&mut study, &dir)?;
+    // Interrupted: what ran is written, labelled, with the interrupted exit code.
+    let code = if study.not_run > 0 {
+        crate::interrupt::EXIT
+    } else if study.failed.is_empty() {
+        0
+    } else {
+        1
+    };
     if a.json {
         println!("{}", serde_json::to_string_pretty(&study)?);
-        return Ok(0);
+        return Ok(code);
+    }
+    // First line: the figures below are partial.
+    if let Some(note) = &study.note {
+        println!("{note}");
     }
     println!(
-        "{:?} study of {}: {} parameters, {} runs on {} threads in {:.1} s ({} failed)",
+        "{} of {}: {} parameters, {} runs on {} threads in {:.1} s ({} failed, {} not run)",
         study.method,
         study.file,
         study.params.len(),
         study.runs,
         study.jobs,
         study.runs_wall_s,
-        study.failed.len()
+        study.failed.len(),
+        study.not_run
     );
     for f in &study.failed {
         println!("  failed: {}: {}", f.changes, f.error);
     }
+    // A figure that could not be computed is said so, never printed as 0 or NaN.
+    let shown = |v: Option<f64>, p: &sensitivity::ParamResult| match v.filter(|x| x.is_finite()) {
+        Some(x) => format!("{x:+.4}"),
+        None if p.note.is_some() => format!("undefined ({})", p.note.as_deref().unwrap_or("")),
+        None => "- (a run failed or was not run)".into(),
+    };
     if let Some(o) = study.outputs.first() {
-        println!("ranking by {} (base {:.5e} {}):", o.name, o.base, o.unit);
+        println!("ranking by {} (base {:+.5e} {}):", o.name, o.base, o.unit);
         for p in study.ranking(0).iter().take(10) {
             match study.method {
                 Method::Oat => println!(
                     "  {:<70} elasticity {}",
                     p.param.name,
-                    p.elasticity[0].map_or("-".into(), |v| format!("{v:+.4}"))
+                    shown(p.elasticity[0], p)
                 ),
                 Method::Morris => println!(
-                    "  {:<70} mu*/base {:.4}  sigma/base {:.4}",
+                    "  {:<70} mu*/base {}  sigma/base {}",
                     p.param.name,
-                    p.mu_star_rel[0],
-                    p.morris[0].sigma / o.base.abs()
+                    shown(p.mu_star_rel.first().copied(), p),
+                    shown(
+                        p.morris
+                            .first()
+                            .map(|e| e.sigma / o.base.abs())
+                            .filter(|_| p.param.base_value() != 0.0),
+                        p
+                    )
                 ),
             }
         }
     }
     if !study.inactive.is_empty() {
         println!(
-            "not studied (the model does not depend on them): {}",
+            "not studied (the model does not depend on them, or they cannot be varied): {}",
             study.inactive.join(", ")
         );
     }
     for w in &study.written {
         println!("wrote {w}");
     }
-    Ok(if study.failed.is_empty() { 0 } else { 1 })
+    Ok(code)
 }

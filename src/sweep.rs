@@ -1,5 +1,5 @@
-//! `towride sweep SWEEP.toml [--jobs N] [--shard I/N] [--resume] [--keep-histories]` and
-//! `towride sweep merge`.
+//! `towride sweep SWEEP.toml [--jobs N] [--shard I/N] [--resume] [--keep-histories]
+//! [--set FILE:PATH=VALUE] [--overrides FILE]` and `towride sweep merge`.
 
 use std::path::PathBuf;
 
@@ -45,6 +45,8 @@ pub struct SweepArgs {
     /// With --check: the relative difference a converged channel may show [%] (default 2).
     #[arg(long, requires = "check", value_parser = crate::bounded::share_pct)]
     check_threshold: Option<f64>,
+    #[command(flatten)]
+    inputs: crate::inputs::InputArgs,
 }
 
 #[derive(Subcommand, Debug)]
@@ -80,7 +82,10 @@ pub fn run(a: &SweepArgs) -> CliResult {
         return Ok(0);
     }
     let file = a.file.as_ref().ok_or("a sweep file is required")?;
-    let sweep = Sweep::load(file)?;
+    let mut sweep = Sweep::load(file)?;
+    // The command line's overrides reach every case, under the case's own values.
+    sweep.base = a.inputs.loader()?;
+    sweep.produced_by = crate::inputs::stamp(&Default::default());
     let shard = match &a.shard {
         Some(s) => parse_shard(s)?,
         None => (0, 1),

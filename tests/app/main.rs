@@ -32,6 +32,7 @@ mod report_html;
 mod report_view;
 mod scene_outputs;
 mod study_sensitivity;
+mod study_sensitivity_runs;
 mod summary_schema;
 mod sweep_report;
 mod tyre_cleat;

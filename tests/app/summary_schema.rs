@@ -376,15 +376,31 @@ fn merge_and_resume_refuse_the_previous_layout() {
     let r = run_sweep_in(&sweep, (0, 1), 2, &ok, false, &Silent).unwrap();
     std::fs::remove_file(ok.join("summary.csv")).unwrap();
     std::fs::remove_file(ok.join("summary.json")).unwrap();
-    let mut text = format!(
-        "{{\"schema_version\":{}}}\n",
-        towride_app::sweep::exec::SCHEMA_VERSION
+    let head = |fp: Option<&towride_app::sweep::fingerprint::Fingerprint>| {
+        let v = towride_app::sweep::exec::SCHEMA_VERSION;
+        let mut text = match fp {
+            Some(f) => format!(
+                "{{\"schema_version\":{v},\"fingerprint\":{}}}\n",
+                serde_json::to_string(f).unwrap()
+            ),
+            None => format!("{{\"schema_version\":{v}}}\n"),
+        };
+        for row in &r.rows {
+            text.push_str(&serde_json::to_string(row).unwrap());
+            text.push('\n');
+        }
+        text
+    };
+    // Without a fingerprint nothing says the rows are of this sweep: refused.
+    std::fs::write(ok.join("summary.csv.journal"), head(None)).unwrap();
+    let e = run_sweep_in(&sweep, (0, 1), 2, &ok, true, &Silent)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("summary.csv.journal") && e.contains("no fingerprint"),
+        "{e}"
     );
-    for row in &r.rows {
-        text.push_str(&serde_json::to_string(row).unwrap());
-        text.push('\n');
-    }
-    std::fs::write(ok.join("summary.csv.journal"), text).unwrap();
+    std::fs::write(ok.join("summary.csv.journal"), head(r.fingerprint.as_ref())).unwrap();
     let again = run_sweep_in(&sweep, (0, 1), 2, &ok, true, &Silent).unwrap();
     assert_eq!(again.resumed, 6);
     for d in [dir, legacy, journal, ok] {

@@ -323,11 +323,14 @@ fn bench_replot_redraws_a_stored_table_and_names_a_bad_cell() {
 }
 
 /// `run --json` on a scene carries the assumed inputs its text output lists, read from
-/// the scene's sensitivity study in `out/sensitivity/STEM` under the working directory.
+/// the scene's sensitivity study in `out/sensitivity/<key>` under the working directory
+/// (a scene outside it: its stem and the FNV-1a of its path, as `sensitivity` writes it).
 #[test]
 fn run_json_lists_the_assumed_inputs_of_the_scenes_study() {
     let dir = std::env::temp_dir().join(format!("towride-assumed-cli-{}", std::process::id()));
-    let study = dir.join("out/sensitivity/default");
+    let scene = towride_mbs::input::normalized(std::path::Path::new(repo!("scenes/default.toml")));
+    let hash = towride_app::sweep::fingerprint::fnv1a(scene.to_str().unwrap().as_bytes());
+    let study = dir.join(format!("out/sensitivity/default_{:08x}", hash as u32));
     std::fs::create_dir_all(&study).unwrap();
     let param = |path: &str, e: f64| {
         serde_json::json!({

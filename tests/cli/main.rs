@@ -21,6 +21,7 @@ mod reliability;
 mod sensitivity;
 mod slurm;
 mod sweep;
+mod sweep_inputs;
 mod tyre_rig;
 mod validate_folder;
 mod validate_signal;

@@ -397,3 +397,57 @@ fn ctrl_c_stops_a_sweep_and_resume_finishes_it_with_the_same_summary() {
         summary_table(&whole.join("summary.csv"))
     );
 }
+
+#[test]
+fn ctrl_c_stops_a_sensitivity_study_with_its_partial_results_labelled() {
+    let d = tmp("sens_sigint");
+    // Morris, 1 + 2 x 3 runs of 200 s of the mass on a spring (about 0.4 s each).
+    let child = Command::new(env!("CARGO_BIN_EXE_towride"))
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR")))
+        .args([
+            "sensitivity",
+            "scenes/examples/mass_spring.toml",
+            "--set",
+            "mass_spring.toml:run.end_time_s=200",
+            "--params",
+            "mass_spring.toml:spring[0].stiffness_n_m,mass_spring.toml:body[0].mass_kg",
+            "--outputs",
+            "k1.force.freq",
+            "--method",
+            "morris",
+            "--trajectories",
+            "2",
+            "--jobs",
+            "1",
+            "--json",
+            "--out",
+        ])
+        .arg(&d)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let t = Instant::now();
+    interrupt_when(
+        &child,
+        || t.elapsed() > Duration::from_millis(1200),
+        Duration::from_secs(5),
+    );
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(130), "{}", stderr(&out));
+    // Stopped after the base run: labelled, runs not started not called failed, no NaN.
+    if let Ok(v) = serde_json::from_slice::<serde_json::Value>(&out.stdout) {
+        assert_eq!(v["status"], "interrupted", "{v}");
+        assert!(v["not_run"].as_u64().unwrap() > 0);
+        assert_eq!(v["failed"].as_array().unwrap().len(), 0, "{v}");
+        let page = std::fs::read_to_string(d.join("sensitivity.html")).unwrap();
+        assert!(page.contains("interrupted:") && !page.contains("NaN"));
+    } else {
+        assert!(
+            stderr(&out).contains("before the study's base run"),
+            "{}",
+            stderr(&out)
+        );
+    }
+    std::fs::remove_dir_all(&d).ok();
+}

@@ -7,16 +7,16 @@
 //! runs only the cases neither the summary nor the journal holds.
 
 use std::collections::BTreeSet;
-use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::time::Instant;
 
 use rayon::prelude::*;
 
+use super::fingerprint::Fingerprint;
 use super::{Case, Sweep};
 use crate::error::{Error, Result};
-use crate::job::{convergence, Job};
+use crate::job::{convergence, Job, ProducedBy};
 use crate::scene::{channels, SceneError};
 use towride_mbs::input::Loader;
 use towride_mbs::progress::Progress;
@@ -88,7 +88,8 @@ where
                         figures: vec![],
                     };
                 }
-                let loader = Loader::with_overrides(c.overrides.clone());
+                // The caller's overrides under the case's, with a record of use of its own.
+                let loader = sweep.base.fresh().extended(c.overrides.clone());
                 let out = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
                     run(c, &sweep.scene, &loader, &StopOnly(progress))
                 }));
@@ -131,7 +132,7 @@ where
 /// Runs one case: the file (a mechanism or a scene) read through `loader`, integrated,
 /// and its figures. A run the solver stops is a failed case.
 pub fn run_case(path: &Path, loader: &Loader, stop: &dyn Progress) -> Result<Figures> {
-    run_case_kept(path, loader, stop, None, None)
+    run_case_kept(path, loader, stop, None, None, None)
 }
 
 /// [`run_case`], keeping the run's files (also those of a run the solver stopped) in
@@ -142,8 +143,17 @@ fn run_case_kept(
     stop: &dyn Progress,
     keep: Option<(&Path, usize)>,
     check: Option<f64>,
+    stamp: Option<&ProducedBy>,
 ) -> Result<Figures> {
-    let job = Job::from_file(path, loader)?;
+    let mut job = Job::from_file(path, loader)?;
+    if let Some(record) = stamp {
+        // The caller's record (version, command line) with this case's overrides.
+        let overrides = std::mem::take(&mut job.produced_by.overrides);
+        job.produced_by = ProducedBy {
+            overrides,
+            ..record.clone()
+        };
+    }
     // Only a kept case writes a report with the 3D view.
     let job = if keep.is_some() {
         job
@@ -235,8 +245,9 @@ pub struct Merged {
     pub out: String,
 }
 
-/// The JSON twin of a shard's summary CSV: the sweep's name and its case count.
-fn shard_meta(csv: &Path) -> Result<(String, usize)> {
+/// The JSON twin of a shard's summary CSV: the sweep's name, its case count and its
+/// fingerprint.
+fn shard_meta(csv: &Path) -> Result<(String, usize, Fingerprint)> {
     let json = csv.with_extension("json");
     let bad = |message: String| -> Error {
         SceneError::Merge {
@@ -256,8 +267,11 @@ fn shard_meta(csv: &Path) -> Result<(String, usize)> {
     check_version(&json, v["schema_version"].as_u64(), "merge it")?;
     let name = v["sweep"].as_str().map(String::from);
     let total = v["cases_total"].as_u64().map(|n| n as usize);
+    let fp = serde_json::from_value::<Fingerprint>(v["fingerprint"].clone()).map_err(|_| {
+        bad("no fingerprint: cannot tell which sweep this shard is of (run it again)".into())
+    })?;
     match (name, total) {
-        (Some(n), Some(t)) => Ok((n, t)),
+        (Some(n), Some(t)) => Ok((n, t, fp)),
         _ => Err(bad("no `sweep` and `cases_total` fields".into())),
     }
 }
@@ -276,11 +290,22 @@ pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<Merged> {
     let first = inputs
         .first()
         .ok_or_else(|| bad(out, "nothing to merge".into()))?;
-    let (name, total) = shard_meta(first)?;
+    let (name, total, fp) = shard_meta(first)?;
+    super::guard::merge_out(out, inputs, &fp)?;
     let mut header: Option<csv::StringRecord> = None;
     let mut rows: Vec<(usize, csv::StringRecord)> = Vec::new();
     for p in inputs {
-        let (n, t) = shard_meta(p)?;
+        let (n, t, f) = shard_meta(p)?;
+        if f.hash != fp.hash {
+            return Err(bad(
+                p,
+                format!(
+                    "a shard of another sweep than {} ({})",
+                    first.display(),
+                    fp.differences(&f).join("; ")
+                ),
+            ));
+        }
         if n != name || t != total {
             return Err(bad(
                 p,
@@ -368,6 +393,14 @@ pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<Merged> {
         .map_err(|e| Error::io(out, e.into_error()))?
         .commit()
         .map_err(|e| Error::io(out, e))?;
+    // Its JSON twin says what sweep it is, as a shard's does (a later merge into the
+    // same file checks it).
+    let twin = out.with_extension("json");
+    let meta = serde_json::json!({
+        "schema_version": SCHEMA_VERSION, "sweep": name, "cases_total": total,
+        "fingerprint": fp, "merged_from": inputs,
+    });
+    crate::atomic::write(&twin, meta.to_string()).map_err(|e| Error::io(&twin, e))?;
     let report = Some(match super::page::write(out, &name) {
         Ok(files) => files.html.display().to_string(),
         Err(e) => format!("not written: {e}"),
@@ -392,7 +425,7 @@ pub const SCHEMA_VERSION: u32 = 4;
 /// with another layout version than [`SCHEMA_VERSION`]: an older one's figures (signed
 /// peaks, other names) cannot be converted, as version 3 kept the signed peak but not
 /// the max and min. `what`: what the caller would do with it.
-fn check_version(file: &Path, version: Option<u64>, what: &str) -> Result<()> {
+pub(super) fn check_version(file: &Path, version: Option<u64>, what: &str) -> Result<()> {
     if version == Some(SCHEMA_VERSION as u64) {
         return Ok(());
     }
@@ -413,15 +446,9 @@ fn check_version(file: &Path, version: Option<u64>, what: &str) -> Result<()> {
 
 /// The signed-peak figures of sweep summaries before version 4 (`hitch_fx peak [N]`):
 /// a summary CSV whose JSON twin is gone is recognised by them.
-fn legacy_figure(name: &str) -> bool {
+pub(super) fn legacy_figure(name: &str) -> bool {
     name.strip_suffix(" peak [N]")
         .is_some_and(|n| [channels::HITCH_FX, channels::HITCH_FY, channels::HITCH_FZ].contains(&n))
-}
-
-/// The first line of a journal: the layout version of the rows after it.
-#[derive(serde::Serialize, serde::Deserialize)]
-struct JournalHead {
-    schema_version: u32,
 }
 
 /// A sweep (or one shard of it) run and summarised.
@@ -454,6 +481,8 @@ pub struct SweepRun {
     pub summary_csv: Option<String>,
     /// The sweep's HTML page, once written (`not written: ...` when it could not be).
     pub report: Option<String>,
+    /// What the sweep is ([`super::fingerprint`]): resume and merge refuse others'.
+    pub fingerprint: Option<Fingerprint>,
     /// Every case.
     pub rows: Vec<CaseRow>,
 }
@@ -465,6 +494,7 @@ pub fn run_sweep(
     jobs: usize,
     progress: &dyn Progress,
 ) -> Result<SweepRun> {
+    super::check::check(sweep, jobs)?;
     run_with(
         sweep,
         shard,
@@ -497,7 +527,8 @@ fn run_with(
     let wall = Instant::now();
     let resumed = prior.len();
     let run = |c: &Case, path: &Path, loader: &Loader, stop: &dyn Progress| {
-        run_case_kept(path, loader, stop, keep.map(|k| (k, c.index)), check)
+        let stamp = Some(&sweep.produced_by);
+        run_case_kept(path, loader, stop, keep.map(|k| (k, c.index)), check, stamp)
     };
     let mut rows = run_cases(sweep, &cases, jobs, &run, progress, done)?;
     rows.extend(prior);
@@ -522,6 +553,7 @@ fn run_with(
         wall_s: wall.elapsed().as_secs_f64(),
         summary_csv: None,
         report: None,
+        fingerprint: None,
         rows,
     })
 }
@@ -534,12 +566,6 @@ pub fn summary_path(dir: &Path, shard: (usize, usize)) -> PathBuf {
     } else {
         "summary.csv".into()
     })
-}
-
-fn journal_path(csv: &Path) -> PathBuf {
-    let mut name = csv.file_name().unwrap_or_default().to_os_string();
-    name.push(".journal");
-    csv.with_file_name(name)
 }
 
 /// Runs shard `shard` of `sweep` with its files in `dir`: each finished case goes to the
@@ -588,16 +614,21 @@ pub fn run_sweep_with(
     opts: &Options,
     progress: &dyn Progress,
 ) -> Result<SweepRun> {
+    super::guard::out_dir(dir)?;
+    // Every parameter checked against the files before any case runs; the files read
+    // are part of what the sweep is.
+    let files = super::check::check(sweep, opts.jobs)?;
+    let fp = Fingerprint::of(sweep, &files, &figures_kind(opts.check));
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     let csv = summary_path(dir, shard);
-    let journal = journal_path(&csv);
+    let journal = super::resume::journal_path(&csv);
     let cases = super::cases::cases_dir(dir);
     let keep = opts.keep_histories.then_some(cases.as_path());
     if keep.is_some() {
         std::fs::create_dir_all(&cases).map_err(|e| Error::io(&cases, e))?;
     }
     let mut prior = if opts.resume {
-        previous_rows(sweep, shard, &csv, &journal)?
+        super::resume::previous_rows(sweep, shard, &csv, &journal, &fp)?
     } else {
         Vec::new()
     };
@@ -626,18 +657,19 @@ pub fn run_sweep_with(
     // The journal holds what the summary will hold; rewritten so a resumed run's old
     // entries stay with its new ones.
     let mut j = std::fs::File::create(&journal).map_err(|e| Error::io(&journal, e))?;
-    journal_head(&mut j).map_err(|e| Error::io(&journal, e))?;
+    super::resume::journal_head(&mut j, &fp).map_err(|e| Error::io(&journal, e))?;
     for r in &prior {
-        journal_line(&mut j, r).map_err(|e| Error::io(&journal, e))?;
+        super::resume::journal_line(&mut j, r).map_err(|e| Error::io(&journal, e))?;
     }
     let j = Mutex::new(j);
     let done = |r: &CaseRow| {
         if let Ok(mut f) = j.lock() {
             // A journal that cannot be written costs only the resume of this case.
-            let _ = journal_line(&mut f, r);
+            let _ = super::resume::journal_line(&mut f, r);
         }
     };
     let mut res = run_with(sweep, shard, jobs, prior, keep, opts.check, progress, &done)?;
+    res.fingerprint = Some(fp);
     res.write_to(sweep, &csv)?;
     let _ = std::fs::remove_file(&journal);
     res.report = Some(match super::page::write(&csv, &sweep.name) {
@@ -651,146 +683,10 @@ pub fn run_sweep_with(
     Ok(res)
 }
 
-fn journal_head(f: &mut std::fs::File) -> std::io::Result<()> {
-    let head = JournalHead {
-        schema_version: SCHEMA_VERSION,
-    };
-    let line = serde_json::to_string(&head).map_err(std::io::Error::other)?;
-    f.write_all(format!("{line}\n").as_bytes())?;
-    f.flush()
-}
-
-fn journal_line(f: &mut std::fs::File, r: &CaseRow) -> std::io::Result<()> {
-    let line = serde_json::to_string(r).map_err(std::io::Error::other)?;
-    f.write_all(format!("{line}\n").as_bytes())?;
-    f.flush()
-}
-
-/// The completed and failed cases of an earlier run of this shard: its summary CSV
-/// (when written) and its journal (when it was killed before writing one).
-fn previous_rows(
-    sweep: &Sweep,
-    shard: (usize, usize),
-    csv: &Path,
-    journal: &Path,
-) -> Result<Vec<CaseRow>> {
-    let bad = |p: &Path, message: String| -> Error {
-        SceneError::Merge {
-            file: p.to_path_buf(),
-            message,
-        }
-        .into()
-    };
-    let mut rows: Vec<CaseRow> = Vec::new();
-    if csv.is_file() {
-        let twin = csv.with_extension("json");
-        if let Ok(text) = std::fs::read_to_string(&twin) {
-            let v: serde_json::Value =
-                serde_json::from_str(&text).map_err(|e| bad(&twin, format!("not JSON: {e}")))?;
-            check_version(&twin, v["schema_version"].as_u64(), "resume it")?;
-        }
-        let mut r = csv::Reader::from_path(csv).map_err(|e| Error::io(csv, e.into()))?;
-        let h = r.headers().map_err(|e| bad(csv, e.to_string()))?.clone();
-        let np = sweep.parameters.len();
-        let cols: Vec<&str> = h.iter().collect();
-        let params: Vec<&str> = sweep.parameters.iter().map(|p| p.name.as_str()).collect();
-        if cols.len() < np + 4
-            || cols[0] != "case"
-            || cols[1..=np] != params[..]
-            || cols[np + 1] != "status"
-            || cols.last() != Some(&"error")
-        {
-            return Err(bad(
-                csv,
-                format!(
-                    "not a summary of this sweep (columns {cols:?}): remove it or run without --resume"
-                ),
-            ));
-        }
-        let figure_names = &cols[np + 3..cols.len() - 1];
-        if figure_names.iter().any(|n| legacy_figure(n)) {
-            check_version(csv, None, "resume it")?;
-        }
-        for (k, rec) in r.records().enumerate() {
-            let line = k + 2;
-            let rec = rec.map_err(|e| bad(csv, format!("line {line}: {e}")))?;
-            let get = |c: usize| rec.get(c).unwrap_or("");
-            let index: usize = get(0)
-                .parse()
-                .map_err(|_| bad(csv, format!("line {line}: `case` is not a case number")))?;
-            if index >= sweep.len() || index % shard.1 != shard.0 {
-                return Err(bad(
-                    csv,
-                    format!("line {line}: case {index} is not a case of this shard"),
-                ));
-            }
-            let case = sweep.case(index);
-            for (p, v) in case.values.iter().enumerate() {
-                if get(p + 1) != v.trim_matches('"') {
-                    return Err(bad(
-                        csv,
-                        format!(
-                            "line {line}: case {index} has {} = {} but the sweep file gives {v}: \
-                             the sweep changed; remove the summary or run without --resume",
-                            params[p],
-                            get(p + 1)
-                        ),
-                    ));
-                }
-            }
-            let status = get(np + 1).to_string();
-            if status != "completed" && status != "failed" {
-                continue;
-            }
-            let mut figures = Figures::new();
-            for (f, name) in figure_names.iter().enumerate() {
-                let cell = get(np + 3 + f);
-                if !cell.is_empty() {
-                    let v = cell
-                        .parse()
-                        .map_err(|_| bad(csv, format!("line {line}: `{name}` is not a number")))?;
-                    figures.push((name.to_string(), v));
-                }
-            }
-            let error = get(cols.len() - 1);
-            rows.push(CaseRow {
-                index,
-                values: case.values,
-                status,
-                error: (!error.is_empty()).then(|| error.to_string()),
-                wall_s: get(np + 2).parse().unwrap_or(0.0),
-                figures,
-            });
-        }
-    }
-    if let Ok(text) = std::fs::read_to_string(journal) {
-        // The version line first; a journal of rows without one is older than version 4.
-        let first = text.lines().find(|l| !l.trim().is_empty());
-        if let Some(first) = first {
-            let version = serde_json::from_str::<JournalHead>(first)
-                .ok()
-                .map(|h| h.schema_version as u64);
-            if version.is_some() || serde_json::from_str::<CaseRow>(first).is_ok() {
-                check_version(journal, version, "resume it")?;
-            }
-        }
-        for (k, l) in text.lines().enumerate() {
-            // A line cut short by a kill is the case still running: run it again.
-            let Ok(r) = serde_json::from_str::<CaseRow>(l) else {
-                continue;
-            };
-            if r.index >= sweep.len() || sweep.case(r.index).values != r.values {
-                return Err(bad(
-                    journal,
-                    format!("line {}: case {} is not of this sweep", k + 1, r.index),
-                ));
-            }
-            if !rows.iter().any(|x| x.index == r.index) {
-                rows.push(r);
-            }
-        }
-    }
-    Ok(rows)
+/// What a case reports, for the fingerprint: the layout and the `--check` threshold.
+fn figures_kind(check: Option<f64>) -> String {
+    let check = check.map_or("no --check".to_string(), |t| format!("--check at {t}"));
+    format!("summary v{SCHEMA_VERSION}, {check}")
 }
 
 impl SweepRun {

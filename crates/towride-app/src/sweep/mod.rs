@@ -20,16 +20,21 @@
 //! `I/N` (cases with index mod N = I) and `merge` are reproducible on any machine.
 
 pub mod cases;
+pub mod check;
 pub mod exec;
 pub mod figures;
+pub mod fingerprint;
+pub mod guard;
 pub mod page;
+pub mod resume;
 
 use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 
+use crate::job::ProducedBy;
 use crate::scene::SceneError;
-use towride_mbs::input::{InputError, Source};
+use towride_mbs::input::{InputError, Loader, Source};
 use towride_mbs::input::{Origin, Override};
 use towride_mbs::path;
 
@@ -70,6 +75,8 @@ pub struct Parameter {
     pub values: Vec<String>,
     /// Where the parameter is written (errors about its file or path point here).
     pub origin: Origin,
+    /// Located error template for its `values` (a value of the wrong type points here).
+    pub values_at: Box<InputError>,
 }
 
 /// A validated sweep.
@@ -81,6 +88,12 @@ pub struct Sweep {
     pub scene: PathBuf,
     /// The swept parameters; the cases are their full product.
     pub parameters: Vec<Parameter>,
+    /// The caller's overrides (`--set`, `--overrides`), applied to every case under the
+    /// case's own: a sweep value and a `--set` of the same value are refused as set twice.
+    pub base: Loader,
+    /// The record each case's run starts from (version, commit, command line: the
+    /// binary fills them in); the case's overrides are added to it.
+    pub produced_by: ProducedBy,
 }
 
 /// One case: its index and the values it sets.
@@ -128,12 +141,15 @@ impl Sweep {
                     file: Box::new(src.error(&path!["parameter", k, "file"], "")),
                     path: Box::new(src.error(&path!["parameter", k, "path"], "")),
                 },
+                values_at: Box::new(src.error(&path!["parameter", k, "values"], "")),
             });
         }
         Ok(Sweep {
             name: f.sweep.name,
             scene,
             parameters,
+            base: Loader::new(),
+            produced_by: ProducedBy::default(),
         })
     }
 

@@ -58,6 +58,19 @@ pub fn assumed_inputs(scene: &Path, dir: &Path, top: usize) -> AssumedInputs {
     let Ok(v) = serde_json::from_str::<serde_json::Value>(&text) else {
         return none(format!("{} is not a sensitivity study", path.display()));
     };
+    // A study of another scene (an older layout keyed studies by the scene's stem) says
+    // nothing about this one's inputs.
+    if let Some(of) = v["file"]
+        .as_str()
+        .filter(|f| !same_file(Path::new(f), scene))
+    {
+        return none(format!(
+            "the study in {} is of another scene ({of}): `towride sensitivity {}` makes \
+             one of this scene",
+            dir.display(),
+            scene.display()
+        ));
+    }
     let morris = v["method"] == "morris";
     let score = |p: &serde_json::Value| -> f64 {
         let x = if morris {
@@ -104,5 +117,14 @@ pub fn assumed_inputs(scene: &Path, dir: &Path, top: usize) -> AssumedInputs {
         output: v["outputs"][0]["name"].as_str().map(String::from),
         inputs,
         note: None,
+    }
+}
+
+/// True when `a` and `b` name one file (by where they are, or by their normalised text
+/// when one cannot be found).
+fn same_file(a: &Path, b: &Path) -> bool {
+    match (a.canonicalize(), b.canonicalize()) {
+        (Ok(x), Ok(y)) => x == y,
+        _ => towride_mbs::input::normalized(a) == towride_mbs::input::normalized(b),
     }
 }

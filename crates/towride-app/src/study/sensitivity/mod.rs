@@ -9,7 +9,10 @@
 //!   [`towride_mbs::input::bounds`] where that is narrower); mu* and sigma per output, in the
 //!   output's unit per unit of the normalised range, and mu* relative to the base output.
 //!
-//! A run that fails is recorded with its parameter values and error; the others go on.
+//! A run that fails is recorded with its parameter values and error; the others go on,
+//! and the study says at its top (`status`, `note`) that its figures are partial. A
+//! study stopped on request (Ctrl-C) keeps what ran, calls the runs it never started
+//! "not run" (not failed) and leaves a figure it cannot compute empty, never NaN.
 
 pub mod assumed;
 pub mod morris;
@@ -61,7 +64,7 @@ pub struct Settings {
     pub file: PathBuf,
     /// Parameters named `FILE:PATH` (empty: discovered in `groups`).
     pub params: Vec<String>,
-    /// Groups searched when `params` is empty (empty: hitch, trailer, tyres).
+    /// Groups searched when `params` is empty (empty: [`DEFAULT_GROUPS`]).
     pub groups: Vec<String>,
     /// Outputs (empty: the defaults of [`outputs::defaults`]).
     pub outputs: Vec<String>,
@@ -71,12 +74,14 @@ pub struct Settings {
     pub trajectories: usize,
     /// Morris levels (even).
     pub levels: usize,
-    /// Morris range: each value times 1 -+ this.
+    /// Morris range: each value times 1 -+ this (OAT varies by +-10 % and ignores it).
     pub range: f64,
     /// Morris seed.
     pub seed: u64,
     /// Parallel runs.
     pub jobs: usize,
+    /// The caller's overrides (`--set`, `--overrides`), under every run's own.
+    pub base: Loader,
 }
 
 impl Default for Settings {
@@ -92,6 +97,7 @@ impl Default for Settings {
             range: 0.3,
             seed: 1,
             jobs: 2,
+            base: Loader::new(),
         }
     }
 }
@@ -120,6 +126,9 @@ pub struct ParamResult {
     pub mu_star_rel: Vec<f64>,
     /// Morris range of the scale factor [low, high].
     pub range: [f64; 2],
+    /// Why a figure is missing (a base value of 0 has no relative change; no pair of
+    /// Morris runs completed).
+    pub note: Option<String>,
 }
 
 /// A run that failed.
@@ -136,6 +145,17 @@ pub struct FailedRun {
 pub struct Study {
     /// Layout version ([`SCHEMA_VERSION`]).
     pub schema_version: u32,
+    /// "completed" (every run completed), "partial" (some failed: the figures they take
+    /// part in are missing) or "interrupted" (stopped on request; some not run).
+    pub status: String,
+    /// What the reader must know first when the status is not "completed".
+    pub note: Option<String>,
+    /// The caller's overrides under every run (`FILE:PATH = VALUE`): a study of a
+    /// shortened run is not one of the scene as filed.
+    pub overrides: Vec<String>,
+    /// Version, commit and command line of the program that made the study (the binary
+    /// fills them in before writing).
+    pub produced_by: crate::job::ProducedBy,
     /// The scene or mechanism.
     pub file: String,
     /// OAT or Morris.
@@ -144,10 +164,13 @@ pub struct Study {
     pub outputs: Vec<OutputInfo>,
     /// The parameters studied.
     pub params: Vec<ParamResult>,
-    /// Values found but dropped: the model does not depend on them.
+    /// Values found but not studied: the model does not depend on them, or they cannot
+    /// be varied (the reason follows the name).
     pub inactive: Vec<String>,
     /// Runs that failed.
     pub failed: Vec<FailedRun>,
+    /// Runs not made: the study was interrupted before they started (or while they ran).
+    pub not_run: usize,
     /// Runs made (the base run included).
     pub runs: usize,
     /// Parallel runs.
@@ -199,6 +222,10 @@ impl Progress for StopOnly<'_> {
     }
 }
 
+/// The groups searched when none are named: the hitch, the trailer, the tyres and a
+/// `simple` vehicle's own file (its masses, ride frequencies, damping ratios, tyre).
+pub const DEFAULT_GROUPS: [&str; 4] = ["hitch", "trailer", "tyres", "vehicle"];
+
 /// The parameters of `s`: named, or discovered and filtered for activity.
 pub fn parameters(s: &Settings) -> Result<(Vec<Param>, Vec<String>)> {
     let all = params::candidates(&s.file, &[])?;
@@ -206,13 +233,18 @@ pub fn parameters(s: &Settings) -> Result<(Vec<Param>, Vec<String>)> {
         return Ok((params::named(&all, &s.params)?, Vec::new()));
     }
     let groups: Vec<String> = if s.groups.is_empty() {
-        ["hitch", "trailer", "tyres"].map(String::from).to_vec()
+        DEFAULT_GROUPS.map(String::from).to_vec()
     } else {
         s.groups.clone()
     };
+    let mut present: Vec<&str> = all.iter().map(|p| p.group.as_str()).collect();
+    present.sort();
+    present.dedup();
+    let present = present.join(", ");
     let found: Vec<Param> = all
-        .into_iter()
+        .iter()
         .filter(|p| groups.contains(&p.group))
+        .cloned()
         .collect();
     if found.is_empty() {
         return Err(towride_mbs::input::InputError {
@@ -221,34 +253,41 @@ pub fn parameters(s: &Settings) -> Result<(Vec<Param>, Vec<String>)> {
             column: None,
             field: "--group".into(),
             message: format!(
-                "no stiffness, damping or mass value in the groups {groups:?} of {}",
+                "no stiffness, damping or mass value in the groups {} of {} (its values are \
+                 in the groups {present}: name them with --group, or see --list)",
+                groups.join(", "),
                 s.file.display()
             ),
             kind: Default::default(),
         }
         .into());
     }
-    // Active: a 10 % change alters the assembled model.
-    let print = |ov: Vec<Override>| -> Option<String> {
-        Job::from_file(&s.file, &Loader::with_overrides(ov))
-            .ok()
+    // Active: a 10 % change alters the assembled model. One that cannot be changed (a
+    // value towride derives from another file's) is left out, with the reason.
+    let print = |ov: Vec<Override>| -> std::result::Result<String, String> {
+        Job::from_file(&s.file, &s.base.fresh().extended(ov))
             .map(|j| format!("{:?}", j.system.model))
+            .map_err(|e| e.to_string())
     };
-    let base = print(Vec::new());
+    let base = print(Vec::new()).ok();
     let pool = pool(s.jobs)?;
-    let active: Vec<bool> = pool.install(|| {
+    let active: Vec<std::result::Result<bool, String>> = pool.install(|| {
         found
             .par_iter()
-            .map(|p| base.is_none() || print(vec![p.scaled(1.1)]) != base)
+            .map(|p| match (&base, print(vec![p.scaled(1.1)])) {
+                (None, _) => Ok(true),
+                (Some(b), Ok(m)) => Ok(m != *b),
+                (Some(_), Err(e)) => Err(e),
+            })
             .collect()
     });
     let mut keep = Vec::new();
     let mut inactive = Vec::new();
     for (p, a) in found.into_iter().zip(active) {
-        if a {
-            keep.push(p);
-        } else {
-            inactive.push(p.name);
+        match a {
+            Ok(true) => keep.push(p),
+            Ok(false) => inactive.push(p.name),
+            Err(e) => inactive.push(format!("{} (cannot be varied: {e})", p.name)),
         }
     }
     Ok((keep, inactive))
@@ -261,8 +300,12 @@ fn pool(jobs: usize) -> Result<rayon::ThreadPool> {
         .map_err(|e| Error::io("thread pool", std::io::Error::other(e.to_string())))
 }
 
-/// One run's outputs, or why it failed.
-type Outcome = std::result::Result<Vec<f64>, String>;
+/// One run's outputs, why it failed, or that it was not run (interrupted).
+enum Outcome {
+    Done(Vec<f64>),
+    Failed(String),
+    NotRun,
+}
 
 /// Runs `cases` (each a set of overrides) in parallel; failures and panics recorded.
 fn run_all(
@@ -278,12 +321,12 @@ fn run_all(
             .par_iter()
             .map(|ov| {
                 if progress.cancelled() {
-                    return Err("not run: the study was interrupted".to_string());
+                    return Outcome::NotRun;
                 }
                 let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(
                     || -> Result<Vec<f64>> {
-                        let job = Job::from_file(&s.file, &Loader::with_overrides(ov.clone()))?
-                            .without_view();
+                        let loader = s.base.fresh().extended(ov.clone());
+                        let job = Job::from_file(&s.file, &loader)?.without_view();
                         let r = job.run(&StopOnly(progress))?;
                         r.require_completed()?;
                         outputs::evaluate(specs, &r)
@@ -291,9 +334,12 @@ fn run_all(
                 ));
                 progress.inc(1);
                 match r {
-                    Ok(Ok(v)) => Ok(v),
-                    Ok(Err(e)) => Err(e.to_string()),
-                    Err(_) => Err("internal error (panic) in the run".to_string()),
+                    Ok(Ok(v)) => Outcome::Done(v),
+                    Ok(Err(Error::Scene(crate::scene::SceneError::Interrupted { .. }))) => {
+                        Outcome::NotRun
+                    }
+                    Ok(Err(e)) => Outcome::Failed(e.to_string()),
+                    Err(_) => Outcome::Failed("internal error (panic) in the run".to_string()),
                 }
             })
             .collect()
@@ -304,9 +350,10 @@ fn run_all(
 
 /// Runs the study `s`.
 pub fn run(s: &Settings, progress: &dyn Progress) -> Result<Study> {
+    check_settings(s)?;
     let wall = Instant::now();
     let (params, inactive) = parameters(s)?;
-    let base_job = Job::from_file(&s.file, &Loader::new())?;
+    let base_job = Job::from_file(&s.file, &s.base.fresh())?;
     let specs = outputs::resolve(&s.outputs, &base_job)?;
     drop(base_job);
     let k = params.len();
@@ -324,7 +371,7 @@ pub fn run(s: &Settings, progress: &dyn Progress) -> Result<Study> {
             Vec::new()
         }
         Method::Morris => {
-            let d = morris::design(k, s.trajectories.max(2), s.levels.max(2), s.seed);
+            let d = morris::design(k, s.trajectories, s.levels.max(2), s.seed);
             for t in &d {
                 for x in &t.points {
                     let ov: Vec<Override> = params
@@ -355,20 +402,29 @@ pub fn run(s: &Settings, progress: &dyn Progress) -> Result<Study> {
     let failed: Vec<FailedRun> = res
         .iter()
         .zip(&labels)
-        .filter_map(|(r, l)| {
-            r.as_ref().err().map(|e| FailedRun {
+        .filter_map(|(r, l)| match r {
+            Outcome::Failed(e) => Some(FailedRun {
                 changes: l.clone(),
                 error: e.clone(),
-            })
+            }),
+            _ => None,
         })
         .collect();
+    let not_run = res.iter().filter(|r| matches!(r, Outcome::NotRun)).count();
     let base = match &res[0] {
-        Ok(v) => v.clone(),
-        Err(e) => {
+        Outcome::Done(v) => v.clone(),
+        Outcome::Failed(e) => {
             return Err(crate::scene::SceneError::RunFailed {
                 name: format!("{} (the study's base run)", s.file.display()),
                 t: 0.0,
                 message: e.clone(),
+            }
+            .into())
+        }
+        Outcome::NotRun => {
+            return Err(crate::scene::SceneError::Interrupted {
+                name: format!("{} (the study's base run)", s.file.display()),
+                t: 0.0,
             }
             .into())
         }
@@ -383,7 +439,10 @@ pub fn run(s: &Settings, progress: &dyn Progress) -> Result<Study> {
         })
         .collect();
     let no = outputs.len();
-    let at = |i: usize, o: usize| res[i].as_ref().ok().map(|v| v[o]);
+    let at = |i: usize, o: usize| match &res[i] {
+        Outcome::Done(v) => Some(v[o]),
+        _ => None,
+    };
     let mut results: Vec<ParamResult> = params
         .iter()
         .zip(&ranges)
@@ -393,15 +452,22 @@ pub fn run(s: &Settings, progress: &dyn Progress) -> Result<Study> {
             morris: Vec::new(),
             mu_star_rel: Vec::new(),
             range: *r,
+            // Scaling 0 leaves it 0: no relative change, so no elasticity or effect.
+            note: (p.base_value() == 0.0).then(|| {
+                "base value 0: a relative change (elasticity) is undefined; not varied".into()
+            }),
         })
         .collect();
     match s.method {
         Method::Oat => {
             let dl = 1.1f64.ln() - 0.9f64.ln();
             for (j, pr) in results.iter_mut().enumerate() {
+                let zero = pr.note.is_some();
                 pr.elasticity = (0..no)
                     .map(|o| match (at(1 + 2 * j, o), at(2 + 2 * j, o)) {
-                        (Some(a), Some(b)) if a > 0.0 && b > 0.0 => Some((b.ln() - a.ln()) / dl),
+                        (Some(a), Some(b)) if a > 0.0 && b > 0.0 && !zero => {
+                            Some((b.ln() - a.ln()) / dl)
+                        }
                         _ => None,
                     })
                     .collect();
@@ -422,24 +488,40 @@ pub fn run(s: &Settings, progress: &dyn Progress) -> Result<Study> {
                     .iter_mut()
                     .zip(morris::effects(&design, &y, s.levels.max(2)))
                 {
-                    pr.mu_star_rel.push(e.mu_star / outputs[o].base.abs());
+                    // No completed pair (runs failed or not run): no figure, not NaN.
+                    let rel = e.mu_star / outputs[o].base.abs();
+                    let defined = rel.is_finite() && pr.param.base_value() != 0.0;
+                    pr.mu_star_rel.push(if defined { rel } else { f64::NAN });
+                    if e.effects == 0 && pr.note.is_none() {
+                        pr.note = Some("no pair of runs completed: no elementary effect".into());
+                    }
                     pr.morris.push(e);
                 }
             }
         }
     }
+    let (status, note) = verdict(cases.len(), failed.len(), not_run);
     Ok(Study {
         schema_version: SCHEMA_VERSION,
+        status,
+        note,
+        overrides: s
+            .base
+            .overrides()
+            .map(|o| format!("{}:{} = {}", o.file, o.path.trim(), o.value.trim()))
+            .collect(),
+        produced_by: Default::default(),
         file: s.file.display().to_string(),
         method: s.method,
         outputs,
         params: results,
         inactive,
         failed,
+        not_run,
         runs: cases.len(),
         jobs: s.jobs,
         trajectories: if s.method == Method::Morris {
-            s.trajectories.max(2)
+            s.trajectories
         } else {
             0
         },
@@ -450,6 +532,74 @@ pub fn run(s: &Settings, progress: &dyn Progress) -> Result<Study> {
         written: Vec::new(),
     })
 }
+
+/// The study's status and the sentence its outputs open with (see [`Study::status`]).
+fn verdict(runs: usize, failed: usize, not_run: usize) -> (String, Option<String>) {
+    if not_run > 0 {
+        let f = if failed > 0 {
+            format!(" and {failed} failed")
+        } else {
+            String::new()
+        };
+        return (
+            "interrupted".into(),
+            Some(format!(
+                "interrupted: {not_run} of {runs} runs not run{f}; the figures are partial \
+                 (those without a completed run are left empty)"
+            )),
+        );
+    }
+    if failed > 0 {
+        return (
+            "partial".into(),
+            Some(format!(
+                "{failed} of {runs} runs failed: the figures they take part in are missing \
+                 (the failures are listed with the study)"
+            )),
+        );
+    }
+    ("completed".into(), None)
+}
+
+/// Settings a study cannot be made with, refused before any run.
+fn check_settings(s: &Settings) -> Result<()> {
+    let bad = |field: &str, message: String| -> Error {
+        towride_mbs::input::InputError {
+            file: "command line".into(),
+            line: None,
+            column: None,
+            field: field.into(),
+            message,
+            kind: Default::default(),
+        }
+        .into()
+    };
+    if s.method == Method::Morris
+        && !(MIN_TRAJECTORIES..=MAX_TRAJECTORIES).contains(&s.trajectories)
+    {
+        return Err(bad(
+            "--trajectories",
+            format!(
+                "{}: Morris needs {MIN_TRAJECTORIES} to {MAX_TRAJECTORIES} trajectories \
+                 (sigma takes two elementary effects per parameter)",
+                s.trajectories
+            ),
+        ));
+    }
+    if !(s.range > 0.0 && s.range < 1.0) {
+        return Err(bad(
+            "--range",
+            format!("{}: a fraction between 0 and 1", s.range),
+        ));
+    }
+    Ok(())
+}
+
+/// Morris trajectories accepted: two give sigma its first degree of freedom; a thousand
+/// is far beyond screening practice (10 to 50) and bounds the runs.
+pub const MIN_TRAJECTORIES: usize = 2;
+/// See [`MIN_TRAJECTORIES`].
+pub const MAX_TRAJECTORIES: usize = 1000;
 
 /// The Morris range of a parameter's scale factor: 1 -+ `range`, narrowed to the
 /// plausibility bounds of its key.
@@ -465,11 +615,27 @@ fn range_of(p: &Param, range: f64) -> [f64; 2] {
     [lo, hi]
 }
 
-/// The study's directory for a scene: `out/sensitivity/<scene stem>`.
+/// The study's directory for a scene: `out/sensitivity/<scene path>`, the scene's path
+/// relative to the working directory without its extension, separators as `_`
+/// (`scenes/van_air/bump_50mm.toml`: `scenes_van_air_bump_50mm`), so two scenes of one
+/// name in different folders keep their own studies. A scene outside the working
+/// directory: its stem and 8 hex digits of the FNV-1a of its normalised path.
 pub fn default_dir(file: &Path) -> PathBuf {
-    let stem = file
-        .file_stem()
-        .map(|s| s.to_string_lossy().to_string())
-        .unwrap_or_default();
-    PathBuf::from("out").join("sensitivity").join(stem)
+    use towride_mbs::input::normalized;
+    let cwd = std::env::current_dir().unwrap_or_default();
+    let full = normalized(&cwd.join(file));
+    let name = match full.strip_prefix(normalized(&cwd)) {
+        Ok(rel) if !rel.as_os_str().is_empty() => rel
+            .with_extension("")
+            .components()
+            .map(|c| c.as_os_str().to_string_lossy().into_owned())
+            .collect::<Vec<_>>()
+            .join("_"),
+        _ => {
+            let stem = file.file_stem().unwrap_or_default().to_string_lossy();
+            let h = crate::sweep::fingerprint::fnv1a(full.to_string_lossy().as_bytes());
+            format!("{stem}_{:08x}", h as u32)
+        }
+    };
+    PathBuf::from("out").join("sensitivity").join(name)
 }

@@ -57,18 +57,17 @@ impl OutputSpec {
 }
 
 /// The default outputs of a scene (`channels`: raw channels, then band-limited twins
-/// named with `suffix`): the hitch force's |peak|, RMS and dominant frequency, the
-/// trailer box's raw acceleration |peak| (its drawbar sensor) and every accelerometer's
-/// |peak| as the instrument saw it (its band-limited twin; raw without an acquisition
-/// chain). `None` for a model without a hitch (name them).
+/// named with `suffix`): the hitch force's |peak|, RMS and dominant frequency (with a
+/// hitch), the trailer box's raw acceleration |peak| (its drawbar sensor) and every
+/// accelerometer's |peak| as the instrument saw it (its band-limited twin; raw without
+/// an acquisition chain). `None` for a model with neither a hitch nor an accelerometer
+/// (name them).
 pub fn defaults(channels: &[(String, String)], suffix: Option<&str>) -> Option<Vec<String>> {
     let has = |n: &str| channels.iter().any(|c| c.0 == n);
-    if !has(HITCH_FX) {
-        return None;
+    let mut v: Vec<String> = Vec::new();
+    if has(HITCH_FX) {
+        v.extend(["abs_peak", "rms", "freq"].map(|m| format!("{HITCH_FX}.{m}")));
     }
-    let mut v: Vec<String> = ["abs_peak", "rms", "freq"]
-        .map(|m| format!("{HITCH_FX}.{m}"))
-        .to_vec();
     // The trailer's drawbar sensor.
     let drawbar = acc("trailer_drawbar", "z");
     if has(&drawbar) {
@@ -84,7 +83,7 @@ pub fn defaults(channels: &[(String, String)], suffix: Option<&str>) -> Option<V
             .unwrap_or_else(|| c.clone());
         v.push(format!("{shown}.abs_peak"));
     }
-    Some(v)
+    (!v.is_empty()).then_some(v)
 }
 
 /// The outputs named in `names` (empty: [`defaults`]) against the channels of `job`
@@ -106,9 +105,19 @@ pub fn resolve(names: &[String], job: &Job) -> Result<Vec<OutputSpec>> {
     };
     let names = if names.is_empty() {
         defaults(&channels, suffix.as_deref()).ok_or_else(|| {
+            // The example is a channel of this model, so that it is accepted as given.
+            let first = channels.first().map_or("CHANNEL", |c| c.0.as_str());
             bad(
                 "",
-                "this model has no hitch: name the outputs, e.g. --outputs body.z.abs_peak".into(),
+                format!(
+                    "this model has no hitch and no accelerometer: name the outputs, e.g. \
+                     --outputs {first}.abs_peak (its channels: {})",
+                    channels
+                        .iter()
+                        .map(|c| c.0.as_str())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
             )
         })?
     } else {

@@ -18,8 +18,8 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
-use towride_mbs::input::Override;
 use towride_mbs::input::{InputError, Loader};
+use towride_mbs::input::{Origin, Override};
 
 /// The value a parameter scales.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -73,7 +73,26 @@ impl Param {
                 format!("[{}]", parts.join(", "))
             }
         };
-        Override::program(&self.file, &self.path, text, "sensitivity study")
+        // The study is a caller (its values replace a scene's `[[override]]` of the same
+        // value, and one also set by `--set` is refused as set twice); errors name the
+        // parameter and factor.
+        let at = InputError {
+            file: "sensitivity study".into(),
+            line: None,
+            column: None,
+            field: format!("{} x {factor}", self.name),
+            message: String::new(),
+            kind: Default::default(),
+        };
+        Override {
+            file: self.file.clone(),
+            path: self.path.clone(),
+            value: text,
+            origin: Origin::File {
+                file: Box::new(at.clone()),
+                path: Box::new(at),
+            },
+        }
     }
 
     /// The base value (the addressed component of a vector, or its largest magnitude).
@@ -102,8 +121,11 @@ fn toml_kind(key: &str) -> Option<&'static str> {
     let damp_unit = key.ends_with("_n_s_m") || key.ends_with("_n_m_s_rad");
     if (key.contains("stiffness") && stiff_unit) || key.ends_with("modulus_pa") {
         Some("stiffness")
-    } else if key.contains("damping") && damp_unit {
+    } else if key.contains("damping") && damp_unit || key == "damping_ratio" {
         Some("damping")
+    } else if key == "ride_frequency_hz" {
+        // A `simple` vehicle's spring: the stiffness follows from it and the mass.
+        Some("stiffness")
     } else if key.ends_with("_kg") || key.ends_with("_kg_m2") || key.ends_with("_kg_m3") {
         Some("mass")
     } else {
@@ -377,16 +399,31 @@ fn assign_groups(files: &[PathBuf]) -> Vec<Option<String>> {
             }
         }
     }
-    // The vehicle file itself has no group.
+    // The vehicle file itself has no group, unless it is a `simple` vehicle's, whose
+    // own numbers (masses, ride frequencies, damping ratios, tyre) are the vehicle.
     for (i, d) in depth.iter().enumerate() {
         if *d <= 1 && files[i].extension().is_some_and(|e| e == "toml") {
             let is_vehicle = *d == 1 && group[i].as_deref() == Some("vehicle");
-            if *d == 0 || is_vehicle {
+            if *d == 0 || (is_vehicle && !is_simple(&files[i])) {
                 group[i] = None;
             }
         }
     }
     group
+}
+
+/// True for a vehicle file of the `simple` template.
+fn is_simple(file: &Path) -> bool {
+    std::fs::read_to_string(file)
+        .ok()
+        .and_then(|t| t.parse::<toml::Table>().ok())
+        .and_then(|t| {
+            t.get("vehicle")?
+                .get("template")?
+                .as_str()
+                .map(String::from)
+        })
+        .is_some_and(|t| t == "simple")
 }
 
 fn same(a: &Path, b: &Path) -> bool {

@@ -20,11 +20,18 @@ pub fn write(study: &mut Study, dir: &Path) -> Result<()> {
     let csv = dir.join("sensitivity.csv");
     write_csv(study, &csv)?;
     let png = dir.join("tornado.png");
-    tornado(study, &png)?;
+    // No bar to draw (every figure missing): no chart, and an old one is not left to
+    // stand beside this study's page.
+    let drawn = tornado(study, &png)?;
+    if !drawn && png.exists() {
+        std::fs::remove_file(&png).map_err(|e| Error::io(&png, e))?;
+    }
     let html = dir.join("sensitivity.html");
     crate::atomic::write(&html, page(study)).map_err(|e| Error::io(&html, e))?;
-    study.written = [&csv, &png, &html]
-        .iter()
+    study.written = [&csv]
+        .into_iter()
+        .chain(drawn.then_some(&png))
+        .chain([&html])
         .map(|p| p.display().to_string())
         .collect();
     let json = dir.join("sensitivity.json");
@@ -69,7 +76,11 @@ fn write_csv(s: &Study, path: &Path) -> Result<()> {
             format!("{}", p.range[0]),
             format!("{}", p.range[1]),
         ];
-        let f = |v: Option<f64>| v.map_or(String::new(), |x| format!("{x:.6e}"));
+        // A figure that could not be computed is an empty cell, never NaN.
+        let f = |v: Option<f64>| {
+            v.filter(|x| x.is_finite())
+                .map_or(String::new(), |x| format!("{x:.6e}"))
+        };
         for o in 0..s.outputs.len() {
             match s.method {
                 Method::Oat => row.push(f(p.elasticity.get(o).copied().flatten())),
@@ -103,10 +114,11 @@ fn bar(s: &Study, p: &super::ParamResult, o: usize) -> Option<f64> {
 }
 
 /// The tornado chart of the first output: the strongest parameters as horizontal bars,
-/// increasing ones in one colour and decreasing ones in another.
-pub fn tornado(s: &Study, path: &Path) -> Result<()> {
+/// increasing ones in one colour and decreasing ones in another. False (nothing drawn)
+/// when no parameter has a figure.
+pub fn tornado(s: &Study, path: &Path) -> Result<bool> {
     let Some(out) = s.outputs.first() else {
-        return Ok(());
+        return Ok(false);
     };
     let rank: Vec<_> = s
         .ranking(0)
@@ -115,13 +127,24 @@ pub fn tornado(s: &Study, path: &Path) -> Result<()> {
         .take(TORNADO_ROWS)
         .collect();
     let n = rank.len();
+    if n == 0 {
+        return Ok(false);
+    }
+    // A bar too short to see is left out: drawn, its round cap was a blob that looked
+    // larger than the bars above it (the table gives the value).
+    let longest = rank
+        .iter()
+        .filter_map(|p| bar(s, p, 0))
+        .fold(0.0f64, |m, v| m.max(v.abs()));
     let (mut up, mut down) = (Vec::new(), Vec::new());
     let mut labels = Vec::new();
     for (i, p) in rank.iter().enumerate() {
         let y = (n - i) as f64;
         let v = bar(s, p, 0).unwrap_or(0.0);
-        let seg = if v >= 0.0 { &mut up } else { &mut down };
-        seg.extend([(0.0, y), (v, y), (f64::NAN, f64::NAN)]);
+        if v.abs() > 0.01 * longest {
+            let seg = if v >= 0.0 { &mut up } else { &mut down };
+            seg.extend([(0.0, y), (v, y), (f64::NAN, f64::NAN)]);
+        }
         labels.push((y, short(&p.param.name)));
     }
     let what = match s.method {
@@ -166,8 +189,15 @@ pub fn tornado(s: &Study, path: &Path) -> Result<()> {
         size: 22.0,
         colour: [40, 40, 40],
     });
+    if let Some(note) = &s.note {
+        fig.header.push(HeaderLine {
+            text: note.clone(),
+            size: 18.0,
+            colour: [180, 30, 30],
+        });
+    }
     render(path, &fig)?;
-    Ok(())
+    Ok(true)
 }
 
 /// `fabia/hitch.toml:bracket_bushing.stiffness_n_m` as `hitch.toml:bracket_bushing.stiffness_n_m`.
@@ -175,6 +205,19 @@ fn short(name: &str) -> String {
     match name.split_once(':') {
         Some((f, p)) => format!("{}:{p}", f.rsplit('/').next().unwrap_or(f)),
         None => name.into(),
+    }
+}
+
+/// A figure's cell: the number, or why there is none ("undefined: base value 0", "-" for
+/// a failed or missing run); `sign` "{:+.4}" shows the sign.
+fn cell(v: Option<f64>, p: &super::ParamResult, sign: &str) -> String {
+    match v.filter(|x| x.is_finite()) {
+        Some(x) if sign.is_empty() => format!("{x:.4}"),
+        Some(x) => format!("{x:+.4}"),
+        None => match &p.note {
+            Some(n) => format!("<span title=\"{}\">undefined</span>", escape(n)),
+            None => "-".into(),
+        },
     }
 }
 
@@ -199,7 +242,40 @@ pub fn page(s: &Study) -> String {
             "; central differences at 0.9 and 1.1 times each value".into()
         }
     );
-    h.push_str("<h2>Ranking of the first output</h2>\n<p><img src=\"tornado.png\" alt=\"tornado chart\" style=\"max-width:100%\"></p>\n");
+    if let Some(note) = &s.note {
+        // First, before any figure: the figures below are partial.
+        let _ = writeln!(
+            h,
+            "<p style=\"border:2px solid #b41e1e;background:#fdecea;padding:0.6em;font-weight:bold\">{}</p>",
+            escape(note)
+        );
+    }
+    let p = &s.produced_by;
+    if !p.towride_version.is_empty() {
+        let _ = writeln!(
+            h,
+            "<p>Produced by towride {} (commit {}): <code>{}</code></p>",
+            escape(&p.towride_version),
+            escape(&p.git_commit),
+            escape(&p.command_line.join(" "))
+        );
+    }
+    if !s.overrides.is_empty() {
+        // What every run was changed by (a shortened run is not the scene as filed).
+        let _ = writeln!(
+            h,
+            "<p>Overrides under every run: <code>{}</code></p>",
+            escape(&s.overrides.join(", "))
+        );
+    }
+    h.push_str("<h2>Ranking of the first output</h2>\n");
+    if s.ranking(0).iter().any(|p| bar(s, p, 0).is_some()) {
+        h.push_str(
+            "<p><img src=\"tornado.png\" alt=\"tornado chart\" style=\"max-width:100%\"></p>\n",
+        );
+    } else {
+        h.push_str("<p>No parameter has a figure for this output: no chart.</p>\n");
+    }
     h.push_str("<h2>Outputs</h2>\n<table><tr><th>output</th><th>unit</th><th>base run</th></tr>\n");
     for o in &s.outputs {
         let _ = writeln!(
@@ -210,7 +286,7 @@ pub fn page(s: &Study) -> String {
             o.base
         );
     }
-    h.push_str("</table>\n<h2>Parameters, ranked by the first output</h2>\n<table><tr><th>parameter</th><th>group</th><th>kind</th><th>base</th>");
+    h.push_str("</table>\n<h2>Parameters, ranked by the first output</h2>\n<div style=\"overflow-x:auto\"><table><tr><th>parameter</th><th>group</th><th>kind</th><th>base</th>");
     for o in &s.outputs {
         match s.method {
             Method::Oat => {
@@ -229,7 +305,7 @@ pub fn page(s: &Study) -> String {
     for p in s.ranking(0) {
         let _ = write!(
             h,
-            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{:.4e}</td>",
+            "<tr><td>{}</td><td>{}</td><td>{}</td><td style=\"white-space:nowrap\">{:.4e}</td>",
             escape(&p.param.name),
             escape(&p.param.group),
             escape(&p.param.kind),
@@ -241,27 +317,25 @@ pub fn page(s: &Study) -> String {
                     let _ = write!(
                         h,
                         "<td>{}</td>",
-                        p.elasticity
-                            .get(o)
-                            .copied()
-                            .flatten()
-                            .map_or("-".into(), |v| format!("{v:+.4}"))
+                        cell(p.elasticity.get(o).copied().flatten(), p, "{:+.4}")
                     );
                 }
                 Method::Morris => {
                     let e = &p.morris[o];
+                    let defined = p.param.base_value() != 0.0;
+                    let rel = |v: f64| Some(v / out.base.abs()).filter(|_| defined);
                     let _ = write!(
                         h,
-                        "<td>{:.4}</td><td>{:.4}</td>",
-                        e.mu_star / out.base.abs(),
-                        e.sigma / out.base.abs()
+                        "<td>{}</td><td>{}</td>",
+                        cell(rel(e.mu_star), p, ""),
+                        cell(rel(e.sigma), p, "")
                     );
                 }
             }
         }
         h.push_str("</tr>\n");
     }
-    h.push_str("</table>\n");
+    h.push_str("</table></div>\n");
     if !s.failed.is_empty() {
         h.push_str("<h2>Failed runs</h2>\n<ul>\n");
         for f in &s.failed {
