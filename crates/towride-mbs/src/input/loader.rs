@@ -270,6 +270,11 @@ impl Loader {
             .map(|e| (&e.ov, e.layer))
     }
 
+    /// The overrides in force.
+    pub fn overrides(&self) -> impl Iterator<Item = &Override> {
+        self.entries.iter().map(|e| &e.ov)
+    }
+
     /// The overrides whose `file` matches `path`, marked as having found their file.
     pub fn overrides_of(&self, path: &Path) -> Result<Vec<&Override>, InputError> {
         Ok(self.matching(path)?.into_iter().map(|e| &e.ov).collect())
