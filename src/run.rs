@@ -132,6 +132,8 @@ pub fn run(a: &RunArgs) -> CliResult {
             Ok(job)
         };
         let job = build()?;
+        claim_out(&a.out, &a.file, &a.inputs, &loader)
+            .map_err(|e| -> Box<dyn std::error::Error> { e })?;
         let companion = match check {
             Some(_) => Some(build()?.tightened(convergence::TIGHTEN)),
             None => None,
@@ -196,6 +198,7 @@ pub fn run(a: &RunArgs) -> CliResult {
         };
         let go = || -> Result<RunResult, DynError> {
             let job = build()?;
+            claim_out(&out, &c.scene, &a.inputs, &loader)?;
             let companion = match check {
                 Some(_) => Some(build()?.tightened(convergence::TIGHTEN)),
                 None => None,
@@ -314,6 +317,29 @@ fn list_names(a: &RunArgs, loader: &Loader, run_modes: Option<Arc<RunModes>>) ->
             .collect(),
     );
     Ok(0)
+}
+
+/// What a run writes into its folder.
+const RUN_FILES: [&str; 5] = [
+    "outputs.csv",
+    "summary.json",
+    "report.html",
+    "plots.png",
+    "overrides.toml",
+];
+
+/// Refuses an output folder holding another command's results, or one of whose files
+/// the run reads (an `--overrides out/overrides.toml` would be rewritten as it is read).
+fn claim_out(
+    out: &Path,
+    file: &Path,
+    inputs: &crate::inputs::InputArgs,
+    loader: &Loader,
+) -> Result<(), DynError> {
+    let mut read = loader.files_read();
+    read.push(file.to_path_buf());
+    read.extend(inputs.overrides.clone());
+    towride_app::atomic::claim(out, "run", &RUN_FILES, &read).map_err(|e| e.into())
 }
 
 /// An error a plan's case may end with, on any thread.

@@ -134,6 +134,21 @@ pub fn run(a: &ValidateArgs) -> CliResult {
         .as_ref()
         .ok_or("give a run descriptor (RUN.toml) or a folder")?;
     let files = find_descriptors(path)?;
+    // Nothing read is written over, and no other command's results are replaced.
+    let mut inputs: Vec<std::path::PathBuf> = files.clone();
+    inputs.push(path.clone());
+    towride_app::atomic::claim(
+        &a.out,
+        "validate",
+        &[
+            "summary.csv",
+            "summary.json",
+            "index.html",
+            "trends.csv",
+            "trends.html",
+        ],
+        &inputs,
+    )?;
     let sim = simulator_with(a.inputs.loader()?);
     let opts = Options {
         correct: !a.no_correct,

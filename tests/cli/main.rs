@@ -15,6 +15,7 @@ mod basics;
 mod check;
 mod inputs;
 mod modes;
+mod out_guard;
 mod overrides;
 mod provenance;
 mod reliability;

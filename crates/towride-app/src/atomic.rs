@@ -62,3 +62,51 @@ pub fn write(path: &Path, bytes: impl AsRef<[u8]>) -> io::Result<()> {
     a.write_all(bytes.as_ref())?;
     a.commit()
 }
+
+/// Which command's results a folder holds, by its `summary.json` (`None`: none, or
+/// unreadable as JSON).
+pub fn results_in(dir: &Path) -> Option<&'static str> {
+    let text = std::fs::read_to_string(dir.join("summary.json")).ok()?;
+    let v: serde_json::Value = serde_json::from_str(&text).ok()?;
+    Some(
+        if v.get("sweep").is_some() && v.get("cases_total").is_some() {
+            "sweep"
+        } else if v.get("runs").is_some() && v.get("simulator").is_some() {
+            "validate"
+        } else if matches!(
+            v.get("kind").and_then(|k| k.as_str()),
+            Some("scene" | "mechanism")
+        ) {
+            "run"
+        } else {
+            "another command"
+        },
+    )
+}
+
+/// Refuses to write `writes` (file names) into `dir` when it holds another command's
+/// results than `command`'s (their summary would be replaced), or when one of those
+/// files is one of `inputs` (the command would write over what it reads). The error
+/// names the file; `Ok` when writing is safe.
+pub fn claim(dir: &Path, command: &str, writes: &[&str], inputs: &[PathBuf]) -> Result<(), String> {
+    if let Some(other) = results_in(dir).filter(|o| *o != command) {
+        return Err(format!(
+            "{}: holds the results of {other}, which this {command}'s files would replace; choose another --out",
+            dir.join("summary.json").display()
+        ));
+    }
+    for w in writes {
+        let target = dir.join(w);
+        if let Some(i) = inputs
+            .iter()
+            .find(|i| towride_mbs::input::regular::same_file(&target, i))
+        {
+            return Err(format!(
+                "{}: is {}, an input of this {command}; it would be written over: choose another --out",
+                target.display(),
+                i.display()
+            ));
+        }
+    }
+    Ok(())
+}
