@@ -18,6 +18,7 @@ mod common;
 mod validate_sim;
 
 mod fuzz;
+mod fuzz_loggers;
 mod fuzz_overrides;
 mod inputs_and_builder;
 mod job_ringing;
