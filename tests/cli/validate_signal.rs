@@ -5,15 +5,20 @@ use crate::towride_json;
 
 #[test]
 fn a_channel_of_noise_alone_is_flagged_and_left_out_of_the_mean() {
+    // At 10 km/h over the 50 mm ramp the tyres feel the obstacle well before it: the
+    // quiet road must end before that (a first version took it for noise).
+    for run in [
+        repo!("measurements/synthetic/bump_25mm_40kmh_empty.toml"),
+        repo!("measurements/synthetic/ramp_50mm_10kmh_empty.toml"),
+    ] {
+        noise_alone_is_left_out(run);
+    }
+}
+
+fn noise_alone_is_left_out(run: &str) {
     let out = std::env::temp_dir().join(format!("towride_signal_{}", std::process::id()));
     let o = out.display().to_string();
-    let d = towride_json(&[
-        "validate",
-        repo!("measurements/synthetic/bump_25mm_40kmh_empty.toml"),
-        "--json",
-        "--out",
-        &o,
-    ]);
+    let d = towride_json(&["validate", run, "--json", "--out", &o]);
     let r = &d["runs"][0];
     assert_eq!(
         r["without_signal"],

@@ -52,10 +52,14 @@ pub struct ChannelFigures {
 /// Smallest ratio of a channel's RMS over its interval to its RMS on the quiet road for
 /// the channel to count as carrying a signal: noise alone gives about 1.
 pub const SIGNAL_MIN: f64 = 3.0;
-/// The quiet road: from this long before the obstacle [s] ...
-const QUIET_FROM_S: f64 = 0.5;
-/// ... to this long before it [s] (the filters' lead).
+/// The quiet road ends this far before the obstacle [m]: a tyre feels an obstacle
+/// before its centre is over it (radius and enveloping, about 0.3-0.5 m), and the
+/// acquisition filter spreads the response earlier still ...
+const QUIET_LEAD_M: f64 = 1.0;
+/// ... or this long before it [s], whichever is earlier (the filters' lead) ...
 const QUIET_TO_S: f64 = 0.05;
+/// ... and spans this long [s].
+const QUIET_SPAN_S: f64 = 0.5;
 /// Fewest quiet samples a noise estimate needs.
 const QUIET_MIN_SAMPLES: usize = 20;
 
@@ -181,7 +185,8 @@ pub(super) fn compare(
                     .filter(|v| (*v / G_MPS2 + g0).abs() >= super::measurement::CLIP_SHARE * r)
                     .count()
             });
-            let snr = noise_rms(rec, n, t_obs).map(|q| rms(&m) / q);
+            let quiet_end = t_obs - QUIET_TO_S.max(QUIET_LEAD_M / speed_mps.max(0.1));
+            let snr = noise_rms(rec, n, quiet_end).map(|q| rms(&m) / q);
             ChannelFigures {
                 signal_to_noise: snr,
                 has_signal: snr.is_none_or(|r| r >= SIGNAL_MIN),
@@ -224,15 +229,15 @@ pub(super) fn compare(
     }
 }
 
-/// RMS of the measured channel `name` on the quiet road before the obstacle at `t_obs`
-/// (the recording's clock; the pipeline has zeroed its mean there).
-fn noise_rms(rec: &Recorded, name: &str, t_obs: f64) -> Option<f64> {
+/// RMS of the measured channel `name` on the quiet road ending at `end` (the
+/// recording's clock; the pipeline has zeroed its mean there).
+fn noise_rms(rec: &Recorded, name: &str, end: f64) -> Option<f64> {
     let c = rec.channels.get(name)?;
     let quiet: Vec<f64> = rec
         .time_s
         .iter()
         .zip(c)
-        .filter(|(t, _)| **t >= t_obs - QUIET_FROM_S && **t <= t_obs - QUIET_TO_S)
+        .filter(|(t, _)| **t >= end - QUIET_SPAN_S && **t <= end)
         .map(|(_, v)| *v)
         .collect();
     let q = rms(&quiet);

@@ -170,15 +170,25 @@ pub(crate) fn header(run: &RunValidation) -> Vec<(String, Rgb)> {
             BLACK,
         ));
     }
+    // Every note, a line each, up to a page's room; the rest are in summary.json.
+    const NOTES_SHOWN: usize = 5;
     if !run.notes.is_empty() {
         lines.push((
-            format!(
-                "{} repair(s) reading the CSV, first: {}",
-                run.notes.len(),
-                run.notes[0]
-            ),
+            format!("{} note(s) reading the run:", run.notes.len()),
             BLACK,
         ));
+        for n in run.notes.iter().take(NOTES_SHOWN) {
+            lines.push((format!("  {n}"), BLACK));
+        }
+        if run.notes.len() > NOTES_SHOWN {
+            lines.push((
+                format!(
+                    "  and {} more (summary.json `notes`)",
+                    run.notes.len() - NOTES_SHOWN
+                ),
+                BLACK,
+            ));
+        }
     }
     lines
 }
