@@ -141,7 +141,7 @@ const MEASUREMENT_TOML: &str = "measurements/synthetic/bump_25mm_10kmh_200kg_ahe
 const MEASUREMENT_CSV: &str = "measurements/synthetic/bump_25mm_10kmh_200kg_ahead_of_axle.csv";
 
 /// A small deterministic generator (xorshift64*): the cases are the same on every run.
-struct Rng(u64);
+pub(crate) struct Rng(pub(crate) u64);
 
 impl Rng {
     fn next(&mut self) -> u64 {
@@ -150,7 +150,7 @@ impl Rng {
         self.0 ^= self.0 >> 27;
         self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
     }
-    fn below(&mut self, n: usize) -> usize {
+    pub(crate) fn below(&mut self, n: usize) -> usize {
         (self.next() % n.max(1) as u64) as usize
     }
 }

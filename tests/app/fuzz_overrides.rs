@@ -13,24 +13,12 @@ use std::time::{Duration, Instant};
 use towride_app::scene::{self, Changes};
 use towride_mbs::input::{read_overrides, Loader, Override};
 
+use crate::fuzz::Rng;
+
 /// Cases tried in CI.
 const CI_CASES: usize = 600;
 const LIMIT: Duration = Duration::from_secs(60);
 const SCENES: [&str; 2] = ["scenes/default.toml", "scenes/van_air/bump_50mm.toml"];
-
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
-    }
-}
 
 /// A numeric value of a file a scene reads: (file relative to the repository, path).
 fn targets(scene: &str) -> Vec<(String, String)> {
