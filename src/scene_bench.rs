@@ -68,6 +68,18 @@ pub fn run_bench(a: &BenchSceneArgs) -> CliResult {
         return Ok(0);
     }
     let scene = a.scene.as_ref().ok_or("a scene file is required")?;
+    towride_app::atomic::claim(
+        &a.out,
+        "bench",
+        &[
+            "bench.csv",
+            "bench.png",
+            "bench.json",
+            "steps.csv",
+            "steps.png",
+        ],
+        std::slice::from_ref(scene),
+    )?;
     let settings = Settings {
         tol: a.tol.clone(),
         reference_tol: a.reference_tol,

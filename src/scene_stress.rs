@@ -49,6 +49,12 @@ pub fn run_stress(a: &StressArgs) -> CliResult {
     let jobs = a
         .jobs
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    towride_app::atomic::claim(
+        &a.out,
+        "stress",
+        &["stress.json"],
+        std::slice::from_ref(&a.scene),
+    )?;
     let pb = crate::progress(0, a.json);
     let st = stress::run(
         &a.scene,

@@ -110,6 +110,22 @@ pub fn run(a: &SensitivityArgs) -> CliResult {
         }
         return Ok(0);
     }
+    let dir = a
+        .out
+        .clone()
+        .unwrap_or_else(|| sensitivity::default_dir(&a.file));
+    // Before any run: the folder must not hold another command's results or an input.
+    towride_app::atomic::claim(
+        &dir,
+        "sensitivity",
+        &[
+            "sensitivity.csv",
+            "tornado.png",
+            "sensitivity.html",
+            "sensitivity.json",
+        ],
+        std::slice::from_ref(&a.file),
+    )?;
     let pb = crate::progress(0, a.json);
     crate::interrupt::install();
     let mut study = match sensitivity::run(&s, &pb) {
@@ -119,10 +135,6 @@ pub fn run(a: &SensitivityArgs) -> CliResult {
         }
         r => r?,
     };
-    let dir = a
-        .out
-        .clone()
-        .unwrap_or_else(|| sensitivity::default_dir(&a.file));
     study.produced_by = crate::inputs::stamp(&study.produced_by);
     sensitivity::write::write(&mut study, &dir)?;
     // Interrupted: what ran is written, labelled, with the interrupted exit code.

@@ -56,6 +56,24 @@ fn run_and_validate_refuse_to_write_over_their_inputs_or_other_results() {
     let e = towride_err(&["run", SCENE, "--out", &v], 2);
     assert!(e.contains("holds the results of validate"), "{e}");
     assert_eq!(std::fs::read(val.join("summary.json")).unwrap(), vs);
+    // The studies refuse a run's folder before any work, and a run refuses theirs.
+    for args in [
+        vec!["stress", SCENE, "--only", "thesis"],
+        vec!["bench", SCENE, "--tol", "1e-3", "--repeat", "1"],
+        vec!["sensitivity", SCENE],
+    ] {
+        let mut a = args.clone();
+        a.extend(["--out", r.as_str()]);
+        let e = towride_err(&a, 2);
+        assert!(e.contains("holds the results of run"), "{args:?}: {e}");
+    }
+    assert_eq!(std::fs::read(run.join("summary.json")).unwrap(), summary);
+    let study = tmp("study");
+    std::fs::create_dir_all(&study).unwrap();
+    std::fs::write(study.join("stress.json"), "{}").unwrap();
+    let s = study.display().to_string();
+    let e = towride_err(&["run", SCENE, "--out", &s], 2);
+    assert!(e.contains("holds the results of stress"), "{e}");
     // A run again into its own folder is the normal workflow.
     towride_ok(&[
         "run",

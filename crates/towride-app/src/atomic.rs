@@ -63,9 +63,19 @@ pub fn write(path: &Path, bytes: impl AsRef<[u8]>) -> io::Result<()> {
     a.commit()
 }
 
-/// Which command's results a folder holds, by its `summary.json` (`None`: none, or
-/// unreadable as JSON).
+/// Which command's results a folder holds, by a study's result file or its
+/// `summary.json` (`None`: none, or unreadable as JSON).
 pub fn results_in(dir: &Path) -> Option<&'static str> {
+    // The studies' own result files name them.
+    for (file, command) in [
+        ("sensitivity.json", "sensitivity"),
+        ("stress.json", "stress"),
+        ("bench.json", "bench"),
+    ] {
+        if dir.join(file).is_file() {
+            return Some(command);
+        }
+    }
     let text = std::fs::read_to_string(dir.join("summary.json")).ok()?;
     let v: serde_json::Value = serde_json::from_str(&text).ok()?;
     Some(
