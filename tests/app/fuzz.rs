@@ -320,7 +320,7 @@ fn exercise(root: &Path, entry: &str, how: Use) -> Result<(), String> {
 }
 
 /// True when `msg` names a file with its line (`x.toml:12:`) and a field.
-fn located(msg: &str) -> (bool, bool) {
+pub(crate) fn located(msg: &str) -> (bool, bool) {
     let file_line = [".toml:", ".tir:", ".csv:"].iter().any(|ext| {
         msg.match_indices(ext).any(|(i, _)| {
             msg[i + ext.len()..]

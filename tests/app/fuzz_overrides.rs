@@ -174,21 +174,23 @@ fn exercise(
     form: Form,
 ) -> Result<(), String> {
     let s = |e: &dyn std::fmt::Display| e.to_string();
+    // The default scene read with the caller's overrides `ov`.
+    let load = |ov: Vec<Override>| {
+        scene::load_with(
+            Path::new(&repo(scene)),
+            &Changes::default(),
+            &Loader::with_overrides(ov),
+        )
+        .map(|_| ())
+        .map_err(|e| s(&e))
+    };
     match form {
-        Form::Argument => {
-            let ov = case
-                .iter()
+        Form::Argument => load(
+            case.iter()
                 .map(|(f, p, v)| Override::from_argument(&format!("{f}:{p}={v}")))
                 .collect::<Result<Vec<_>, _>>()
-                .map_err(|e| s(&e))?;
-            scene::load_with(
-                Path::new(&repo(scene)),
-                &Changes::default(),
-                &Loader::with_overrides(ov),
-            )
-            .map(|_| ())
-            .map_err(|e| s(&e))
-        }
+                .map_err(|e| s(&e))?,
+        ),
         Form::OverridesFile => {
             let mut text = String::new();
             for (f, p, v) in case {
@@ -196,14 +198,7 @@ fn exercise(
             }
             let file = dir.join("ov.toml");
             std::fs::write(&file, text).unwrap();
-            let ov = read_overrides(&file).map_err(|e| s(&e))?;
-            scene::load_with(
-                Path::new(&repo(scene)),
-                &Changes::default(),
-                &Loader::with_overrides(ov),
-            )
-            .map(|_| ())
-            .map_err(|e| s(&e))
+            load(read_overrides(&file).map_err(|e| s(&e))?)
         }
         Form::SceneTable => {
             let base = repo(scene);
@@ -230,14 +225,8 @@ fn located(msg: &str, form: Form) -> (bool, bool) {
         Form::SceneTable => msg.contains("scene.toml:") && msg.contains("field `override["),
         Form::OverridesFile => msg.contains("ov.toml:"),
     };
-    let file_line = [".toml:", ".tir:", ".csv:"].iter().any(|ext| {
-        msg.match_indices(ext).any(|(i, _)| {
-            msg[i + ext.len()..]
-                .chars()
-                .next()
-                .is_some_and(|c| c.is_ascii_digit())
-        })
-    }) && msg.contains("field `");
+    let (file_line, field) = crate::fuzz::located(msg);
+    let file_line = file_line && field;
     (origin, file_line)
 }
 

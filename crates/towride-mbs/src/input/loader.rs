@@ -283,8 +283,15 @@ impl Loader {
     /// The text of the TOML file `path` with this loader's overrides applied (what
     /// [`Loader::toml`] parses), for readers that walk the document themselves.
     pub fn toml_text(&self, path: &Path) -> Result<String, InputError> {
+        Ok(self.applied_toml(path)?.0)
+    }
+
+    /// The text of the TOML file `path` with the overrides in force applied, and those
+    /// overrides.
+    fn applied_toml(&self, path: &Path) -> Result<(String, Vec<&Entry>), InputError> {
         let entries = in_force(path, self.matching(path)?, overrides::toml_key)?;
-        overrides::apply_toml(path, read_text(path)?, &entries)
+        let text = overrides::apply_toml(path, read_text(path)?, &entries)?;
+        Ok((text, entries))
     }
 
     /// The overrides whose `file` matches `path`, marked as having found their file.
@@ -322,8 +329,7 @@ impl Loader {
     /// An error about a value an override set is blamed on the override (where it was
     /// written), not on the file's line, which still holds the old value.
     pub fn toml(&self, path: &Path) -> Result<Source, InputError> {
-        let entries = in_force(path, self.matching(path)?, overrides::toml_key)?;
-        let text = overrides::apply_toml(path, read_text(path)?, &entries)?;
+        let (text, entries) = self.applied_toml(path)?;
         let set_by = entries
             .iter()
             .map(|e| super::SetBy {
