@@ -91,8 +91,15 @@ pub fn run_bench(a: &BenchSceneArgs) -> CliResult {
         equal_band_error: a.equal_band_error.clone(),
         loader: a.inputs.loader()?,
     };
+    crate::interrupt::install();
     let pb = crate::progress(0, a.json);
-    let mut b = bench::run(scene, &settings, &pb)?;
+    let mut b = match bench::run(scene, &settings, &pb) {
+        Err(_) if crate::interrupt::requested() => {
+            eprintln!("interrupted during the reference run: no run timed, nothing written");
+            return Ok(crate::interrupt::EXIT);
+        }
+        other => other?,
+    };
     let json = b.write(&a.out)?;
     if a.json {
         println!("{}", serde_json::to_string_pretty(&b)?);
@@ -153,9 +160,23 @@ pub fn run_bench(a: &BenchSceneArgs) -> CliResult {
             );
         }
         println!(
-            "wrote {}, bench.csv, bench.png, steps.csv and steps.png",
+            "wrote {}, bench.csv, bench.png{}",
+            json.display(),
+            if b.step_histories.is_empty() {
+                ""
+            } else {
+                ", steps.csv and steps.png"
+            }
+        );
+    }
+    if b.status == "interrupted" {
+        eprintln!(
+            "interrupted: {} of {} runs not begun or stopped (labelled in {}); run the study again for them",
+            b.interrupted,
+            b.runs.len(),
             json.display()
         );
+        return Ok(crate::interrupt::EXIT);
     }
     Ok(if b.all_completed() { 0 } else { 1 })
 }

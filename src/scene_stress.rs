@@ -55,15 +55,23 @@ pub fn run_stress(a: &StressArgs) -> CliResult {
         &["stress.json"],
         std::slice::from_ref(&a.scene),
     )?;
+    let loader = a.inputs.loader()?;
+    crate::interrupt::install();
     let pb = crate::progress(0, a.json);
-    let st = stress::run(
+    let st = match stress::run(
         &a.scene,
-        &a.inputs.loader()?,
+        &loader,
         a.only.as_deref(),
         a.method.map(Into::into),
         jobs,
         &pb,
-    )?;
+    ) {
+        Err(_) if crate::interrupt::requested() => {
+            eprintln!("interrupted during the reference run: no case ran, nothing written");
+            return Ok(crate::interrupt::EXIT);
+        }
+        other => other?,
+    };
     let path = st.write(&a.out)?;
     if a.json {
         println!("{}", serde_json::to_string_pretty(&st)?);
@@ -82,6 +90,8 @@ pub fn run_stress(a: &StressArgs) -> CliResult {
                 o.case,
                 if o.status == "completed" {
                     "completed"
+                } else if o.status == stress::NOT_RUN || o.status.starts_with("interrupted") {
+                    "STOPPED"
                 } else {
                     "FAILED"
                 },
@@ -108,6 +118,15 @@ pub fn run_stress(a: &StressArgs) -> CliResult {
             st.same_physics_disagreeing,
             path.display()
         );
+    }
+    if st.interrupted > 0 {
+        eprintln!(
+            "interrupted: {} of {} cases not run or stopped (labelled in {}); run the study again for them",
+            st.interrupted,
+            st.cases,
+            path.display()
+        );
+        return Ok(crate::interrupt::EXIT);
     }
     Ok(if st.passed() { 0 } else { 1 })
 }

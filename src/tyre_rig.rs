@@ -35,15 +35,15 @@ pub fn run(a: &TyreRigArgs) -> CliResult {
     let case = RigCase::from_file(&a.file, &loader)?;
     // An override that reached no file the rig read would otherwise change nothing.
     loader.check_used()?;
+    if let Some(dir) = &a.out {
+        claim_out(dir, a, &case, &loader)?;
+    }
     let rtol = a.rtol.unwrap_or(case.rtol);
     let run = case
         .run(Some(rtol))
         .map_err(|e| format!("{}: {e}", a.file.display()))?;
     let mut sum = RigSummary::of(&case, &a.file, rtol, &run)?;
-    let name = a
-        .file
-        .file_stem()
-        .map_or("rig".into(), |s| s.to_string_lossy().to_string());
+    let name = stem(&a.file);
     if let Some(dir) = &a.out {
         sum.write(&run, dir, &name)?;
     }
@@ -124,4 +124,33 @@ pub fn run(a: &TyreRigArgs) -> CliResult {
         }
     }
     Ok(0)
+}
+
+/// Refuses an `--out` holding another command's results, or one of whose files the rig
+/// would write is a file it reads (the rig file, its tyre, road or reference table).
+fn claim_out(
+    dir: &std::path::Path,
+    a: &TyreRigArgs,
+    case: &RigCase,
+    loader: &towride_mbs::input::Loader,
+) -> Result<(), String> {
+    let name = stem(&a.file);
+    let mut read = loader.files_read();
+    read.push(a.file.clone());
+    read.extend(a.inputs.overrides.clone());
+    if let RigSetup::Lateral { sweep, .. } = &case.setup {
+        read.extend(sweep.reference.clone());
+    }
+    let writes: Vec<String> = ["{}.csv", "{}.png", "{}_sweep.csv", "{}_lateral.png"]
+        .iter()
+        .map(|p| p.replace("{}", &name))
+        .collect();
+    let writes: Vec<&str> = writes.iter().map(String::as_str).collect();
+    towride_app::atomic::claim(dir, "tyre-rig", &writes, &read)
+}
+
+/// The rig's name: its file's stem.
+fn stem(file: &std::path::Path) -> String {
+    file.file_stem()
+        .map_or("rig".into(), |s| s.to_string_lossy().to_string())
 }

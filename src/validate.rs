@@ -10,10 +10,10 @@ use clap::{Args, Subcommand};
 use towride_mbs::input::regular::same_file;
 
 use towride_app::validate::descriptor::{AcqFilter, Unit};
-use towride_app::validate::folder::{find_descriptors, summary_json};
+use towride_app::validate::folder::{find_descriptors, summary_json, validate_folder_until};
 use towride_app::validate::synth::{make_synthetic, SensorModel, SynthRun, TriggerLayout};
 use towride_app::validate::{
-    default_simulator, init, plan, report, simulator_with, validate_folder, write_summary, Options,
+    default_simulator, init, plan, report, simulator_with, write_summary, Options,
 };
 
 #[derive(Args, Debug)]
@@ -163,7 +163,10 @@ pub fn run(a: &ValidateArgs) -> CliResult {
                 .map_or(String::new(), |s| s.to_string_lossy().to_string()),
         );
     };
-    let res = validate_folder(&files, sim.as_ref(), &opts, &show);
+    crate::interrupt::install();
+    let res = validate_folder_until(&files, sim.as_ref(), &opts, &show, &|| {
+        crate::interrupt::requested()
+    });
     pb.finish_and_clear();
     let (csv, json) = write_summary(&res, &a.out)?;
     let mut pages = Vec::new();
@@ -249,6 +252,14 @@ pub fn run(a: &ValidateArgs) -> CliResult {
                 format!(" and plots under {}", a.out.display())
             }
         );
+    }
+    if !res.not_run.is_empty() {
+        eprintln!(
+            "interrupted: {} of {} run(s) not validated (listed in summary.json as not_run); validate again for them",
+            res.not_run.len(),
+            files.len()
+        );
+        return Ok(crate::interrupt::EXIT);
     }
     Ok(if res.failures.is_empty() { 0 } else { 1 })
 }

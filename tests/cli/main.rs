@@ -14,6 +14,7 @@ mod validate_sim;
 mod basics;
 mod check;
 mod inputs;
+mod interrupt;
 mod modes;
 mod out_guard;
 mod overrides;

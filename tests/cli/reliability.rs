@@ -8,14 +8,14 @@ use std::time::{Duration, Instant};
 
 use crate::towride;
 
-fn tmp(name: &str) -> PathBuf {
+pub(crate) fn tmp(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("towride_rel_{name}_{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).unwrap();
     d
 }
 
-fn stderr(o: &std::process::Output) -> String {
+pub(crate) fn stderr(o: &std::process::Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
@@ -211,7 +211,11 @@ fn sweep_merge_refuses_missing_shards_and_speaks_json() {
 }
 
 /// Sends SIGINT to `child` once `ready` holds (or after `wait`).
-fn interrupt_when(child: &std::process::Child, ready: impl Fn() -> bool, wait: Duration) {
+pub(crate) fn interrupt_when(
+    child: &std::process::Child,
+    ready: impl Fn() -> bool,
+    wait: Duration,
+) {
     let t = Instant::now();
     while !ready() && t.elapsed() < wait {
         std::thread::sleep(Duration::from_millis(50));

@@ -226,6 +226,15 @@ pub enum ValidateError {
         /// What the system said.
         source: std::io::Error,
     },
+    /// A file the command would write over that it did not make (a recording, or one of
+    /// its inputs).
+    #[error("{}: {why}; it would be written over: choose another --out", path.display())]
+    WouldOverwrite {
+        /// The file.
+        path: std::path::PathBuf,
+        /// What the file is.
+        why: String,
+    },
 }
 
 /// Why no onset was found in an envelope (`validate::passage`).

@@ -26,3 +26,14 @@ pub trait Progress: Sync {
 pub struct Silent;
 
 impl Progress for Silent {}
+
+/// Passes only the caller's stop request on: a run inside a batch stops with the batch
+/// (status `interrupted`) but reports no progress of its own.
+#[derive(Clone, Copy)]
+pub struct StopOnly<'a>(pub &'a dyn Progress);
+
+impl Progress for StopOnly<'_> {
+    fn cancelled(&self) -> bool {
+        self.0.cancelled()
+    }
+}

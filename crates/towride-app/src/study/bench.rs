@@ -16,12 +16,13 @@ use crate::report::plot::{loglog_panels, Panel, Series};
 use crate::report::steps::{step_history_plot, StepHistory};
 use crate::scene::Changes;
 use towride_mbs::input::Loader;
-use towride_mbs::progress::{Progress, Silent};
+use towride_mbs::progress::{Progress, StopOnly};
 use towride_solver::{Method, SolverOptions};
 
 /// Version of `bench.json`'s layout. 2: the signed hitch peak is gone for its
-/// magnitude (`hitch_abs_peak_n`, `hitch_abs_peak_error`).
-pub const SCHEMA_VERSION: u32 = 2;
+/// magnitude (`hitch_abs_peak_n`, `hitch_abs_peak_error`). 3: `status` and
+/// `interrupted` (a study stopped by Ctrl-C).
+pub const SCHEMA_VERSION: u32 = 3;
 
 /// What to measure.
 #[derive(Clone, Debug)]
@@ -113,6 +114,11 @@ pub struct ReferenceRun {
 pub struct Bench {
     /// Layout version.
     pub schema_version: u32,
+    /// "completed", or "interrupted" (Ctrl-C): runs not begun or stopped say so, and
+    /// the step histories end where it came.
+    pub status: &'static str,
+    /// Runs not begun or stopped by the interruption.
+    pub interrupted: usize,
     /// The scene file.
     pub scene: String,
     /// Simulated time [s].
@@ -193,15 +199,24 @@ fn method_label(m: Method) -> String {
     }
 }
 
-fn run_at(scene: &Path, loader: &Loader, f: impl FnOnce(&mut SolverOptions)) -> Result<RunResult> {
+fn run_at(
+    scene: &Path,
+    loader: &Loader,
+    stop: &dyn Progress,
+    f: impl FnOnce(&mut SolverOptions),
+) -> Result<RunResult> {
     Job::from_scene_file(scene, &Changes::default(), loader)?
         .without_view()
         .tune(f)?
-        .run(&Silent)
+        .run(stop)
 }
 
-fn point(method: Method, rtol: f64, r: &Result<RunResult>, reference: &Reference) -> Point {
-    let mut p = Point {
+/// The status of a run an interruption kept from starting.
+pub const NOT_RUN: &str = "not run: interrupted";
+
+/// A point before anything is known of it.
+fn blank(method: Method, rtol: f64) -> Point {
+    Point {
         method: method_name(method),
         rtol,
         status: String::new(),
@@ -215,7 +230,11 @@ fn point(method: Method, rtol: f64, r: &Result<RunResult>, reference: &Reference
         hitch_rms_error: f64::NAN,
         sensor_rms_error: f64::NAN,
         sensor_band_error: f64::NAN,
-    };
+    }
+}
+
+fn point(method: Method, rtol: f64, r: &Result<RunResult>, reference: &Reference) -> Point {
+    let mut p = blank(method, rtol);
     match r {
         Ok(r) if r.completed() => {
             let e = reference.errors(r);
@@ -232,7 +251,10 @@ fn point(method: Method, rtol: f64, r: &Result<RunResult>, reference: &Reference
             p.sensor_rms_error = e.sensor_rms;
             p.sensor_band_error = reference.band_error(r);
         }
-        Ok(r) => p.status = format!("failed: {}", r.failure().map_or("", |f| f.0)),
+        Ok(r) => match r.samples.interrupted {
+            Some(t) => p.status = format!("interrupted at t = {t:.4} s"),
+            None => p.status = format!("failed: {}", r.failure().map_or("", |f| f.0)),
+        },
         Err(e) => p.status = format!("failed: {e}"),
     }
     p
@@ -243,7 +265,8 @@ pub fn run(scene: &Path, s: &Settings, progress: &dyn Progress) -> Result<Bench>
     // The reference tightens the absolute tolerances with the relative one: with the
     // scene's atol the crossbeam's modal coordinates (micrometres) would be held only to
     // atol, and their 200-300 Hz modes ring at that level in the raw accelerations.
-    let reference = run_at(scene, &s.loader, |o| {
+    let stop = StopOnly(progress);
+    let reference = run_at(scene, &s.loader, &stop, |o| {
         let f = s.reference_tol / o.rtol;
         if f < 1.0 {
             o.atol.iter_mut().for_each(|x| *x *= f);
@@ -270,9 +293,16 @@ pub fn run(scene: &Path, s: &Settings, progress: &dyn Progress) -> Result<Bench>
         cases
             .par_iter()
             .map(|&(m, t)| {
-                let mut r = run_at(scene, &s.loader, tuned(m, t));
+                // Stopped: runs not begun say so (their timings would mean nothing).
+                if progress.cancelled() {
+                    return Point {
+                        status: NOT_RUN.into(),
+                        ..blank(m, t)
+                    };
+                }
+                let mut r = run_at(scene, &s.loader, &stop, tuned(m, t));
                 for _ in 1..s.repeat.max(1) {
-                    let again = run_at(scene, &s.loader, tuned(m, t));
+                    let again = run_at(scene, &s.loader, &stop, tuned(m, t));
                     if let (Ok(best), Ok(x)) = (&mut r, again) {
                         if total_wall(&x) < total_wall(best) {
                             best.summary.wall_s = x.summary.wall_s;
@@ -293,10 +323,20 @@ pub fn run(scene: &Path, s: &Settings, progress: &dyn Progress) -> Result<Bench>
         &s.equal_band_error,
         ErrorMeasure::SensorBand,
     ));
-    let (step_histories, histories) = step_histories(scene, &s.methods, &s.loader)?;
+    let (step_histories, histories) = step_histories(scene, &s.methods, &s.loader, &stop)?;
+    let interrupted = points
+        .iter()
+        .filter(|p| p.status == NOT_RUN || p.status.starts_with("interrupted"))
+        .count();
     let job = &reference.summary;
     Ok(Bench {
         schema_version: SCHEMA_VERSION,
+        status: if interrupted > 0 || progress.cancelled() {
+            "interrupted"
+        } else {
+            "completed"
+        },
+        interrupted,
         scene: scene.display().to_string(),
         duration_s: job.t_end_s,
         equations: job.equations,
@@ -381,14 +421,19 @@ fn step_histories(
     scene: &Path,
     methods: &[Method],
     loader: &Loader,
+    stop: &dyn Progress,
 ) -> Result<(Vec<HistorySummary>, Histories)> {
     let mut hist = Vec::new();
     let mut summary = Vec::new();
     for &m in methods {
-        let r = run_at(scene, loader, |o| {
+        let r = run_at(scene, loader, stop, |o| {
             o.method = m;
             o.record_steps = true;
         })?;
+        // Interrupted: the histories so far, the study's points are kept.
+        if stop.cancelled() || r.samples.interrupted.is_some() {
+            break;
+        }
         r.require_completed()?;
         let st = &r.samples.stats;
         summary.push(HistorySummary {

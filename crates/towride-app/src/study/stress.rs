@@ -16,12 +16,13 @@ use crate::error::{Error, Result};
 use crate::job::{Extremes, Job, RunResult};
 use crate::scene::Changes;
 use towride_mbs::input::{Loader, Override};
-use towride_mbs::progress::{Progress, Silent};
+use towride_mbs::progress::{Progress, StopOnly};
 use towride_solver::{Method, SolverOptions};
 
 /// Version of `stress.json`'s layout. 2: the signed `hitch_peak_n` and
 /// `peak_deviation` are gone for max, min, |peak| and their ratios to the reference's.
-pub const SCHEMA_VERSION: u32 = 2;
+/// 3: `status` and `interrupted` (a study stopped by Ctrl-C).
+pub const SCHEMA_VERSION: u32 = 3;
 
 /// Relative tolerance of the reference run.
 pub const REFERENCE_RTOL: f64 = 1e-5;
@@ -47,6 +48,9 @@ pub struct Case {
     /// Largest step, when changed [s].
     pub h_max: Option<f64>,
 }
+
+/// The status of a case an interruption kept from starting.
+pub const NOT_RUN: &str = "not run: interrupted";
 
 /// What a case gave.
 #[derive(Clone, Debug, Serialize)]
@@ -104,6 +108,10 @@ pub struct ReferenceRun {
 pub struct Stress {
     /// Layout version.
     pub schema_version: u32,
+    /// "completed", or "interrupted" (Ctrl-C): the cases not run or stopped say so.
+    pub status: &'static str,
+    /// Cases not run or stopped by the interruption.
+    pub interrupted: usize,
     /// The scene file.
     pub scene: String,
     /// The reference run.
@@ -239,10 +247,11 @@ pub fn run(
     jobs: usize,
     progress: &dyn Progress,
 ) -> Result<Stress> {
+    let stop = StopOnly(progress);
     let reference = Job::from_scene_file(scene, &Changes::default(), loader)?
         .without_view()
         .tune(|o| o.rtol = REFERENCE_RTOL)?
-        .run(&Silent)?;
+        .run(&stop)?;
     reference.require_completed()?;
     let refdata = Reference::of(&reference);
     let all: Vec<Case> = cases()
@@ -263,7 +272,14 @@ pub fn run(
     let outcomes: Vec<Outcome> = pool(jobs)?.install(|| {
         all.par_iter()
             .map(|c| {
-                let r = run_case(scene, loader, c, method);
+                // Stopped: cases not begun say so, rather than failing or vanishing.
+                if progress.cancelled() {
+                    return Outcome {
+                        status: NOT_RUN.into(),
+                        ..blank(c)
+                    };
+                }
+                let r = run_case(scene, loader, c, method, &stop);
                 progress.inc(1);
                 outcome(c, r, &refdata)
             })
@@ -272,8 +288,18 @@ pub fn run(
     progress.finish();
     let completed = outcomes.iter().filter(|o| o.status == "completed").count();
     let disagree = outcomes.iter().filter(|o| o.agrees == Some(false)).count();
+    let interrupted = outcomes
+        .iter()
+        .filter(|o| o.status == NOT_RUN || o.status.starts_with("interrupted"))
+        .count();
     Ok(Stress {
         schema_version: SCHEMA_VERSION,
+        status: if interrupted > 0 {
+            "interrupted"
+        } else {
+            "completed"
+        },
+        interrupted,
         scene: scene.display().to_string(),
         reference: ReferenceRun {
             rtol: REFERENCE_RTOL,
@@ -289,7 +315,13 @@ pub fn run(
     })
 }
 
-fn run_case(scene: &Path, base: &Loader, c: &Case, method: Option<Method>) -> Result<RunResult> {
+fn run_case(
+    scene: &Path,
+    base: &Loader,
+    c: &Case,
+    method: Option<Method>,
+    stop: &dyn Progress,
+) -> Result<RunResult> {
     let loader = base.extended(c.props.clone());
     Job::from_scene_file(scene, &c.scene, &loader)?
         .without_view()
@@ -304,7 +336,7 @@ fn run_case(scene: &Path, base: &Loader, c: &Case, method: Option<Method>) -> Re
                 o.h_max = h;
             }
         })?
-        .run(&Silent)
+        .run(stop)
 }
 
 /// `value` over the reference's `reference` of the same kind (|peak| over |peak|, max
@@ -324,8 +356,9 @@ pub fn agrees(case: &Extremes, reference: &Extremes) -> bool {
         && (case.abs_peak - reference.abs_peak).abs() <= AGREEMENT * reference.abs_peak
 }
 
-fn outcome(c: &Case, r: Result<RunResult>, refdata: &Reference) -> Outcome {
-    let mut o = Outcome {
+/// A case's outcome before anything is known of it.
+fn blank(c: &Case) -> Outcome {
+    Outcome {
         group: c.group.into(),
         case: c.label.clone(),
         status: String::new(),
@@ -340,7 +373,11 @@ fn outcome(c: &Case, r: Result<RunResult>, refdata: &Reference) -> Outcome {
         hitch_rms_deviation: f64::NAN,
         same_physics: c.same_physics,
         agrees: None,
-    };
+    }
+}
+
+fn outcome(c: &Case, r: Result<RunResult>, refdata: &Reference) -> Outcome {
+    let mut o = blank(c);
     match r {
         Ok(r) if r.completed() => {
             let e = refdata.errors(&r);
@@ -357,10 +394,13 @@ fn outcome(c: &Case, r: Result<RunResult>, refdata: &Reference) -> Outcome {
             o.hitch_rms_deviation = e.hitch_rms;
             o.agrees = c.same_physics.then(|| agrees(x, r));
         }
-        Ok(r) => {
-            let (e, t) = r.failure().unwrap_or_default();
-            o.status = format!("failed at t = {t:.4} s: {e}");
-        }
+        Ok(r) => match r.samples.interrupted {
+            Some(t) => o.status = format!("interrupted at t = {t:.4} s"),
+            None => {
+                let (e, t) = r.failure().unwrap_or_default();
+                o.status = format!("failed at t = {t:.4} s: {e}");
+            }
+        },
         Err(e) => o.status = format!("failed: {e}"),
     }
     o

@@ -135,10 +135,10 @@ pub(super) fn is_missing(s: &str) -> bool {
     matches!(s, "" | "NaN" | "nan" | "NA" | "-")
 }
 
-/// The text of `file` as lines (BOM and CR removed).
+/// The text of `file` as lines (BOM and CR removed; encodings as [`super::text`]).
 pub(super) fn lines_of(file: &Path) -> Result<Vec<String>, InputError> {
     let bytes = read_regular(file, DATA_FILE_MAX_BYTES)?;
-    let text = String::from_utf8_lossy(&bytes).replace('\u{feff}', "");
+    let text = super::text::decode(file, &bytes)?;
     Ok(text
         .split('\n')
         .map(|l| l.trim_end_matches('\r').to_string())
@@ -213,15 +213,44 @@ fn header(file: &Path, lines: &[String], wanted: &[&str]) -> Result<Header, Inpu
             }
         }
     }
-    let msg = if best.0 > 0 {
-        format!(
+    if best.0 > 0 {
+        let msg = format!(
             "no header line names all of {wanted:?}; line {} comes closest but lacks {:?}",
             best.1, best.2
-        )
-    } else {
-        format!("no header line names the columns {wanted:?}")
+        );
+        return Err(err(file, Some(best.1), None, best.2[0], msg));
+    }
+    // Nothing names a wanted column: blame the first line of content, where a header
+    // belongs, and the first column looked for.
+    let (line, msg) = match first_content(lines) {
+        Some(i) => (
+            i + 1,
+            format!(
+                "no header line names the columns {wanted:?}; the first line of content is here"
+            ),
+        ),
+        None => (1, no_content(lines)),
     };
-    Err(err(file, (best.0 > 0).then_some(best.1), None, "", msg))
+    Err(err(file, Some(line), None, wanted[0], msg))
+}
+
+/// 0-based index of the first line that is neither blank nor a `#` comment.
+pub(super) fn first_content(lines: &[String]) -> Option<usize> {
+    lines
+        .iter()
+        .position(|l| !l.trim().is_empty() && !l.trim_start().starts_with('#'))
+}
+
+/// Why a file without a line of content has no header.
+pub(super) fn no_content(lines: &[String]) -> String {
+    if lines.iter().all(|l| l.trim().is_empty()) {
+        "the file is empty".into()
+    } else {
+        format!(
+            "the file holds only comment lines (up to line {}), no header and no rows",
+            lines.len()
+        )
+    }
 }
 
 /// Reads `time_column` and `columns` from `file`.
@@ -355,6 +384,22 @@ pub fn read_table_with(
         }
         let t = values.remove(0).unwrap_or(f64::NAN);
         rows.push((ln, t, values));
+    }
+    if rows.len() < 10 {
+        // Blame the last row read, or the header when no row follows it.
+        let line = rows.last().map_or(hline + 1, |r| r.0);
+        let what = if rows.is_empty() {
+            "no data rows after the header".to_string()
+        } else {
+            format!("only {} data rows (lines {}-{line})", rows.len(), rows[0].0)
+        };
+        return Err(err(
+            file,
+            Some(line),
+            None,
+            wanted[0],
+            format!("{what}; a recording needs at least 10"),
+        ));
     }
     let chan_units = if has_time {
         units.split_off(1)

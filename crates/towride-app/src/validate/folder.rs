@@ -16,6 +16,8 @@ pub struct FolderResult {
     pub runs: Vec<RunValidation>,
     /// (descriptor, error) of each run that could not be validated.
     pub failures: Vec<(PathBuf, String)>,
+    /// Descriptors an interruption (Ctrl-C) kept from being validated.
+    pub not_run: Vec<PathBuf>,
     /// Wall-clock time of the batch [s].
     pub wall_s: f64,
     /// The simulator's name (so a stand-in is never mistaken for the vehicle model).
@@ -60,12 +62,28 @@ pub fn validate_folder(
     opts: &Options,
     progress: &dyn Fn(usize, &Path),
 ) -> FolderResult {
+    validate_folder_until(files, sim, opts, progress, &|| false)
+}
+
+/// [`validate_folder`], starting no further run once `stop()` holds (Ctrl-C): the
+/// runs not validated are listed in [`FolderResult::not_run`].
+pub fn validate_folder_until(
+    files: &[PathBuf],
+    sim: &dyn Simulator,
+    opts: &Options,
+    progress: &dyn Fn(usize, &Path),
+    stop: &dyn Fn() -> bool,
+) -> FolderResult {
     let wall = std::time::Instant::now();
     let mut res = FolderResult {
         simulator: sim.name(),
         ..FolderResult::default()
     };
     for (i, f) in files.iter().enumerate() {
+        if stop() {
+            res.not_run = files[i..].to_vec();
+            break;
+        }
         progress(i, f);
         match validate_run(f, sim, opts) {
             Ok(r) => res.runs.push(r),
@@ -96,8 +114,9 @@ fn figures(c: &Comparison, f: &ChannelFigures) -> Value {
     })
 }
 
-/// Layout version of the `validate --json` document and `summary.json`.
-pub const SCHEMA_VERSION: u32 = 1;
+/// Layout version of the `validate --json` document and `summary.json`. 2: `status`
+/// and `not_run` (a batch stopped by Ctrl-C).
+pub const SCHEMA_VERSION: u32 = 2;
 
 /// One run as JSON: the run's speed, time base, passage and per channel the clipping,
 /// the dominant frequencies and the corrected and uncorrected figures.
@@ -162,6 +181,8 @@ pub fn summary_json(res: &FolderResult) -> Value {
         "simulator": res.simulator,
         "runs": res.runs.iter().map(run_json).collect::<Vec<_>>(),
         "failures": res.failures.iter().map(|(f, e)| json!({"descriptor": f.display().to_string(), "error": e})).collect::<Vec<_>>(),
+        "status": if res.not_run.is_empty() { "completed" } else { "interrupted" },
+        "not_run": res.not_run.iter().map(|f| f.display().to_string()).collect::<Vec<_>>(),
         "wall_s": res.wall_s,
     })
 }

@@ -15,7 +15,8 @@ use serde::Serialize;
 use towride_mbs::input::InputError;
 
 use super::csv_reader::{
-    cells, err, lines_of, parse_number, read_table_with, split_unit, TimeSpec,
+    cells, err, first_content, lines_of, no_content, parse_number, read_table_with, split_unit,
+    TimeSpec,
 };
 use super::measurement::flat_top_range;
 use super::timebase::TimeBase;
@@ -185,8 +186,17 @@ fn checked_rate(
 /// from a comment such as `# sample rate: 2000 Hz`).
 pub fn sniff(file: &Path, rate_hz: Option<f64>) -> Result<Sniff, InputError> {
     let lines = lines_of(file)?;
-    let (sep, h, u) = layout(&lines).ok_or_else(|| {
-        err(file, None, None, "", "no header followed by rows of numbers with as many fields (separators tab, `;` or `,`)".into())
+    let (sep, h, u) = layout(&lines).ok_or_else(|| match first_content(&lines) {
+        Some(i) => err(
+            file,
+            Some(i + 1),
+            None,
+            "header",
+            "no header followed by rows of numbers with as many fields (separators tab, \
+             `;` or `,`); the first line of content is here"
+                .into(),
+        ),
+        None => err(file, Some(1), None, "header", no_content(&lines)),
     })?;
     let mut names: Vec<(String, Option<String>)> = cells(&lines[h], sep)
         .into_iter()

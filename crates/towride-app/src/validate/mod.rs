@@ -35,6 +35,7 @@ pub mod rating;
 mod repair;
 pub mod report;
 pub mod scene_info;
+mod text;
 
 pub mod speed;
 pub mod synth;

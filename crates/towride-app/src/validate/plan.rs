@@ -52,6 +52,8 @@ pub fn write_plan(
     out: &Path,
     progress: &dyn Fn(usize),
 ) -> Result<Vec<PathBuf>, ValidateError> {
+    // A recording in the way stops the plan before the first simulation, not midway.
+    super::synth::targets_free(runs, out)?;
     let mut files = Vec::with_capacity(runs.len());
     for (i, run) in runs.iter().enumerate() {
         let s = SensorModel {

@@ -142,6 +142,55 @@ pub fn relative_path(target: &Path, base: &Path) -> String {
     parts.join("/")
 }
 
+/// First line of every synthetic CSV, by which a rewrite knows its own file.
+const CSV_MARK: &str = "# SYNTHETIC DATA, not a measurement";
+
+/// Refuses when a file `runs` would write into `out` exists and is not a synthetic run
+/// (a recording, or anything else: it would be lost), or is the run's scene. Checked
+/// for every run before the first is simulated.
+pub fn targets_free(runs: &[SynthRun], out: &Path) -> Result<(), ValidateError> {
+    for run in runs {
+        for ext in ["csv", "toml"] {
+            let path = out.join(format!("{}.{ext}", run.name));
+            if towride_mbs::input::regular::same_file(&path, &run.scene) {
+                return Err(ValidateError::WouldOverwrite {
+                    path,
+                    why: "is the scene this synthetic run simulates".into(),
+                });
+            }
+            if !path.exists() {
+                continue;
+            }
+            // Read only the head: a recording may be large.
+            let head = read_head(&path);
+            let ours = if ext == "csv" {
+                head.starts_with(CSV_MARK)
+            } else {
+                head.lines().any(|l| l.trim() == "synthetic = true")
+            };
+            if !ours {
+                return Err(ValidateError::WouldOverwrite {
+                    path,
+                    why: "exists and is not a synthetic run made by `validate synth` (a \
+                          recording?)"
+                        .into(),
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The first 4 KiB of `path` as text (lossy); empty when unreadable.
+fn read_head(path: &Path) -> String {
+    use std::io::Read as _;
+    let mut buf = Vec::new();
+    if let Ok(f) = std::fs::File::open(path) {
+        let _ = f.take(4096).read_to_end(&mut buf);
+    }
+    String::from_utf8_lossy(&buf).into_owned()
+}
+
 /// Simulates `run` with `sim`, applies `sensor`, and writes `<out>/<name>.csv` and
 /// `<out>/<name>.toml`; returns the descriptor's path.
 pub fn make_synthetic(
@@ -152,6 +201,7 @@ pub fn make_synthetic(
     out: &Path,
 ) -> Result<PathBuf, ValidateError> {
     let s = sensor;
+    targets_free(std::slice::from_ref(run), out)?;
     // The folder must exist before paths can be made relative to it.
     std::fs::create_dir_all(out).map_err(|e| ValidateError::Io {
         path: out.to_path_buf(),
@@ -193,7 +243,7 @@ pub fn make_synthetic(
         s.foil_jitter_s * 1e3, s.filter.order, s.filter.cutoff_hz, fs, s.seed
     );
     let mut csv = format!(
-        "# SYNTHETIC DATA, not a measurement: made by `towride validate synth` with the {}\n# sensor model: {injected}\ntime [s]",
+        "{CSV_MARK}: made by `towride validate synth` with the {}\n# sensor model: {injected}\ntime [s]",
         sim.name()
     );
     for n in &names {
@@ -210,7 +260,7 @@ pub fn make_synthetic(
         csv.push('\n');
     }
     let csv_path = out.join(format!("{}.csv", run.name));
-    std::fs::write(&csv_path, csv).map_err(|e| ValidateError::Io {
+    crate::atomic::write(&csv_path, csv).map_err(|e| ValidateError::Io {
         path: csv_path.clone(),
         source: e,
     })?;
@@ -240,7 +290,7 @@ pub fn make_synthetic(
         sim.name(), s.trigger_delay_s, s.speed_error_pct, s.gain_error_pct, s.noise_rms_mps2, s.foil_jitter_s, fs, s.seed
     );
     let desc = out.join(format!("{}.toml", run.name));
-    std::fs::write(&desc, toml).map_err(|e| ValidateError::Io {
+    crate::atomic::write(&desc, toml).map_err(|e| ValidateError::Io {
         path: desc.clone(),
         source: e,
     })?;
