@@ -61,5 +61,52 @@ pub fn run(a: &ProvenanceArgs) -> CliResult {
             s.untagged
         );
     }
+    if let Some((file, u)) = s
+        .files
+        .iter()
+        .find_map(|f| f.untagged.first().map(|u| (&f.file, u)))
+    {
+        // On stderr too, where a script looks for the reason of exit code 1.
+        eprintln!(
+            "error: {file}:{}: field `{}`: a number without a source class{}; {} such number(s) in all{}",
+            u.line,
+            u.key,
+            misspelt_class(file, u.line),
+            s.untagged,
+            if a.json { "" } else { " (listed above)" }
+        );
+    }
     Ok(if s.untagged > 0 { 1 } else { 0 })
+}
+
+/// `: [asumed] is not a class (did you mean 'assumed'?)` when the comment of `line`
+/// starts with a bracketed word close to a class name; else "".
+fn misspelt_class(file: &str, line: usize) -> String {
+    let Ok(text) = towride_mbs::input::regular::read_regular_text(
+        std::path::Path::new(file),
+        towride_mbs::input::regular::PROPERTY_FILE_MAX_BYTES,
+    ) else {
+        return String::new();
+    };
+    let Some(l) = text.lines().nth(line.saturating_sub(1)) else {
+        return String::new();
+    };
+    let word = l
+        .split(['#', '$', '!'])
+        .nth(1)
+        .and_then(|c| c.trim_start().strip_prefix('['))
+        .and_then(|c| c.split_once(']'))
+        .map(|(w, _)| w.trim());
+    let classes = SourceClass::ALL.map(|c| c.as_str());
+    match word {
+        Some(w) => {
+            let dym = towride_mbs::input::suggest::did_you_mean(w, classes);
+            if dym.is_empty() {
+                String::new()
+            } else {
+                format!(": `[{w}]` is not a class{dym}")
+            }
+        }
+        None => String::new(),
+    }
 }

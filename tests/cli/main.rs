@@ -11,8 +11,12 @@ macro_rules! repo {
 #[path = "../app/validate_sim.rs"]
 mod validate_sim;
 
+#[path = "../common/mod.rs"]
+mod common;
+
 mod basics;
 mod check;
+mod fuzz_tools;
 mod inputs;
 mod interrupt;
 mod modes;

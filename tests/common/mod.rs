@@ -1,4 +1,4 @@
-//! Helpers shared by the tyre tests.
+//! Helpers shared by the test binaries.
 
 #![allow(dead_code)]
 
@@ -54,4 +54,34 @@ pub fn dominant_frequency(y: &[f64], dt: f64, f_lo: f64, f_hi: f64) -> f64 {
         f += 0.1;
     }
     best.1
+}
+
+/// A small deterministic generator (xorshift64*) for the fuzz harnesses: the cases are
+/// the same on every run.
+pub struct Rng(pub u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
+    }
+    /// A number in `0..n`.
+    pub fn below(&mut self, n: usize) -> usize {
+        (self.next() % n.max(1) as u64) as usize
+    }
+}
+
+/// True when `msg` names a file with its line (`x.toml:12:`), and when a field.
+pub fn located(msg: &str) -> (bool, bool) {
+    let file_line = [".toml:", ".tir:", ".csv:", ".json:"].iter().any(|ext| {
+        msg.match_indices(ext).any(|(i, _)| {
+            msg[i + ext.len()..]
+                .chars()
+                .next()
+                .is_some_and(|c| c.is_ascii_digit())
+        })
+    });
+    (file_line, msg.contains("field `"))
 }

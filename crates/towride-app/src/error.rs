@@ -194,6 +194,19 @@ pub enum SceneError {
         /// What is wrong.
         message: String,
     },
+    /// A row of a sweep summary (a shard merged, a summary resumed) or a line of its JSON
+    /// twin that cannot be read, at its line and column.
+    #[error("{}:{line}: field `{field}`: {message}", file.display())]
+    MergeAt {
+        /// The shard file.
+        file: PathBuf,
+        /// 1-based line.
+        line: usize,
+        /// The column's header.
+        field: String,
+        /// What is wrong.
+        message: String,
+    },
 }
 
 /// Why a recorded run could not be validated.

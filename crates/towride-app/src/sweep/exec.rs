@@ -247,7 +247,8 @@ pub struct Merged {
 
 /// The JSON twin of a shard's summary CSV: the sweep's name, its case count and its
 /// fingerprint.
-fn shard_meta(csv: &Path) -> Result<(String, usize, Fingerprint)> {
+/// A shard's sweep name, its case count, the rows it holds, and its fingerprint.
+fn shard_meta(csv: &Path) -> Result<(String, usize, Option<usize>, Fingerprint)> {
     let json = csv.with_extension("json");
     let bad = |message: String| -> Error {
         SceneError::Merge {
@@ -263,15 +264,16 @@ fn shard_meta(csv: &Path) -> Result<(String, usize, Fingerprint)> {
         ))
     })?;
     let v: serde_json::Value =
-        serde_json::from_str(&text).map_err(|e| bad(format!("not JSON: {e}")))?;
+        serde_json::from_str(&text).map_err(|e| super::guard::not_json(&json, &e))?;
     check_version(&json, v["schema_version"].as_u64(), "merge it")?;
     let name = v["sweep"].as_str().map(String::from);
     let total = v["cases_total"].as_u64().map(|n| n as usize);
     let fp = serde_json::from_value::<Fingerprint>(v["fingerprint"].clone()).map_err(|_| {
         bad("no fingerprint: cannot tell which sweep this shard is of (run it again)".into())
     })?;
+    let rows = v["cases"].as_u64().map(|n| n as usize);
     match (name, total) {
-        (Some(n), Some(t)) => Ok((n, t, fp)),
+        (Some(n), Some(t)) => Ok((n, t, rows, fp)),
         _ => Err(bad("no `sweep` and `cases_total` fields".into())),
     }
 }
@@ -290,12 +292,12 @@ pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<Merged> {
     let first = inputs
         .first()
         .ok_or_else(|| bad(out, "nothing to merge".into()))?;
-    let (name, total, fp) = shard_meta(first)?;
+    let (name, total, _, fp) = shard_meta(first)?;
     super::guard::merge_out(out, inputs, &fp)?;
     let mut header: Option<csv::StringRecord> = None;
     let mut rows: Vec<(usize, csv::StringRecord)> = Vec::new();
     for p in inputs {
-        let (n, t, f) = shard_meta(p)?;
+        let (n, t, held, f) = shard_meta(p)?;
         if f.hash != fp.hash {
             return Err(bad(
                 p,
@@ -315,46 +317,91 @@ pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<Merged> {
                 ),
             ));
         }
-        let mut r = csv::Reader::from_path(p).map_err(|e| Error::io(p, e.into()))?;
+        let mut r = csv::ReaderBuilder::new()
+            .flexible(true)
+            .from_path(p)
+            .map_err(|e| Error::io(p, e.into()))?;
         let h = r.headers().map_err(|e| bad(p, e.to_string()))?.clone();
         let status = h.iter().position(|c| c == "status");
+        // Figures carry their unit in the header: those cells must be numbers.
+        let numeric: Vec<usize> = (0..h.len())
+            .filter(|&c| h[c].ends_with(']') && h[c].contains(" ["))
+            .collect();
+        let rows_before = rows.len();
         match &header {
-            None => header = Some(h),
+            None => header = Some(h.clone()),
             Some(h0) if *h0 != h => {
-                return Err(bad(
-                    p,
-                    format!(
-                        "columns differ from {} (shards of different sweeps?)",
-                        first.display()
+                // The first column that differs, on the header line.
+                let c = (0..h.len().max(h0.len()))
+                    .find(|&c| h.get(c) != h0.get(c))
+                    .unwrap_or(0);
+                return Err(SceneError::MergeAt {
+                    file: p.clone(),
+                    line: 1,
+                    field: h.get(c).unwrap_or("(missing)").to_string(),
+                    message: format!(
+                        "columns differ from {} (`{}` there): shards of different sweeps?",
+                        first.display(),
+                        h0.get(c).unwrap_or("(missing)")
                     ),
-                ))
+                }
+                .into());
             }
             _ => {}
         }
         for (line, rec) in r.records().enumerate() {
-            let rec = rec.map_err(|e| bad(p, e.to_string()))?;
-            let idx: usize = rec.get(0).and_then(|s| s.parse().ok()).ok_or_else(|| {
-                bad(
-                    p,
-                    format!("line {}: first column is not a case number", line + 2),
-                )
-            })?;
+            let at = |c: usize, message: String| -> Error {
+                SceneError::MergeAt {
+                    file: p.clone(),
+                    line: line + 2,
+                    field: h.get(c).unwrap_or("case").to_string(),
+                    message,
+                }
+                .into()
+            };
+            let rec = rec.map_err(|e| at(0, e.to_string()))?;
+            let idx: usize = rec
+                .get(0)
+                .and_then(|s| s.parse().ok())
+                .ok_or_else(|| at(0, "not a case number".into()))?;
             if idx >= total {
-                return Err(bad(
-                    p,
-                    format!("line {}: case {idx}, but the sweep has {total}", line + 2),
-                ));
+                return Err(at(0, format!("case {idx}, but the sweep has {total}")));
             }
             if status.and_then(|c| rec.get(c)) == Some("interrupted") {
-                return Err(bad(
-                    p,
+                return Err(at(
+                    status.unwrap_or(0),
                     format!(
-                        "line {}: case {idx} was interrupted: finish the shard with `sweep --resume` first",
-                        line + 2
+                        "case {idx} was interrupted: finish the shard with `sweep --resume` first"
                     ),
                 ));
             }
+            if rec.len() != h.len() {
+                return Err(at(
+                    h.len() - 1,
+                    format!("{} fields, the header has {}", rec.len(), h.len()),
+                ));
+            }
+            for &c in &numeric {
+                let v = rec[c].trim();
+                if !v.is_empty() && !matches!(v, "NaN" | "nan") && v.parse::<f64>().is_err() {
+                    return Err(at(c, format!("not a number: `{v}`")));
+                }
+            }
             rows.push((idx, rec));
+        }
+        // The JSON twin counts the shard's cases: fewer rows is a cut or spoilt table.
+        let got = rows.len() - rows_before;
+        if let Some(n) = held.filter(|&n| n != got) {
+            // Blamed on the line after the last row read: where the missing rows belong.
+            return Err(SceneError::MergeAt {
+                file: p.clone(),
+                line: got + 2,
+                field: "case".into(),
+                message: format!(
+                    "{got} case rows, but its JSON twin says the shard ran {n}: the table is cut or spoilt (run the shard again)"
+                ),
+            }
+            .into());
         }
     }
     rows.sort_by_key(|(i, _)| *i);

@@ -23,7 +23,8 @@ pub fn out_dir(dir: &Path) -> Result<()> {
     let Ok(text) = std::fs::read_to_string(&json) else {
         return Ok(());
     };
-    let v: serde_json::Value = serde_json::from_str(&text).unwrap_or_default();
+    // Unreadable: a cut or spoilt summary, not another command's; it is still refused.
+    let v: serde_json::Value = serde_json::from_str(&text).map_err(|e| not_json(&json, &e))?;
     if v.get("sweep").is_some() && v.get("cases_total").is_some() {
         return Ok(());
     }
@@ -106,4 +107,17 @@ pub fn same_sweep(file: &Path, theirs: Option<&serde_json::Value>, fp: &Fingerpr
                 .into(),
         )),
     }
+}
+
+/// A summary or shard JSON that does not parse, at its line: cut short or spoilt.
+pub fn not_json(file: &Path, e: &serde_json::Error) -> crate::error::Error {
+    crate::scene::SceneError::MergeAt {
+        file: file.to_path_buf(),
+        line: e.line(),
+        field: "JSON".into(),
+        message: format!(
+            "not readable ({e}): a cut or spoilt summary; remove it or choose another --out"
+        ),
+    }
+    .into()
 }

@@ -66,11 +66,15 @@ pub(super) fn previous_rows(
         let mut theirs = None;
         if let Ok(text) = std::fs::read_to_string(&twin) {
             let v: serde_json::Value =
-                serde_json::from_str(&text).map_err(|e| bad(&twin, format!("not JSON: {e}")))?;
+                serde_json::from_str(&text).map_err(|e| super::guard::not_json(&twin, &e))?;
             check_version(&twin, v["schema_version"].as_u64(), "resume it")?;
             theirs = Some(v["fingerprint"].clone());
         }
-        let mut r = csv::Reader::from_path(csv).map_err(|e| Error::io(csv, e.into()))?;
+        // Flexible: a row of the wrong length is refused below at its line.
+        let mut r = csv::ReaderBuilder::new()
+            .flexible(true)
+            .from_path(csv)
+            .map_err(|e| Error::io(csv, e.into()))?;
         let h = r.headers().map_err(|e| bad(csv, e.to_string()))?.clone();
         let np = sweep.parameters.len();
         let cols: Vec<&str> = h.iter().collect();
@@ -81,12 +85,15 @@ pub(super) fn previous_rows(
             || cols[np + 1] != "status"
             || cols.last() != Some(&"error")
         {
-            return Err(bad(
-                csv,
-                format!(
+            return Err(SceneError::MergeAt {
+                file: csv.to_path_buf(),
+                line: 1,
+                field: cols.first().unwrap_or(&"case").to_string(),
+                message: format!(
                     "not a summary of this sweep (columns {cols:?}): remove it or run without --resume"
                 ),
-            ));
+            }
+            .into());
         }
         let figure_names = &cols[np + 3..cols.len() - 1];
         if figure_names.iter().any(|n| legacy_figure(n)) {
@@ -96,26 +103,40 @@ pub(super) fn previous_rows(
         super::guard::same_sweep(csv, theirs.as_ref(), fp)?;
         for (k, rec) in r.records().enumerate() {
             let line = k + 2;
-            let rec = rec.map_err(|e| bad(csv, format!("line {line}: {e}")))?;
+            let at = |field: &str, message: String| -> Error {
+                SceneError::MergeAt {
+                    file: csv.to_path_buf(),
+                    line,
+                    field: field.to_string(),
+                    message,
+                }
+                .into()
+            };
+            let rec = rec.map_err(|e| at("case", e.to_string()))?;
+            if rec.len() != cols.len() {
+                return Err(at(
+                    cols[cols.len().min(rec.len()).saturating_sub(1)],
+                    format!("{} fields, the header has {}", rec.len(), cols.len()),
+                ));
+            }
             let get = |c: usize| rec.get(c).unwrap_or("");
             let index: usize = get(0)
                 .parse()
-                .map_err(|_| bad(csv, format!("line {line}: `case` is not a case number")))?;
+                .map_err(|_| at("case", "not a case number".into()))?;
             if index >= sweep.len() || index % shard.1 != shard.0 {
-                return Err(bad(
-                    csv,
-                    format!("line {line}: case {index} is not a case of this shard"),
+                return Err(at(
+                    "case",
+                    format!("case {index} is not a case of this shard"),
                 ));
             }
             let case = sweep.case(index);
             for (p, v) in case.values.iter().enumerate() {
                 if get(p + 1) != v.trim_matches('"') {
-                    return Err(bad(
-                        csv,
+                    return Err(at(
+                        params[p],
                         format!(
-                            "line {line}: case {index} has {} = {} but the sweep file gives {v}: \
-                             the sweep changed; remove the summary or run without --resume",
-                            params[p],
+                            "case {index} has {} but the sweep file gives {v}: the sweep \
+                             changed; remove the summary or run without --resume",
                             get(p + 1)
                         ),
                     ));
@@ -131,7 +152,7 @@ pub(super) fn previous_rows(
                 if !cell.is_empty() {
                     let v = cell
                         .parse()
-                        .map_err(|_| bad(csv, format!("line {line}: `{name}` is not a number")))?;
+                        .map_err(|_| at(name, format!("not a number: `{cell}`")))?;
                     figures.push((name.to_string(), v));
                 }
             }

@@ -471,9 +471,12 @@ pub fn named(all: &[Param], names: &[String]) -> Result<Vec<Param>, InputError> 
             message: m,
             kind: Default::default(),
         };
-        let (file, path) = n.rsplit_once(':').ok_or_else(|| {
-            bad("write FILE:PATH, e.g. hitch.toml:bracket_bushing.stiffness_n_m".into())
-        })?;
+        let (file, path) = n
+            .rsplit_once(':')
+            .filter(|(f, p)| !f.trim().is_empty() && !p.trim().is_empty())
+            .ok_or_else(|| {
+                bad("write FILE:PATH, e.g. hitch.toml:bracket_bushing.stiffness_n_m".into())
+            })?;
         // A path ending in `[i]` addresses a component (array-of-table paths end in a key).
         let (path, component) = match path
             .strip_suffix(']')
@@ -485,7 +488,7 @@ pub fn named(all: &[Param], names: &[String]) -> Result<Vec<Param>, InputError> 
         };
         let hit = all
             .iter()
-            .find(|c| c.path == path && (c.file.ends_with(file) || file.ends_with(&c.file)))
+            .find(|c| c.path == path && (ends_with_file(&c.file, file) || ends_with_file(file, &c.file)))
             .ok_or_else(|| {
                 bad(format!(
                     "no stiffness, damping or mass value `{path}` in a file ending `{file}` of this scene (see `towride sensitivity SCENE --list`)"
@@ -500,7 +503,21 @@ pub fn named(all: &[Param], names: &[String]) -> Result<Vec<Param>, InputError> 
             p.component = Some(i);
             p.name = format!("{}[{i}]", p.name);
         }
+        // Twice the same value would be varied as two parameters that are one.
+        if out
+            .iter()
+            .any(|q: &Param| q.file == p.file && q.path == p.path && q.component == p.component)
+        {
+            return Err(bad(format!("`{file}:{path}` is named twice")));
+        }
         out.push(p);
     }
     Ok(out)
+}
+
+/// `path` ends with the file name(s) `tail` at a `/` boundary (`fabia/hitch.toml`
+/// matches `hitch.toml`, not `ch.toml`).
+fn ends_with_file(path: &str, tail: &str) -> bool {
+    path.strip_suffix(tail)
+        .is_some_and(|head| head.is_empty() || head.ends_with('/'))
 }
