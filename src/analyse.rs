@@ -198,21 +198,23 @@ pub fn doctor(a: &DoctorArgs) -> CliResult {
             println!("  {} (repeats {})", r.row, r.duplicates.join(", "));
         }
     }
+    // Every number with its unit; ratios and condition numbers are dimensionless, [-].
     match rep.newton_condition {
         Some(k) => println!(
-            "Newton matrix condition at h = {:.0e} s: {k:.3e}",
+            "Newton matrix condition number at h = {:.0e} s: {k:.3e} [-]",
             rep.step_s
         ),
-        None => println!("Newton matrix condition: not estimated"),
+        None => println!("Newton matrix condition number: not estimated"),
     }
     println!(
-        "mass ratio {:.3e}, inertia ratio {:.3e}",
+        "mass ratio {:.3e} [-], inertia ratio {:.3e} [-] (largest over smallest)",
         rep.mass_ratio, rep.inertia_ratio
     );
     for b in &rep.bushings {
+        let (k, m) = b.units();
         println!(
-            "  bushing {} {}: {:.3e} against {:.3e} -> {:.1} Hz",
-            b.bushing, b.axis, b.stiffness, b.effective_inertia, b.frequency_hz
+            "  bushing {} {}: {:.3e} {k} against {:.3e} {} -> {:.1} Hz",
+            b.bushing, b.axis, b.stiffness, b.effective_inertia, m, b.frequency_hz
         );
     }
     if let Some(l) = &rep.linearisation {
@@ -224,11 +226,11 @@ pub fn doctor(a: &DoctorArgs) -> CliResult {
             .find(|f| *f > 1e-6)
             .unwrap_or(0.0);
         println!(
-            "eigenvalues ({}): {} modes from {low:.4} Hz to {top:.4} Hz; S = {}",
+            "eigenvalues ({}): {} modes from {low:.4} Hz to {top:.4} Hz; stiffness ratio S = {}",
             rep.linearised_at,
             l.modes.len(),
             l.stiffness_ratio
-                .map_or("undefined".into(), |s| format!("{s:.3e}"))
+                .map_or("undefined".into(), |s| format!("{s:.3e} [-]"))
         );
     }
     if rep.advice.is_empty() {

@@ -13,6 +13,7 @@ mod validate_sim;
 
 mod basics;
 mod check;
+mod doctor;
 mod inputs;
 mod modes;
 mod out_guard;
