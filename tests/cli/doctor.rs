@@ -4,8 +4,9 @@
 
 use super::{towride_json, towride_ok};
 
-/// Numbers of the JSON named by what they count or as ratios (dimensionless).
-const COUNTS_AND_RATIOS: [&str; 13] = [
+/// Numbers of the JSON named by what they count or as ratios and shares
+/// (dimensionless: also any `*_ratio`, `*_share`).
+const COUNTS_AND_RATIOS: [&str; 9] = [
     "bodies",
     "equations",
     "constraint_rows",
@@ -14,10 +15,6 @@ const COUNTS_AND_RATIOS: [&str; 13] = [
     "eigenvalues",
     "index",
     "newton_condition",
-    "mass_ratio",
-    "inertia_ratio",
-    "stiffness_ratio",
-    "damping_ratio",
     "share",
 ];
 const UNIT_SUFFIXES: [&str; 8] = [
@@ -52,6 +49,8 @@ fn doctor_names_the_unit_of_every_number() {
         .iter()
         .filter(|k| {
             !COUNTS_AND_RATIOS.contains(&k.as_str())
+                && !k.ends_with("_ratio")
+                && !k.ends_with("_share")
                 && !UNIT_SUFFIXES.iter().any(|s| k.ends_with(s))
         })
         .collect();
