@@ -77,7 +77,8 @@ fn print_linear(
 ) -> CliResult {
     let page = towride_app::report::linear::write(&a.out, sys, y, lin, at)?;
     if a.json {
-        let v = serde_json::json!({"schema_version": 1, "model": sys.model.name, "linearised_at": at, "report": page.display().to_string(), "result": lin});
+        // 2: every number's field names its unit (`t_s`, `real_1_per_s`, `imag_rad_per_s`).
+        let v = serde_json::json!({"schema_version": 2, "model": sys.model.name, "linearised_at": at, "report": page.display().to_string(), "result": lin});
         println!("{}", serde_json::to_string_pretty(&v)?);
         return Ok(0);
     }
@@ -183,7 +184,12 @@ pub fn doctor(a: &DoctorArgs) -> CliResult {
     let job = Job::from_file(&a.file, &a.inputs.loader()?)?;
     let rep = model::doctor::examine(&job.system, &job.solver, a.step);
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&rep)?);
+        // 2: the field names carry their units (`stiffness_n_per_m`, ...); 1 had none.
+        let mut v = serde_json::to_value(&rep)?;
+        if let Some(o) = v.as_object_mut() {
+            o.insert("schema_version".into(), 2.into());
+        }
+        println!("{}", serde_json::to_string_pretty(&v)?);
         return Ok(0);
     }
     println!(
@@ -198,21 +204,23 @@ pub fn doctor(a: &DoctorArgs) -> CliResult {
             println!("  {} (repeats {})", r.row, r.duplicates.join(", "));
         }
     }
+    // Every number with its unit; ratios and condition numbers are dimensionless, [-].
     match rep.newton_condition {
         Some(k) => println!(
-            "Newton matrix condition at h = {:.0e} s: {k:.3e}",
+            "Newton matrix condition number at h = {:.0e} s: {k:.3e} [-]",
             rep.step_s
         ),
-        None => println!("Newton matrix condition: not estimated"),
+        None => println!("Newton matrix condition number: not estimated"),
     }
     println!(
-        "mass ratio {:.3e}, inertia ratio {:.3e}",
+        "mass ratio {:.3e} [-], inertia ratio {:.3e} [-] (largest over smallest)",
         rep.mass_ratio, rep.inertia_ratio
     );
     for b in &rep.bushings {
+        let (k, m) = b.units();
         println!(
-            "  bushing {} {}: {:.3e} against {:.3e} -> {:.1} Hz",
-            b.bushing, b.axis, b.stiffness, b.effective_inertia, b.frequency_hz
+            "  bushing {} {}: {:.3e} {k} against {:.3e} {} -> {:.1} Hz",
+            b.bushing, b.axis, b.stiffness, b.effective_inertia, m, b.frequency_hz
         );
     }
     if let Some(l) = &rep.linearisation {
@@ -224,11 +232,11 @@ pub fn doctor(a: &DoctorArgs) -> CliResult {
             .find(|f| *f > 1e-6)
             .unwrap_or(0.0);
         println!(
-            "eigenvalues ({}): {} modes from {low:.4} Hz to {top:.4} Hz; S = {}",
+            "eigenvalues ({}): {} modes from {low:.4} Hz to {top:.4} Hz; stiffness ratio S = {}",
             rep.linearised_at,
             l.modes.len(),
             l.stiffness_ratio
-                .map_or("undefined".into(), |s| format!("{s:.3e}"))
+                .map_or("undefined".into(), |s| format!("{s:.3e} [-]"))
         );
     }
     if rep.advice.is_empty() {

@@ -469,11 +469,14 @@ fn print_summary(r: &RunResult) {
             e.min, e.t_min, e.max, e.t_max, e.abs_peak, c.unit
         );
     };
-    for (name, c) in s
+    let mut listed: Vec<(&String, &ChannelSummary)> = s
         .channels
         .iter()
         .filter(|(n, c)| !n.starts_with(channels::HITCH_ETA_PREFIX) && c.signal == Signal::Raw)
-    {
+        .collect();
+    // Natural order (`wheel_2` before `wheel_10`), as every listing of channels.
+    towride_app::report::display::sort_natural(&mut listed, |e| e.0.as_str());
+    for (name, c) in listed {
         // A raw channel with its band-limited twin: the one shown first as above.
         let twin = c
             .twin

@@ -30,6 +30,7 @@ mod report_compare;
 mod report_compare_inputs;
 mod report_figures;
 mod report_html;
+mod report_run_figures;
 mod report_view;
 mod scene_outputs;
 mod study_sensitivity;

@@ -271,17 +271,19 @@ fn a_signal_spanning_1e_minus_7_gets_distinct_ticks() {
 #[test]
 fn log_axis_labels_use_one_notation() {
     use towride_app::report::ticks::log_labels;
-    // A range crossing 1e-3 takes prefixes on every tick, not "0.002" beside "500µ".
+    // A range crossing 1e-3 takes powers of ten on every tick, not "0.002" beside
+    // "5×10⁻⁴" (and no SI prefix: "2m" on an axis of seconds reads as minutes).
     assert_eq!(
         log_labels(&[2e-4, 5e-4, 1e-3, 2e-3], 2),
-        ["200µ", "500µ", "1m", "2m"]
+        ["2×10⁻⁴", "5×10⁻⁴", "10⁻³", "2×10⁻³"]
     );
-    // Inside 1e-3..1e4 plain decimals stay.
+    // Inside 1e-3..1e6 plain decimals stay.
     assert_eq!(
         log_labels(&[0.01, 0.1, 1.0, 10.0], 2),
         ["0.01", "0.1", "1", "10"]
     );
-    assert_eq!(log_labels(&[1e3, 1e4, 1e5], 2), ["1k", "10k", "100k"]);
+    assert_eq!(log_labels(&[1e3, 1e4, 1e5], 2), ["1000", "10000", "100000"]);
+    assert_eq!(log_labels(&[1e5, 1e6, 1e7], 2), ["10⁵", "10⁶", "10⁷"]);
 }
 
 #[test]

@@ -16,6 +16,7 @@ mod common;
 
 mod basics;
 mod check;
+mod doctor;
 mod fuzz_tools;
 mod inputs;
 mod interrupt;

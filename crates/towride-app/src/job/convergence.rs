@@ -83,7 +83,8 @@ pub struct Verdict {
     pub converged: bool,
     /// The channels that did not, largest difference first.
     pub failing: Vec<String>,
-    /// Per judged channel.
+    /// Per judged channel, written in natural order.
+    #[serde(serialize_with = "crate::report::display::serialize_natural")]
     pub channels: BTreeMap<String, ChannelCheck>,
 }
 

@@ -252,6 +252,9 @@ pub struct SceneInfo {
     pub assumed: Vec<crate::vehicle::simple::Assumed>,
     /// What the run did not compute, and why.
     pub skipped: Skipped,
+    /// The channels the scene's `[[output]]` tables asked for, drawn in
+    /// `plots_outputs.png`.
+    pub output_channels: Vec<String>,
 }
 
 /// Work the run left out, and why (a scene skips what it does not need).
@@ -369,7 +372,9 @@ pub struct RunSummary {
     /// The acquisition chain of the band-limited channels (`None`: raw channels only).
     pub acquisition: Option<Acquisition>,
     /// Per channel, by name (raw and band-limited): unit, which it is, max, min and
-    /// |peak| with their times.
+    /// |peak| with their times; written in natural order (`hitch_eta_2` before
+    /// `hitch_eta_10`).
+    #[serde(serialize_with = "crate::report::display::serialize_natural")]
     pub channels: BTreeMap<String, ChannelSummary>,
     /// The convergence verdict against a companion run at a tighter tolerance (`run
     /// --check`); `None` when not asked for.
@@ -381,6 +386,10 @@ pub struct RunSummary {
     pub outputs_csv: Option<String>,
     /// The plot page written (or why not), once written.
     pub plots: Option<String>,
+    /// The page of the scene's `[[output]]` channels (or why not), once written; `None`
+    /// when the scene asks for none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub plots_outputs: Option<String>,
     /// The HTML report written (or why not), once written.
     pub report: Option<String>,
     /// Wall time of writing the HTML report [s] (spectra included).
@@ -444,6 +453,7 @@ impl RunSummary {
                 design: s.vehicle.design.clone(),
                 assumed: s.vehicle.assumed.clone(),
                 skipped: skipped(sys, st),
+                output_channels: s.requested.clone(),
             }),
             lift_off: lift_off(samples),
             modal_energy: strain_shares(sys, samples)
@@ -463,6 +473,7 @@ impl RunSummary {
             produced_by: job.produced_by.clone(),
             outputs_csv: None,
             plots: None,
+            plots_outputs: None,
             report: None,
             report_wall_s: None,
             convergence: None,

@@ -8,6 +8,8 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
+use super::display::{display_unit, figure_unit};
+use super::families::families;
 use super::run::run_panels;
 use crate::scene::channels;
 use crate::signal::psd::{segment_length, welch};
@@ -166,30 +168,6 @@ struct Group {
     series: Vec<Series>,
 }
 
-/// A channel's family: its name with wheel names, numbers and axis letters as `*`
-/// (`tyre_*_contact`, `hitch_eta_*`, `acc_hitch_*`), the channels charted together.
-fn family(name: &str) -> String {
-    const WHEELS: [&str; 6] = ["fl", "fr", "rl", "rr", "tl", "tr"];
-    const AXES: [&str; 6] = ["x", "y", "z", "rx", "ry", "rz"];
-    let parts: Vec<&str> = name.split(['_', '.']).collect();
-    let last = parts.len() - 1;
-    parts
-        .iter()
-        .enumerate()
-        .map(|(k, p)| {
-            let wild = WHEELS.contains(p)
-                || (!p.is_empty() && p.chars().all(|c| c.is_ascii_digit()))
-                || (k == last && k > 0 && AXES.contains(p));
-            if wild {
-                "*"
-            } else {
-                p
-            }
-        })
-        .collect::<Vec<_>>()
-        .join("_")
-}
-
 /// The charts: the run page's panels, then the remaining channels by family and unit.
 fn groups(res: &Samples) -> Vec<Group> {
     let index = |name: &str| res.channels.iter().position(|c| c.name == name);
@@ -224,24 +202,13 @@ fn groups(res: &Samples) -> Vec<Group> {
         });
     }
     let palette = super::figure::PALETTE;
-    let mut keys: Vec<(String, &str)> = Vec::new();
     // The twins go with their raw channels, not in families of their own.
     let twin = |c: usize| {
         channels::is_band_limited(&res.channels[c].name) && counterpart(res, c).is_some()
     };
-    for (c, ch) in res.channels.iter().enumerate() {
-        let key = (family(&ch.name), ch.unit);
-        if !used[c] && !twin(c) && !keys.contains(&key) {
-            keys.push(key);
-        }
-    }
-    for (key, unit) in keys {
+    for f in families(res, |c| !used[c] && !twin(c)) {
         let mut series: Vec<Series> = Vec::new();
-        let members =
-            res.channels.iter().enumerate().filter(|(c, ch)| {
-                !used[*c] && !twin(*c) && ch.unit == unit && family(&ch.name) == key
-            });
-        for (k, (c, ch)) in members.enumerate() {
+        for (k, &c) in f.members.iter().enumerate() {
             let s = |ch: usize, show: bool| Series {
                 ch,
                 colour: hex(palette[k % palette.len()]),
@@ -251,7 +218,9 @@ fn groups(res: &Samples) -> Vec<Group> {
             };
             // The one shown first: a sensor's twin, a force's or deflection's raw channel.
             match counterpart(res, c) {
-                Some(t) if channels::band(&ch.name) == Some(channels::Band::Sensor) => {
+                Some(t)
+                    if channels::band(&res.channels[c].name) == Some(channels::Band::Sensor) =>
+                {
                     series.push(s(t, true));
                     series.push(s(c, false));
                 }
@@ -263,8 +232,8 @@ fn groups(res: &Samples) -> Vec<Group> {
             }
         }
         out.push(Group {
-            title: key,
-            y: format!("[{unit}]"),
+            title: f.title,
+            y: f.axis,
             series,
         });
     }
@@ -299,11 +268,30 @@ pub fn run_report(
         string(&mut d, &ch.name);
         d.push_str(",\"unit\":");
         string(&mut d, ch.unit);
+        // The charts' values and unit: angles in degrees, units in display form
+        // ([`figure_unit`]); `unit` stays the CSV's.
+        let (f, shown) = figure_unit(ch.unit);
+        d.push_str(",\"du\":");
+        string(&mut d, &shown);
         d.push_str(",\"v\":");
-        quantised(&mut d, res.rows.iter().map(|r| r[c]));
+        quantised(&mut d, res.rows.iter().map(|r| r[c] * f));
         d.push('}');
     }
-    d.push_str("],\"groups\":");
+    // Each unit's display form for the tables of SI values (the summary's units).
+    d.push_str("],\"units\":{");
+    let mut seen: Vec<&str> = Vec::new();
+    for ch in &res.channels {
+        if !seen.contains(&ch.unit) {
+            if !seen.is_empty() {
+                d.push(',');
+            }
+            seen.push(ch.unit);
+            string(&mut d, ch.unit);
+            d.push(':');
+            string(&mut d, &display_unit(ch.unit));
+        }
+    }
+    d.push_str("},\"groups\":");
     d.push_str(
         &serde_json::to_string(&groups(res))
             .unwrap_or_default()
@@ -320,7 +308,9 @@ pub fn run_report(
         if c > 0 {
             d.push(',');
         }
-        let y: Vec<f64> = res.rows.iter().map(|r| r[c]).collect();
+        // In the charts' unit, as the histories.
+        let f = figure_unit(res.channels[c].unit).0;
+        let y: Vec<f64> = res.rows.iter().map(|r| r[c] * f).collect();
         match (fs > 0.0).then(|| welch(&y, fs, len)).flatten() {
             Some(p) => {
                 array(&mut d, p.density.iter().copied());

@@ -4,6 +4,8 @@
 pub mod canvas;
 pub mod compare;
 pub mod decimate;
+pub mod display;
+pub mod families;
 pub mod figure;
 pub mod html;
 pub mod linear;
@@ -13,6 +15,7 @@ pub mod plot;
 
 mod run;
 pub mod run_files;
+pub mod run_outputs;
 pub mod scene3d;
 pub mod steps;
 

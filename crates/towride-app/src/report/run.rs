@@ -2,6 +2,7 @@
 
 use std::path::Path;
 
+use super::display::display_unit;
 use super::figure::{render, Figure, Panel, Style, Trace};
 use super::ReportError;
 use crate::scene::channels;
@@ -9,7 +10,7 @@ use towride_mbs::model::run::Samples;
 
 /// Left/right pairs by the last part of a channel name: the colour index of the pair
 /// and whether this is the right side (fl/fr, rl/rr, tl/tr; *_left_*/*_right_*).
-fn side_of(name: &str) -> Option<(usize, bool)> {
+pub(crate) fn side_of(name: &str) -> Option<(usize, bool)> {
     for (k, (l, r)) in [("_fl", "_fr"), ("_rl", "_rr"), ("_tl", "_tr")]
         .iter()
         .enumerate()
@@ -95,7 +96,8 @@ pub fn run_panels(res: &Samples) -> Vec<Panel> {
             ..Panel::new(&title, "time [s]", y)
         }
     };
-    let acc = "acceleration [m/s²]";
+    let acc = format!("acceleration [{}]", display_unit("m/s^2"));
+    let acc = acc.as_str();
     // The vehicles' sensors at the wheels and on the body: `acc_wheel_*`, `acc_body_*`.
     let wheel_sensors = format!("{}wheel_", channels::ACC_PREFIX);
     let body_sensors = format!("{}body_", channels::ACC_PREFIX);

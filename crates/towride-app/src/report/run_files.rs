@@ -1,4 +1,5 @@
-//! A run's files, written from its data: `outputs.csv`, `plots.png` (scenes),
+//! A run's files, written from its data: `outputs.csv`, `plots.png` (scenes) and
+//! `plots_outputs.png` (scenes with `[[output]]` tables),
 //! `report.html` (with the 3D view when the run recorded poses) and `summary.json`. The
 //! run pipeline returns a [`RunResult`] and never writes; this printer does (as
 //! ripgrep's searcher hands matches to a printer).
@@ -37,7 +38,8 @@ pub fn samples_csv(samples: &Samples, path: &Path) -> std::io::Result<()> {
     out.into_inner().map_err(|e| e.into_error())?.commit()
 }
 
-/// Writes `outputs.csv` (units in the headers), the plot page of a scene (`plots.png`),
+/// Writes `outputs.csv` (units in the headers), the plot pages of a scene (`plots.png`,
+/// and `plots_outputs.png` for its `[[output]]` channels),
 /// the HTML report (`report.html`, with the 3D view of `system` when the run recorded
 /// poses) and `summary.json` into `dir`; the summary records the files and the report's
 /// wall time. Each file is written whole or not at all ([`crate::atomic`]), the summary
@@ -53,6 +55,24 @@ pub fn write_run(run: &mut RunResult, system: &System, dir: &Path) -> Result<()>
             Ok(()) => plot.display().to_string(),
             Err(e) => format!("not written: {e}"),
         });
+        // The scene's `[[output]]` channels on a page of their own: the run page keeps
+        // its fixed layout whatever the scene asks for.
+        let asked = run
+            .summary
+            .scene
+            .as_ref()
+            .map(|s| s.output_channels.clone())
+            .unwrap_or_default();
+        if !asked.is_empty() {
+            let page = dir.join("plots_outputs.png");
+            run.summary.plots_outputs = Some(
+                match super::run_outputs::outputs_page(&run.samples, &asked, &page) {
+                    Ok(true) => page.display().to_string(),
+                    Ok(false) => "not written: the run holds none of the channels".into(),
+                    Err(e) => format!("not written: {e}"),
+                },
+            );
+        }
     }
     let html = dir.join("report.html");
     run.summary.report = Some(html.display().to_string());

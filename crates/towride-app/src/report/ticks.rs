@@ -1,7 +1,8 @@
 //! Axis ticks and their labels: round steps (1, 2, 5 times a power of ten) on linear
 //! axes, decades on log axes, labels with as many decimals as the step needs, no `.0` on
-//! integers, and SI prefixes (k, M, m, µ, n, ...) outside 0.001..9999 so that a 1e-7 span
-//! reads "20n, 40n, ..." rather than "0.0, 0.0, ...".
+//! integers, and powers of ten outside 0.001..999999 so that a 1e-7 span reads
+//! "2×10⁻⁸, 4×10⁻⁸, ..." rather than "0.0, 0.0, ...". Never SI prefixes: on an axis of
+//! seconds "10m" reads as ten minutes, and the unit is in the axis label already.
 
 /// Ticks of a linear axis over `lo..hi`: the round step with at most `max_ticks` ticks
 /// (at least one tick whatever the range).
@@ -70,36 +71,46 @@ pub fn log(lo: f64, hi: f64) -> Vec<f64> {
     v
 }
 
-const PREFIXES: [(i32, &str); 11] = [
-    (-15, "f"),
-    (-12, "p"),
-    (-9, "n"),
-    (-6, "µ"),
-    (-3, "m"),
-    (0, ""),
-    (3, "k"),
-    (6, "M"),
-    (9, "G"),
-    (12, "T"),
-    (15, "P"),
-];
+/// `10ⁿ` with a superscript exponent.
+pub fn pow10(e: i32) -> String {
+    const SUP: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
+    let mut s = String::from("10");
+    if e < 0 {
+        s.push('⁻');
+    }
+    for d in e.unsigned_abs().to_string().bytes() {
+        s.push(SUP[(d - b'0') as usize]);
+    }
+    s
+}
+
+/// `x` with `decimals` decimals, trailing zeros and a trailing point dropped, a true
+/// minus sign.
+fn decimal(x: f64, decimals: usize) -> String {
+    let mut s = format!("{x:.decimals$}");
+    if s.contains('.') {
+        s = s.trim_end_matches('0').trim_end_matches('.').to_string();
+    }
+    s.replace('-', "\u{2212}")
+}
+
+/// Whether a label of `v` needs a power of ten (outside 0.001..999999: "20000 N" reads
+/// at a glance, "0.00002" does not).
+fn needs_power(v: f64) -> bool {
+    v != 0.0 && v.is_finite() && !(1e-3..1e6).contains(&v.abs())
+}
 
 /// Labels for linear ticks spaced `step` apart: as many decimals as the step needs, no
-/// trailing zeros (1, 1.5, 2), with an SI prefix when the largest tick is 1e4 or more or below 1e-3.
+/// trailing zeros (1, 1.5, 2); when the largest tick is 1e6 or more or below 1e-3, every
+/// label in units of the largest tick's power of ten (0.5×10⁻⁷, 1×10⁻⁷).
 pub fn labels(ticks: &[f64], step: f64) -> Vec<String> {
     let big = ticks.iter().fold(0.0f64, |m, t| m.max(t.abs()));
-    let e = if big > 0.0 {
+    let e = if needs_power(big) {
         big.log10().floor() as i32
     } else {
         0
     };
-    let p = if (-3..4).contains(&e) {
-        0
-    } else {
-        (3 * e.div_euclid(3)).clamp(-15, 15)
-    };
-    let prefix = PREFIXES.iter().find(|(q, _)| *q == p).map_or("", |x| x.1);
-    let scale = 10f64.powi(p);
+    let scale = 10f64.powi(e);
     let decimals = (-((step / scale).log10() + 1e-9).floor()).max(0.0) as usize;
     ticks
         .iter()
@@ -107,48 +118,37 @@ pub fn labels(ticks: &[f64], step: f64) -> Vec<String> {
             if t.abs() < step * 1e-6 {
                 return "0".to_string();
             }
-            let mut s = format!("{:.*}", decimals, t / scale);
-            if s.contains('.') {
-                s = s.trim_end_matches('0').trim_end_matches('.').to_string();
+            let m = decimal(t / scale, decimals);
+            if e == 0 {
+                m
+            } else {
+                format!("{m}×{}", pow10(e))
             }
-            format!("{}{prefix}", s.replace('-', "\u{2212}"))
         })
         .collect()
 }
 
-/// One value with an SI prefix and `sig` significant digits, trailing zeros dropped
-/// (log-axis labels, table entries): 2.5e-5 -> "25µ", 3000 -> "3k", 0.5 -> "0.5".
-pub fn si(v: f64, sig: usize) -> String {
-    si_with(v, sig, false)
-}
-
-/// Labels of log-axis ticks: all with an SI prefix when any of them needs one, so that
-/// one axis does not mix "0.002" with "500µ".
+/// Labels of log-axis ticks: all as powers of ten when any of them needs one, so that
+/// one axis does not mix "0.002" with "5×10⁻⁴".
 pub fn log_labels(ticks: &[f64], sig: usize) -> Vec<String> {
-    let prefixed = ticks
-        .iter()
-        .any(|v| *v != 0.0 && !(1e-3..1e4).contains(&v.abs()));
-    ticks.iter().map(|&v| si_with(v, sig, prefixed)).collect()
+    let powers = ticks.iter().any(|v| needs_power(*v));
+    ticks.iter().map(|&v| sci_with(v, sig, powers)).collect()
 }
 
-fn si_with(v: f64, sig: usize, always_prefix: bool) -> String {
+fn sci_with(v: f64, sig: usize, always_power: bool) -> String {
     if v == 0.0 || !v.is_finite() {
         return if v == 0.0 { "0".into() } else { format!("{v}") };
     }
     let e = v.abs().log10().floor() as i32;
-    let p = if (-3..4).contains(&e) && !always_prefix {
-        0
-    } else {
-        3 * e.div_euclid(3)
-    };
-    let Some((_, prefix)) = PREFIXES.iter().find(|(q, _)| *q == p) else {
-        return format!("{v:.*e}", sig.saturating_sub(1)).replace('-', "\u{2212}");
-    };
-    let x = v / 10f64.powi(p);
-    let decimals = (sig as i32 - 1 - x.abs().log10().floor() as i32).max(0) as usize;
-    let mut s = format!("{x:.decimals$}");
-    if s.contains('.') {
-        s = s.trim_end_matches('0').trim_end_matches('.').to_string();
+    let sig_decimals = |x: f64| (sig as i32 - 1 - x.abs().log10().floor() as i32).max(0) as usize;
+    if !always_power && !needs_power(v) {
+        return decimal(v, sig_decimals(v));
     }
-    format!("{}{prefix}", s.replace('-', "\u{2212}"))
+    let m = decimal(v / 10f64.powi(e), sig_decimals(v / 10f64.powi(e)));
+    match m.as_str() {
+        // A decade reads 10ⁿ, not 1×10ⁿ.
+        "1" => pow10(e),
+        "\u{2212}1" => format!("\u{2212}{}", pow10(e)),
+        _ => format!("{m}×{}", pow10(e)),
+    }
 }

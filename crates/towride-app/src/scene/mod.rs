@@ -210,6 +210,8 @@ pub struct Scene {
     pub atol_scale: Option<f64>,
     /// The output channels, in CSV order: the fixed ones, then the `[[output]]` tables'.
     pub channels: Vec<Channel>,
+    /// The channels the `[[output]]` tables asked for (the last of `channels`).
+    pub requested: Vec<String>,
     /// What `[[output]]` tables can name (`run SCENE --list-names`).
     pub names: outputs::Names,
     /// The road file in use.
@@ -519,6 +521,7 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
     let names = outputs::names(&v, &channels);
     let (more, more_channels) = outputs::requested(&src, &mut v, &f.output, &channels)?;
     outputs.extend(more);
+    let requested = more_channels.iter().map(|c| c.name.clone()).collect();
     channels.extend(more_channels);
     let acquisition = acquisition(&src, f.acquisition.as_ref())?;
     // Steps no longer than half the period of the band's upper edge unless the file sets
@@ -564,6 +567,7 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
         solver,
         atol_scale,
         channels,
+        requested,
         names,
         road_file,
         acquisition,

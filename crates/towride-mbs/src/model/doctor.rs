@@ -30,13 +30,57 @@ pub struct BushingFrequency {
     pub bushing: String,
     /// Direction in the bushing's J axes: "x", "y", "z", "rx", "ry" or "rz".
     pub axis: String,
-    /// Stiffness in that direction [N/m or N m/rad].
+    /// Stiffness in that direction [N/m or N m/rad, [`Self::units`]]; in the JSON
+    /// `stiffness_n_per_m` or `stiffness_n_m_per_rad`.
+    #[serde(skip)]
     pub stiffness: f64,
     /// Effective mass or inertia of the two bodies in series [kg or kg m^2] (one body's
-    /// alone when the other is ground).
+    /// alone when the other is ground); in the JSON `effective_mass_kg` or
+    /// `effective_inertia_kg_m2`.
+    #[serde(skip)]
     pub effective_inertia: f64,
+    // The JSON's unit-named copies of the two above: the unit depends on the axis.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    stiffness_n_per_m: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    stiffness_n_m_per_rad: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    effective_mass_kg: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    effective_inertia_kg_m2: Option<f64>,
     /// sqrt(stiffness / effective_inertia) / 2 pi [Hz].
     pub frequency_hz: f64,
+}
+
+impl BushingFrequency {
+    /// A bushing direction's frequency: `axis` "x", "y", "z" translational, "rx", "ry",
+    /// "rz" rotational.
+    pub fn new(bushing: &str, axis: &str, stiffness: f64, effective_inertia: f64) -> Self {
+        let rotational = axis.starts_with('r');
+        let lin = |v: f64| (!rotational).then_some(v);
+        let rot = |v: f64| rotational.then_some(v);
+        BushingFrequency {
+            bushing: bushing.into(),
+            axis: axis.into(),
+            stiffness,
+            effective_inertia,
+            stiffness_n_per_m: lin(stiffness),
+            stiffness_n_m_per_rad: rot(stiffness),
+            effective_mass_kg: lin(effective_inertia),
+            effective_inertia_kg_m2: rot(effective_inertia),
+            frequency_hz: (stiffness / effective_inertia).sqrt() / (2.0 * std::f64::consts::PI),
+        }
+    }
+
+    /// The units of the stiffness and the effective inertia: ("N/m", "kg") along an
+    /// axis, ("N m/rad", "kg m^2") about one.
+    pub fn units(&self) -> (&'static str, &'static str) {
+        if self.axis.starts_with('r') {
+            ("N m/rad", "kg m^2")
+        } else {
+            ("N/m", "kg")
+        }
+    }
 }
 
 /// The doctor's findings on a model, with advice in plain words.
@@ -311,13 +355,7 @@ fn bushing_frequencies(sys: &System) -> Vec<BushingFrequency> {
             } else {
                 ia * ib / (ia + ib)
             };
-            out.push(BushingFrequency {
-                bushing: b.name.clone(),
-                axis: axes[a].into(),
-                stiffness: k,
-                effective_inertia: eff,
-                frequency_hz: (k / eff).sqrt() / (2.0 * std::f64::consts::PI),
-            });
+            out.push(BushingFrequency::new(&b.name, axes[a], k, eff));
         }
     }
     out

@@ -32,9 +32,11 @@ pub struct Share {
 pub struct Mode {
     /// 1-based number, by ascending undamped frequency.
     pub index: usize,
-    /// Re lambda [1/s].
+    /// Re lambda [1/s] (JSON `real_1_per_s`: every number of the JSON names its unit).
+    #[serde(rename = "real_1_per_s")]
     pub real: f64,
-    /// Im lambda [rad/s].
+    /// Im lambda [rad/s] (JSON `imag_rad_per_s`).
+    #[serde(rename = "imag_rad_per_s")]
     pub imag: f64,
     /// |lambda| / 2 pi [Hz].
     pub undamped_hz: f64,
@@ -326,6 +328,7 @@ fn mode_name(motions: &[Share]) -> (String, f64) {
 #[derive(Clone, Debug, Serialize)]
 pub struct Linearisation {
     /// Time of the state linearised about [s].
+    #[serde(rename = "t_s")]
     pub t: f64,
     /// Degrees of freedom after the constraints.
     pub dof: usize,

@@ -7,7 +7,7 @@
   const app = document.getElementById("app");
   const zero = D.modes.filter((m) => m.kind === "zero"), unstable = D.modes.filter((m) => m.kind === "unstable");
   app.append(el("p", {}, `${D.dof} degrees of freedom and ${D.first_order_states} first-order states (tyres, controllers): ${D.eigenvalues} eigenvalues, ${D.modes.length} modes (a conjugate pair listed once) · stiffness ratio S = ${D.stiffness_ratio == null ? "undefined" : fmt(D.stiffness_ratio)}`));
-  if (unstable.length) app.append(el("p", { class: "failed", id: "unstable" }, `UNSTABLE roots of this frozen state: ${unstable.map((m) => `mode ${m.index} ${m.name}, growth rate ${fmt(m.real)} 1/s (doubles in ${fmt(m.doubling_time_s)} s)`).join("; ")}.`));
+  if (unstable.length) app.append(el("p", { class: "failed", id: "unstable" }, `UNSTABLE roots of this frozen state: ${unstable.map((m) => `mode ${m.index} ${m.name}, growth rate ${fmt(m.real_1_per_s)} 1/s (doubles in ${fmt(m.doubling_time_s)} s)`).join("; ")}.`));
 
   // --- the view
   app.append(el("h2", { id: "view" }, "Mode shapes"));

@@ -5,6 +5,8 @@
   D.t = decode(D.t);
   for (const c of D.channels) c.v = decode(c.v);
   const S = D.summary;
+  // A unit of the summary (SI, ASCII as in the CSV) in its display form (m/s²).
+  const du = (u) => (D.units && D.units[u]) || u;
   const app = document.getElementById("app");
   const charts = [];
   window.towrideCharts = charts;
@@ -48,11 +50,12 @@
     app.append(el("p", { class: V.converged ? "" : "failed" }, V.converged
       ? `All ${n} judged channels converged: max, min and RMS within ${pct(V.threshold)} of a run at rtol ${V.check_rtol.toExponential()} (this run: ${V.rtol.toExponential()}; ${V.check_steps} steps, ${fmt(V.check_wall_s)} s wall).`
       : `${V.failing.length} of ${n} channels NOT converged (differences over ${pct(V.threshold)} against a run at rtol ${V.check_rtol.toExponential()}; this run: ${V.rtol.toExponential()}): ${V.failing.join(", ")}. Their numbers on this page depend on the tolerance.`));
-    const names = Object.keys(V.channels).sort((a, b) => (V.channels[a].converged - V.channels[b].converged) || a.localeCompare(b));
+    // Failing first; within each, the summary's natural order (the sort is stable).
+    const names = Object.keys(V.channels).sort((a, b) => V.channels[a].converged - V.channels[b].converged);
     // Per channel, folded away when everything converged.
     const box = el("details", V.converged ? {} : { open: "" }, el("summary", {}, "per channel: differences relative to max(|value|, floor)"));
     box.append(table(["channel", "unit", "max diff", "min diff", "RMS diff", "floor", "verdict"],
-      names.map((k) => { const c = V.channels[k]; return [k, c.unit, pct(c.max_diff), pct(c.min_diff), pct(c.rms_diff), fmt(c.floor), c.converged ? "converged" : "NOT converged"]; })));
+      names.map((k) => { const c = V.channels[k]; return [k, du(c.unit), pct(c.max_diff), pct(c.min_diff), pct(c.rms_diff), fmt(c.floor), c.converged ? "converged" : "NOT converged"]; })));
     app.append(box);
   }
   // --- 3D view, its time cursor shared with the charts both ways
@@ -90,7 +93,7 @@
       scales: { x: { time: false } },
       axes: [{ label: "time [s]", values: ticks }, { label: g.y, size: 70, values: ticks }],
       series: [{ label: "t [s]", value: (u, v) => fmt(v) }].concat(g.series.map((s) => ({
-        label: `${D.channels[s.ch].name} [${D.channels[s.ch].unit}]`,
+        label: `${D.channels[s.ch].name} [${D.channels[s.ch].du}]`,
         stroke: s.colour, width: s.width, dash: s.dash ? [8, 4] : undefined, show: s.show !== false,
         value: (u, v) => fmt(v),
       }))),
@@ -103,7 +106,7 @@
   // --- spectra
   app.append(el("h2", { id: "spectra" }, "Spectra"));
   const pick = el("select", { id: "psd-channel" });
-  D.channels.forEach((c, k) => { if (D.psd.density[k]) pick.append(el("option", { value: k }, `${c.name} [${c.unit}]`)); });
+  D.channels.forEach((c, k) => { if (D.psd.density[k]) pick.append(el("option", { value: k }, `${c.name} [${c.du}]`)); });
   app.append(el("p", { class: "hint" }, `Welch power spectral density: Hann window, ${D.psd.segment} samples per segment (${fmt(D.psd.fs / D.psd.segment)} Hz resolution), half overlap. Channel: `, pick));
   const psdBox = el("div", { class: "chart" });
   app.append(psdBox);
@@ -118,7 +121,7 @@
     psdChart = new uPlot({
       width: width(), height: 320,
       scales: { x: { time: false, distr: 3 }, y: { distr: 3 } },
-      axes: [{ label: "frequency [Hz]", values: logTicks }, { label: `PSD [(${c.unit})²/Hz]`, size: 80, values: logTicks }],
+      axes: [{ label: "frequency [Hz]", values: logTicks }, { label: `PSD [(${c.du})²/Hz]`, size: 80, values: logTicks }],
       series: [{ label: "f [Hz]", value: (u, v) => fmt(v) },
         { label: `${c.name}`, stroke: "#0072b2", width: 2, value: (u, v) => fmt(v) }],
       plugins: [wheel()],
@@ -166,7 +169,7 @@
   const chans = S.channels || {};
   const rows = [];
   const row = (n, c) => [n, c.signal === "band_limited" ? (A ? `band-limited, ${fmt(A.cutoff_hz)} Hz` : "band-limited") : "raw",
-    c.unit, c.min, c.t_min, c.max, c.t_max, c.abs_peak, c.t_abs_peak];
+    du(c.unit), c.min, c.t_min, c.max, c.t_max, c.abs_peak, c.t_abs_peak];
   for (const [n, c] of Object.entries(chans)) {
     if (c.signal !== "raw") continue;
     const t = c.twin && chans[c.twin];

@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
+use super::display;
 use super::figure::{render, Figure, Panel, Style, Trace};
 use crate::scene::channels;
 use crate::Error;
@@ -220,6 +221,8 @@ pub fn compare(runs: &[Run]) -> Result<Comparison, Error> {
             .iter()
             .any(|n| n.channels.iter().any(|c| c == name))
     };
+    // In the reference's column order (a run's CSV has `hitch_eta_2` before
+    // `hitch_eta_10` already).
     let common: Vec<&(String, String, Vec<f64>)> = first
         .channels
         .iter()
@@ -400,7 +403,11 @@ pub fn write(runs: &[Run], c: &mut Comparison, out: &Path, format: &str) -> Resu
                 .collect();
             Panel {
                 traces,
-                ..Panel::new(name.as_str(), "time [s]", format!("{name} [{unit}]"))
+                ..Panel::new(
+                    name.as_str(),
+                    "time [s]",
+                    format!("{name} [{}]", display::display_unit(unit)),
+                )
             }
         })
         .collect();
@@ -445,8 +452,9 @@ fn page(runs: &[Run], c: &Comparison) -> String {
             }
             first = false;
             super::html::string(&mut d, name);
+            // The page only shows the unit: its display form (m/s²).
             d.push_str(":{\"unit\":");
-            super::html::string(&mut d, unit);
+            super::html::string(&mut d, &display::display_unit(unit));
             d.push_str(",\"v\":");
             super::html::quantised(&mut d, v.iter().map(|x| x * f));
             d.push('}');
