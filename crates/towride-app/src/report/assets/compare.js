@@ -53,7 +53,8 @@
   }
   app.append(table(["channel", "unit", "run", `max ${C.runs[0]}`, "max", "max difference", `min ${C.runs[0]}`, "min", "min difference",
     `|peak| ${C.runs[0]}`, "|peak|", "|peak| difference", "RMS difference", "convergence (run --check)"],
-    C.differences.map((d) => [d.channel, d.unit, d.run, d.reference_max, d.max, d.max_difference, d.reference_min, d.min, d.min_difference,
+    // The unit as the plot shows it (m/s²): the channel data carry the display form.
+    C.differences.map((d) => [d.channel, (D.runs[0].channels[d.channel] || {}).unit || d.unit, d.run, d.reference_max, d.max, d.max_difference, d.reference_min, d.min, d.min_difference,
       d.reference_abs_peak, d.abs_peak, d.abs_peak_difference, d.rms_difference,
       d.converged == null ? "not checked" : d.converged ? "converged" : "NOT converged"])));
   // Modal coordinates of another Craig-Bampton basis: amplitudes of other mode shapes,
