@@ -6,7 +6,8 @@ use super::{towride_json, towride_ok};
 
 /// Numbers of the JSON named by what they count or as ratios and shares
 /// (dimensionless: also any `*_ratio`, `*_share`).
-const COUNTS_AND_RATIOS: [&str; 9] = [
+const COUNTS_AND_RATIOS: [&str; 10] = [
+    "schema_version",
     "bodies",
     "equations",
     "constraint_rows",
