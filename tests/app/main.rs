@@ -33,6 +33,7 @@ mod report_html;
 mod report_view;
 mod scene_outputs;
 mod study_sensitivity;
+mod study_sensitivity_page;
 mod study_sensitivity_runs;
 mod summary_schema;
 mod sweep_report;

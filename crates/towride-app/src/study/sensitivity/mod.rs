@@ -16,8 +16,11 @@
 
 pub mod assumed;
 pub mod morris;
+pub mod numbers;
 pub mod outputs;
+pub mod page;
 pub mod params;
+pub mod tornado;
 pub mod write;
 
 use std::path::{Path, PathBuf};
@@ -48,11 +51,22 @@ pub enum Method {
     Morris,
 }
 
+impl Method {
+    /// The method as engineers write it ("OAT", "Morris"): the JSON's snake_case name
+    /// (`oat`) is for programs, a Debug print of it read "Oat".
+    pub fn short(self) -> &'static str {
+        match self {
+            Method::Oat => "OAT",
+            Method::Morris => "Morris",
+        }
+    }
+}
+
 impl std::fmt::Display for Method {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(match self {
-            Method::Oat => "OAT elasticities",
-            Method::Morris => "Morris elementary effects",
+            Method::Oat => "OAT (one-at-a-time) study",
+            Method::Morris => "Morris screening (elementary effects)",
         })
     }
 }
@@ -111,6 +125,10 @@ pub struct OutputInfo {
     pub unit: String,
     /// Value of the base run.
     pub base: f64,
+    /// A `.abs_peak` output's signed sample at the base run's |peak|: whether the peak
+    /// was a pull or a push, which its magnitude hides.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub base_signed: Option<f64>,
 }
 
 /// One parameter's results, per output in `Study::outputs` order.
@@ -118,7 +136,7 @@ pub struct OutputInfo {
 pub struct ParamResult {
     /// The parameter.
     pub param: Param,
-    /// OAT elasticities d ln y / d ln p (`None`: a run failed or y <= 0).
+    /// OAT elasticities d ln y / d ln p (`None`: a run failed, or y is 0 or changes sign).
     pub elasticity: Vec<Option<f64>>,
     /// Morris statistics.
     pub morris: Vec<morris::Effects>,
@@ -190,7 +208,7 @@ pub struct Study {
 }
 
 impl Study {
-    /// Parameters ranked by the first output's |elasticity| (OAT) or mu* (Morris),
+    /// Parameters ranked by output `output`'s |elasticity| (OAT) or mu* (Morris),
     /// largest first.
     pub fn ranking(&self, output: usize) -> Vec<&ParamResult> {
         let key = |p: &ParamResult| match self.method {
@@ -302,7 +320,8 @@ fn pool(jobs: usize) -> Result<rayon::ThreadPool> {
 
 /// One run's outputs, why it failed, or that it was not run (interrupted).
 enum Outcome {
-    Done(Vec<f64>),
+    /// The outputs and, for `.abs_peak` ones, the signed value at the peak.
+    Done(Vec<f64>, Vec<Option<f64>>),
     Failed(String),
     NotRun,
 }
@@ -324,17 +343,20 @@ fn run_all(
                     return Outcome::NotRun;
                 }
                 let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(
-                    || -> Result<Vec<f64>> {
+                    || -> Result<(Vec<f64>, Vec<Option<f64>>)> {
                         let loader = s.base.fresh().extended(ov.clone());
                         let job = Job::from_file(&s.file, &loader)?.without_view();
                         let r = job.run(&StopOnly(progress))?;
                         r.require_completed()?;
-                        outputs::evaluate(specs, &r)
+                        Ok((
+                            outputs::evaluate(specs, &r)?,
+                            outputs::signed_peaks(specs, &r),
+                        ))
                     },
                 ));
                 progress.inc(1);
                 match r {
-                    Ok(Ok(v)) => Outcome::Done(v),
+                    Ok(Ok((v, signed))) => Outcome::Done(v, signed),
                     Ok(Err(Error::Scene(crate::scene::SceneError::Interrupted { .. }))) => {
                         Outcome::NotRun
                     }
@@ -411,8 +433,8 @@ pub fn run(s: &Settings, progress: &dyn Progress) -> Result<Study> {
         })
         .collect();
     let not_run = res.iter().filter(|r| matches!(r, Outcome::NotRun)).count();
-    let base = match &res[0] {
-        Outcome::Done(v) => v.clone(),
+    let (base, base_signed) = match &res[0] {
+        Outcome::Done(v, signed) => (v.clone(), signed.clone()),
         Outcome::Failed(e) => {
             return Err(crate::scene::SceneError::RunFailed {
                 name: format!("{} (the study's base run)", s.file.display()),
@@ -432,15 +454,17 @@ pub fn run(s: &Settings, progress: &dyn Progress) -> Result<Study> {
     let outputs: Vec<OutputInfo> = specs
         .iter()
         .zip(&base)
-        .map(|(o, b)| OutputInfo {
+        .zip(&base_signed)
+        .map(|((o, b), signed)| OutputInfo {
             name: o.name(),
             unit: o.unit.clone(),
             base: *b,
+            base_signed: *signed,
         })
         .collect();
     let no = outputs.len();
     let at = |i: usize, o: usize| match &res[i] {
-        Outcome::Done(v) => Some(v[o]),
+        Outcome::Done(v, _) => Some(v[o]),
         _ => None,
     };
     let mut results: Vec<ParamResult> = params
@@ -465,8 +489,11 @@ pub fn run(s: &Settings, progress: &dyn Progress) -> Result<Study> {
                 let zero = pr.note.is_some();
                 pr.elasticity = (0..no)
                     .map(|o| match (at(1 + 2 * j, o), at(2 + 2 * j, o)) {
-                        (Some(a), Some(b)) if a > 0.0 && b > 0.0 && !zero => {
-                            Some((b.ln() - a.ln()) / dl)
+                        // (p / y) dy/dp is d ln|y| / d ln p for either sign of y: a
+                        // negative output (a `.min`) has an elasticity too, as long as
+                        // both runs keep its sign.
+                        (Some(a), Some(b)) if a * b > 0.0 && !zero => {
+                            Some((b.abs().ln() - a.abs().ln()) / dl)
                         }
                         _ => None,
                     })
