@@ -34,6 +34,7 @@ mod report_run_figures;
 mod report_view;
 mod scene_outputs;
 mod study_sensitivity;
+mod study_sensitivity_page;
 mod study_sensitivity_runs;
 mod summary_schema;
 mod sweep_report;

@@ -27,7 +27,7 @@ fn sensitivity_writes_its_files_and_json() {
     assert!(mu(0) > 0.0 && mu(1) < 0.0, "{v}");
     for f in [
         "sensitivity.csv",
-        "tornado.png",
+        "tornado_k1.force.freq.png",
         "sensitivity.html",
         "sensitivity.json",
     ] {

@@ -16,202 +16,35 @@
 
 pub mod assumed;
 pub mod morris;
+pub mod numbers;
 pub mod outputs;
+pub mod page;
 pub mod params;
+pub mod settings;
+pub mod study;
+pub mod tornado;
 pub mod write;
 
-use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use rayon::prelude::*;
-use serde::Serialize;
 
 use crate::error::{Error, Result};
 use crate::job::Job;
 pub use outputs::OutputSpec;
 pub use params::Param;
-use towride_mbs::input::Loader;
+use settings::{check_settings, range_of};
+pub use settings::{
+    default_dir, Method, Settings, DEFAULT_GROUPS, MAX_TRAJECTORIES, MIN_TRAJECTORIES,
+};
+use study::verdict;
+pub use study::{FailedRun, OutputInfo, ParamResult, Study};
 use towride_mbs::input::Override;
 use towride_mbs::progress::Progress;
 
 /// Version of the study's JSON layout. 2: outputs `CHANNEL.abs_peak`, `.max`, `.min`
 /// (`.peak` and `.peak100` are gone; band-limited channels by their own names).
 pub const SCHEMA_VERSION: u32 = 2;
-
-/// The screening method.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Method {
-    /// One at a time, central differences at +-10 %.
-    Oat,
-    /// Morris elementary effects.
-    Morris,
-}
-
-impl std::fmt::Display for Method {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(match self {
-            Method::Oat => "OAT elasticities",
-            Method::Morris => "Morris elementary effects",
-        })
-    }
-}
-
-/// What to study.
-#[derive(Clone, Debug)]
-pub struct Settings {
-    /// Scene or mechanism file.
-    pub file: PathBuf,
-    /// Parameters named `FILE:PATH` (empty: discovered in `groups`).
-    pub params: Vec<String>,
-    /// Groups searched when `params` is empty (empty: [`DEFAULT_GROUPS`]).
-    pub groups: Vec<String>,
-    /// Outputs (empty: the defaults of [`outputs::defaults`]).
-    pub outputs: Vec<String>,
-    /// OAT or Morris.
-    pub method: Method,
-    /// Morris trajectories.
-    pub trajectories: usize,
-    /// Morris levels (even).
-    pub levels: usize,
-    /// Morris range: each value times 1 -+ this (OAT varies by +-10 % and ignores it).
-    pub range: f64,
-    /// Morris seed.
-    pub seed: u64,
-    /// Parallel runs.
-    pub jobs: usize,
-    /// The caller's overrides (`--set`, `--overrides`), under every run's own.
-    pub base: Loader,
-}
-
-impl Default for Settings {
-    fn default() -> Settings {
-        Settings {
-            file: PathBuf::new(),
-            params: Vec::new(),
-            groups: Vec::new(),
-            outputs: Vec::new(),
-            method: Method::Oat,
-            trajectories: 10,
-            levels: 4,
-            range: 0.3,
-            seed: 1,
-            jobs: 2,
-            base: Loader::new(),
-        }
-    }
-}
-
-/// An output with its base value.
-#[derive(Clone, Debug, Serialize)]
-pub struct OutputInfo {
-    /// `CHANNEL.measure`.
-    pub name: String,
-    /// Its unit.
-    pub unit: String,
-    /// Value of the base run.
-    pub base: f64,
-}
-
-/// One parameter's results, per output in `Study::outputs` order.
-#[derive(Clone, Debug, Serialize)]
-pub struct ParamResult {
-    /// The parameter.
-    pub param: Param,
-    /// OAT elasticities d ln y / d ln p (`None`: a run failed or y <= 0).
-    pub elasticity: Vec<Option<f64>>,
-    /// Morris statistics.
-    pub morris: Vec<morris::Effects>,
-    /// Morris mu* relative to the base output.
-    pub mu_star_rel: Vec<f64>,
-    /// Morris range of the scale factor [low, high].
-    pub range: [f64; 2],
-    /// Why a figure is missing (a base value of 0 has no relative change; no pair of
-    /// Morris runs completed).
-    pub note: Option<String>,
-}
-
-/// A run that failed.
-#[derive(Clone, Debug, Serialize)]
-pub struct FailedRun {
-    /// The parameter values of the run (`name=factor`).
-    pub changes: String,
-    /// The error.
-    pub error: String,
-}
-
-/// A finished study.
-#[derive(Clone, Debug, Serialize)]
-pub struct Study {
-    /// Layout version ([`SCHEMA_VERSION`]).
-    pub schema_version: u32,
-    /// "completed" (every run completed), "partial" (some failed: the figures they take
-    /// part in are missing) or "interrupted" (stopped on request; some not run).
-    pub status: String,
-    /// What the reader must know first when the status is not "completed".
-    pub note: Option<String>,
-    /// The caller's overrides under every run (`FILE:PATH = VALUE`): a study of a
-    /// shortened run is not one of the scene as filed.
-    pub overrides: Vec<String>,
-    /// Version, commit and command line of the program that made the study (the binary
-    /// fills them in before writing).
-    pub produced_by: crate::job::ProducedBy,
-    /// The scene or mechanism.
-    pub file: String,
-    /// OAT or Morris.
-    pub method: Method,
-    /// The outputs.
-    pub outputs: Vec<OutputInfo>,
-    /// The parameters studied.
-    pub params: Vec<ParamResult>,
-    /// Values found but not studied: the model does not depend on them, or they cannot
-    /// be varied (the reason follows the name).
-    pub inactive: Vec<String>,
-    /// Runs that failed.
-    pub failed: Vec<FailedRun>,
-    /// Runs not made: the study was interrupted before they started (or while they ran).
-    pub not_run: usize,
-    /// Runs made (the base run included).
-    pub runs: usize,
-    /// Parallel runs.
-    pub jobs: usize,
-    /// Morris trajectories, levels and seed.
-    pub trajectories: usize,
-    /// Morris levels.
-    pub levels: usize,
-    /// Morris seed.
-    pub seed: u64,
-    /// Wall time of the runs [s].
-    pub runs_wall_s: f64,
-    /// Wall time of the whole study (discovery included) [s].
-    pub wall_s: f64,
-    /// Files written.
-    pub written: Vec<String>,
-}
-
-impl Study {
-    /// Parameters ranked by the first output's |elasticity| (OAT) or mu* (Morris),
-    /// largest first.
-    pub fn ranking(&self, output: usize) -> Vec<&ParamResult> {
-        let key = |p: &ParamResult| match self.method {
-            Method::Oat => p
-                .elasticity
-                .get(output)
-                .copied()
-                .flatten()
-                .map_or(-1.0, f64::abs),
-            Method::Morris => p
-                .mu_star_rel
-                .get(output)
-                .copied()
-                .filter(|v| v.is_finite())
-                .unwrap_or(-1.0),
-        };
-        let mut v: Vec<&ParamResult> = self.params.iter().collect();
-        v.sort_by(|a, b| key(b).total_cmp(&key(a)));
-        v
-    }
-}
 
 /// Passes only the caller's stop request on to a run.
 struct StopOnly<'a>(&'a dyn Progress);
@@ -221,10 +54,6 @@ impl Progress for StopOnly<'_> {
         self.0.cancelled()
     }
 }
-
-/// The groups searched when none are named: the hitch, the trailer, the tyres and a
-/// `simple` vehicle's own file (its masses, ride frequencies, damping ratios, tyre).
-pub const DEFAULT_GROUPS: [&str; 4] = ["hitch", "trailer", "tyres", "vehicle"];
 
 /// The parameters of `s`: named, or discovered and filtered for activity.
 pub fn parameters(s: &Settings) -> Result<(Vec<Param>, Vec<String>)> {
@@ -302,7 +131,8 @@ fn pool(jobs: usize) -> Result<rayon::ThreadPool> {
 
 /// One run's outputs, why it failed, or that it was not run (interrupted).
 enum Outcome {
-    Done(Vec<f64>),
+    /// The outputs and, for `.abs_peak` ones, the signed value at the peak.
+    Done(Vec<f64>, Vec<Option<f64>>),
     Failed(String),
     NotRun,
 }
@@ -324,17 +154,20 @@ fn run_all(
                     return Outcome::NotRun;
                 }
                 let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(
-                    || -> Result<Vec<f64>> {
+                    || -> Result<(Vec<f64>, Vec<Option<f64>>)> {
                         let loader = s.base.fresh().extended(ov.clone());
                         let job = Job::from_file(&s.file, &loader)?.without_view();
                         let r = job.run(&StopOnly(progress))?;
                         r.require_completed()?;
-                        outputs::evaluate(specs, &r)
+                        Ok((
+                            outputs::evaluate(specs, &r)?,
+                            outputs::signed_peaks(specs, &r),
+                        ))
                     },
                 ));
                 progress.inc(1);
                 match r {
-                    Ok(Ok(v)) => Outcome::Done(v),
+                    Ok(Ok((v, signed))) => Outcome::Done(v, signed),
                     Ok(Err(Error::Scene(crate::scene::SceneError::Interrupted { .. }))) => {
                         Outcome::NotRun
                     }
@@ -411,8 +244,8 @@ pub fn run(s: &Settings, progress: &dyn Progress) -> Result<Study> {
         })
         .collect();
     let not_run = res.iter().filter(|r| matches!(r, Outcome::NotRun)).count();
-    let base = match &res[0] {
-        Outcome::Done(v) => v.clone(),
+    let (base, base_signed) = match &res[0] {
+        Outcome::Done(v, signed) => (v.clone(), signed.clone()),
         Outcome::Failed(e) => {
             return Err(crate::scene::SceneError::RunFailed {
                 name: format!("{} (the study's base run)", s.file.display()),
@@ -432,15 +265,17 @@ pub fn run(s: &Settings, progress: &dyn Progress) -> Result<Study> {
     let outputs: Vec<OutputInfo> = specs
         .iter()
         .zip(&base)
-        .map(|(o, b)| OutputInfo {
+        .zip(&base_signed)
+        .map(|((o, b), signed)| OutputInfo {
             name: o.name(),
             unit: o.unit.clone(),
             base: *b,
+            base_signed: *signed,
         })
         .collect();
     let no = outputs.len();
     let at = |i: usize, o: usize| match &res[i] {
-        Outcome::Done(v) => Some(v[o]),
+        Outcome::Done(v, _) => Some(v[o]),
         _ => None,
     };
     let mut results: Vec<ParamResult> = params
@@ -465,8 +300,11 @@ pub fn run(s: &Settings, progress: &dyn Progress) -> Result<Study> {
                 let zero = pr.note.is_some();
                 pr.elasticity = (0..no)
                     .map(|o| match (at(1 + 2 * j, o), at(2 + 2 * j, o)) {
-                        (Some(a), Some(b)) if a > 0.0 && b > 0.0 && !zero => {
-                            Some((b.ln() - a.ln()) / dl)
+                        // (p / y) dy/dp is d ln|y| / d ln p for either sign of y: a
+                        // negative output (a `.min`) has an elasticity too, as long as
+                        // both runs keep its sign.
+                        (Some(a), Some(b)) if a * b > 0.0 && !zero => {
+                            Some((b.abs().ln() - a.abs().ln()) / dl)
                         }
                         _ => None,
                     })
@@ -531,111 +369,4 @@ pub fn run(s: &Settings, progress: &dyn Progress) -> Result<Study> {
         wall_s: wall.elapsed().as_secs_f64(),
         written: Vec::new(),
     })
-}
-
-/// The study's status and the sentence its outputs open with (see [`Study::status`]).
-fn verdict(runs: usize, failed: usize, not_run: usize) -> (String, Option<String>) {
-    if not_run > 0 {
-        let f = if failed > 0 {
-            format!(" and {failed} failed")
-        } else {
-            String::new()
-        };
-        return (
-            "interrupted".into(),
-            Some(format!(
-                "interrupted: {not_run} of {runs} runs not run{f}; the figures are partial \
-                 (those without a completed run are left empty)"
-            )),
-        );
-    }
-    if failed > 0 {
-        return (
-            "partial".into(),
-            Some(format!(
-                "{failed} of {runs} runs failed: the figures they take part in are missing \
-                 (the failures are listed with the study)"
-            )),
-        );
-    }
-    ("completed".into(), None)
-}
-
-/// Settings a study cannot be made with, refused before any run.
-fn check_settings(s: &Settings) -> Result<()> {
-    let bad = |field: &str, message: String| -> Error {
-        towride_mbs::input::InputError {
-            file: "command line".into(),
-            line: None,
-            column: None,
-            field: field.into(),
-            message,
-            kind: Default::default(),
-        }
-        .into()
-    };
-    if s.method == Method::Morris
-        && !(MIN_TRAJECTORIES..=MAX_TRAJECTORIES).contains(&s.trajectories)
-    {
-        return Err(bad(
-            "--trajectories",
-            format!(
-                "{}: Morris needs {MIN_TRAJECTORIES} to {MAX_TRAJECTORIES} trajectories \
-                 (sigma takes two elementary effects per parameter)",
-                s.trajectories
-            ),
-        ));
-    }
-    if !(s.range > 0.0 && s.range < 1.0) {
-        return Err(bad(
-            "--range",
-            format!("{}: a fraction between 0 and 1", s.range),
-        ));
-    }
-    Ok(())
-}
-
-/// Morris trajectories accepted: two give sigma its first degree of freedom; a thousand
-/// is far beyond screening practice (10 to 50) and bounds the runs.
-pub const MIN_TRAJECTORIES: usize = 2;
-/// See [`MIN_TRAJECTORIES`].
-pub const MAX_TRAJECTORIES: usize = 1000;
-
-/// The Morris range of a parameter's scale factor: 1 -+ `range`, narrowed to the
-/// plausibility bounds of its key.
-fn range_of(p: &Param, range: f64) -> [f64; 2] {
-    let key = p.path.rsplit('.').next().unwrap_or(&p.path);
-    let b = towride_mbs::input::bounds::for_key(key);
-    let v = p.base_value().abs();
-    let (mut lo, mut hi) = (1.0 - range, 1.0 + range);
-    if v > 0.0 {
-        lo = lo.max(b.min / v);
-        hi = hi.min(b.max / v);
-    }
-    [lo, hi]
-}
-
-/// The study's directory for a scene: `out/sensitivity/<scene path>`, the scene's path
-/// relative to the working directory without its extension, separators as `_`
-/// (`scenes/van_air/bump_50mm.toml`: `scenes_van_air_bump_50mm`), so two scenes of one
-/// name in different folders keep their own studies. A scene outside the working
-/// directory: its stem and 8 hex digits of the FNV-1a of its normalised path.
-pub fn default_dir(file: &Path) -> PathBuf {
-    use towride_mbs::input::normalized;
-    let cwd = std::env::current_dir().unwrap_or_default();
-    let full = normalized(&cwd.join(file));
-    let name = match full.strip_prefix(normalized(&cwd)) {
-        Ok(rel) if !rel.as_os_str().is_empty() => rel
-            .with_extension("")
-            .components()
-            .map(|c| c.as_os_str().to_string_lossy().into_owned())
-            .collect::<Vec<_>>()
-            .join("_"),
-        _ => {
-            let stem = file.file_stem().unwrap_or_default().to_string_lossy();
-            let h = crate::sweep::fingerprint::fnv1a(full.to_string_lossy().as_bytes());
-            format!("{stem}_{:08x}", h as u32)
-        }
-    };
-    PathBuf::from("out").join("sensitivity").join(name)
 }

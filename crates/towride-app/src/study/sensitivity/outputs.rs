@@ -216,3 +216,24 @@ pub fn evaluate(specs: &[OutputSpec], r: &RunResult) -> Result<Vec<f64>> {
         })
         .collect()
 }
+
+/// Per output, an `.abs_peak`'s signed sample at its largest magnitude (the first such
+/// sample); `None` for the other measures, whose values carry their sign already.
+pub fn signed_peaks(specs: &[OutputSpec], r: &RunResult) -> Vec<Option<f64>> {
+    specs
+        .iter()
+        .map(|o| {
+            if o.measure != Measure::AbsPeak {
+                return None;
+            }
+            let y = r.channel(&o.channel).unwrap_or_default();
+            y.iter().copied().filter(|v| v.is_finite()).reduce(|m, v| {
+                if v.abs() > m.abs() {
+                    v
+                } else {
+                    m
+                }
+            })
+        })
+        .collect()
+}
