@@ -170,7 +170,7 @@ fn tables_of_many_outputs_fit_the_window_with_two_significant_figures() {
     let named = tables
         .iter()
         .flat_map(|t| between(t, "<th class=\"out\">", "</th>"))
-        .filter(|h| h.ends_with("[m/s^2]"))
+        .filter(|h| h.ends_with("[m/s²]"))
         .count();
     assert_eq!(named, 10);
     // The figures: signed, two significant figures (0.87, not 0.8695).

@@ -20,7 +20,7 @@ fn sensitivity_writes_its_files_and_json() {
         dir.to_str().unwrap(),
         "--json",
     ]);
-    assert_eq!(v["schema_version"], 2);
+    assert_eq!(v["schema_version"], 3);
     assert_eq!(v["runs"], 1 + 3 * 3);
     // Raising k raises the frequency, raising m lowers it: the signs of mu.
     let mu = |i: usize| v["params"][i]["morris"][0]["mu"].as_f64().unwrap();

@@ -43,8 +43,10 @@ use towride_mbs::input::Override;
 use towride_mbs::progress::Progress;
 
 /// Version of the study's JSON layout. 2: outputs `CHANNEL.abs_peak`, `.max`, `.min`
-/// (`.peak` and `.peak100` are gone; band-limited channels by their own names).
-pub const SCHEMA_VERSION: u32 = 2;
+/// (`.peak` and `.peak100` are gone; band-limited channels by their own names). 3: each
+/// output's `base_signed` (an `.abs_peak`'s signed sample) and elasticities of negative
+/// outputs.
+pub const SCHEMA_VERSION: u32 = 3;
 
 /// Passes only the caller's stop request on to a run.
 struct StopOnly<'a>(&'a dyn Progress);

@@ -2,6 +2,7 @@
 //! first, the base run's outputs with their signs, one tornado chart per output and the
 //! figures of every parameter in tables that fit a 1300 px window.
 
+use crate::report::display::display_unit;
 use std::fmt::Write as _;
 
 use super::numbers::{exact, sig, signed, with_unit};
@@ -135,7 +136,7 @@ pub fn page(s: &Study) -> String {
 
 /// The base run's value of an output, signed, with its unit.
 pub fn base_value(o: &OutputInfo) -> String {
-    with_unit(&sig(o.base, 4), &o.unit)
+    with_unit(&sig(o.base, 4), &display_unit(&o.unit))
 }
 
 /// The outputs and the base run's value of each; an `.abs_peak` also with the signed
@@ -146,14 +147,14 @@ fn outputs(h: &mut String, s: &Study) {
          <th>base run</th><th>signed value at the peak</th></tr>\n",
     );
     for o in &s.outputs {
-        let at_peak = o
-            .base_signed
-            .map_or(String::new(), |v| with_unit(&sig(v, 4), &o.unit));
+        let at_peak = o.base_signed.map_or(String::new(), |v| {
+            with_unit(&sig(v, 4), &display_unit(&o.unit))
+        });
         let _ = writeln!(
             h,
             "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
             escape(&o.name),
-            escape(&o.unit),
+            escape(&display_unit(&o.unit)),
             escape(&base_value(o)),
             escape(&at_peak)
         );
@@ -227,7 +228,7 @@ fn tables(
                 h,
                 "<th class=\"out\">{} [{}]</th>",
                 breakable(&o.name),
-                escape(&o.unit)
+                escape(&display_unit(&o.unit))
             );
         }
         h.push_str("</tr>\n");

@@ -3,6 +3,7 @@
 //! figures as horizontal bars, those raising the output in one colour and those lowering
 //! it in another. Small enough for two side by side on the page.
 
+use crate::report::display::display_unit;
 use std::path::{Path, PathBuf};
 
 use super::numbers::{sig, with_unit};
@@ -169,13 +170,13 @@ pub fn tornado(s: &Study, o: usize, path: &Path) -> Result<bool> {
 
 /// The chart's title: the output and its unit.
 pub fn title(out: &OutputInfo) -> String {
-    format!("{} [{}]", out.name, out.unit)
+    format!("{} [{}]", out.name, display_unit(&out.unit))
 }
 
 /// The base run's value of an output; an `.abs_peak`'s also signed, which its
 /// magnitude hides.
 pub fn base_run(out: &OutputInfo) -> String {
-    let v = |x: f64| with_unit(&sig(x, 4), &out.unit);
+    let v = |x: f64| with_unit(&sig(x, 4), &display_unit(&out.unit));
     match out.base_signed {
         Some(x) => format!("base run {}, signed {}", v(out.base), v(x)),
         None => format!("base run {}", v(out.base)),
