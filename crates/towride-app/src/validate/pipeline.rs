@@ -216,7 +216,7 @@ pub fn validate_run(
             let n = a.channels.values().next().map_or(0, |v| v.len());
             let t: Vec<f64> = (0..n).map(|k| a.t0_s + k as f64 * a.dt_s).collect();
             let w = [a.obstacle_time_s - 0.3, a.obstacle_time_s + 0.5];
-            passage::front_onset(&t, &a.channels, &sets.front, Some(w))
+            passage::front_onset(&t, &a.channels, &sets.front, Some(w), v)
                 .ok()
                 .map(|o| o.time_s - a.obstacle_time_s)
         });
