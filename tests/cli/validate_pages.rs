@@ -258,3 +258,55 @@ fn a_run_page_s_tables_fit_and_its_spectra_resolve_body_modes_within_the_band() 
         assert_eq!(ch["measured"].as_array().unwrap().len(), f.len());
     }
 }
+
+/// A run's page lists the notes made reading it, each on its line (it once said "3
+/// repair(s) reading the CSV, first: ..." and never named the others): three samples
+/// taken out of a shipped recording are three interpolation notes, all on the page.
+#[test]
+fn a_run_page_lists_every_repair() {
+    let d = tmp("notes");
+    std::fs::create_dir_all(&d).unwrap();
+    let root = repo!("");
+    let run = "bump_25mm_30kmh_empty";
+    let csv = std::fs::read_to_string(format!("{root}measurements/synthetic/{run}.csv")).unwrap();
+    // Data lines 300, 600 and 900 (a gap of one sample each) dropped.
+    let mut data = 0;
+    let kept: Vec<&str> = csv
+        .lines()
+        .filter(|l| {
+            if l.starts_with('#') || l.starts_with("time") {
+                return true;
+            }
+            data += 1;
+            data % 300 != 0 || data > 900
+        })
+        .collect();
+    std::fs::write(d.join(format!("{run}.csv")), kept.join("\n")).unwrap();
+    let toml = std::fs::read_to_string(format!("{root}measurements/synthetic/{run}.toml"))
+        .unwrap()
+        .replace("scene = \"../../", &format!("scene = \"{root}"));
+    std::fs::write(d.join(format!("{run}.toml")), toml).unwrap();
+    let out = d.join("out");
+    crate::towride_ok(&[
+        "validate",
+        d.join(format!("{run}.toml")).to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let text = std::fs::read_to_string(out.join(run).join("report.html")).unwrap();
+    let a = text.find("id=\"data\">").unwrap() + 10;
+    let page: serde_json::Value =
+        serde_json::from_str(&text[a..a + text[a..].find("</script>").unwrap()]).unwrap();
+    let lines: Vec<&str> = page["header"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| l[0].as_str().unwrap())
+        .collect();
+    let repairs: Vec<&&str> = lines
+        .iter()
+        .filter(|l| l.contains("missing sample(s)") && l.contains("interpolated"))
+        .collect();
+    assert_eq!(repairs.len(), 3, "{lines:#?}");
+    std::fs::remove_dir_all(&d).ok();
+}
