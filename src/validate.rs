@@ -299,7 +299,12 @@ fn init(a: &InitArgs) -> CliResult {
             serde_json::to_string_pretty(&doc).map_err(|e| e.to_string())?
         );
     } else {
-        let mapped = s.columns.iter().filter(|c| c.simulated.is_some()).count();
+        // The speed channel is mapped too (the draft's [speed] column).
+        let mapped = s
+            .columns
+            .iter()
+            .filter(|c| c.simulated.is_some() || c.speed_channel)
+            .count();
         println!(
             "{}: {} rows at {} Hz ({:?} time base), {mapped} of {} columns mapped; wrote {}",
             a.data.display(),

@@ -303,3 +303,48 @@ fn a_folder_of_runs_gives_peak_trends_and_wheel_hop_frequencies() {
     }
     assert_eq!(rows, 12);
 }
+
+/// Issue 31 item 11: the column drafted as `[speed] column` is mapped; the draft's list
+/// of unmapped columns named it anyway ("Vehicle speed [km/h]: vehicle speed"). A second
+/// speed column is unmapped, saying which one is the speed channel.
+#[test]
+fn the_speed_column_is_mapped_not_listed_as_unmapped() {
+    let d = dir("init-speed");
+    let csv = d.join("speeds.csv");
+    let mut text = String::from(
+        "time [s],FL Unsprung acceleration [g],Vehicle speed [km/h],GPS speed [km/h],RL air spring pressure [bar]\n",
+    );
+    for k in 0..200 {
+        let t = k as f64 * 0.001;
+        let _ = std::fmt::Write::write_fmt(
+            &mut text,
+            format_args!("{t:.3},{:.4},30.0,30.1,5.2\n", 1.0 + 0.1 * (40.0 * t).sin()),
+        );
+    }
+    std::fs::write(&csv, text).unwrap();
+    let mut s = sniff(&csv, None).unwrap();
+    map_columns(&mut s, &scene_sensors(Path::new(SCENE)).unwrap());
+    let draft = draft(&s, Path::new(SCENE), &d.join("speeds.toml"));
+    assert!(draft.contains("[speed]") && draft.contains("column = \"Vehicle speed\""));
+    let unmapped = draft
+        .split("# Columns not mapped onto the scene's channels:")
+        .nth(1)
+        .expect("the pressure and the second speed are unmapped");
+    let listed: Vec<&str> = unmapped
+        .lines()
+        .filter_map(|l| l.strip_prefix("#   "))
+        .collect();
+    assert_eq!(listed.len(), 2, "{listed:?}");
+    assert!(listed[0].starts_with("GPS speed [km/h]: ") && listed[0].contains("`Vehicle speed`"));
+    assert!(listed[1].starts_with("RL air spring pressure [bar]: not an acceleration"));
+    // The sniff as `validate init --json` prints it: the speed column has no reason to be
+    // unmapped.
+    let j = serde_json::to_value(&s).unwrap();
+    let speed = j["columns"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|c| c["name"] == "Vehicle speed")
+        .unwrap();
+    assert!(speed["unmapped"].is_null(), "{speed}");
+}

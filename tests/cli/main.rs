@@ -31,6 +31,7 @@ mod sweep;
 mod sweep_inputs;
 mod tyre_rig;
 mod validate_folder;
+mod validate_pages;
 mod validate_signal;
 
 /// Runs the binary from the repository's root with `args`.

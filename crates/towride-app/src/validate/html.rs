@@ -1,20 +1,17 @@
 //! The self-contained HTML report of a validated run (`OUT/<run>/report.html`, beside
 //! its PNG page): the run's figures, the error metrics per channel and comparison,
 //! measured and simulated curves overlaid per sensor (uncorrected and corrected, the
-//! time cursor shared), and their Welch spectra. Built from the run report's pieces
+//! time cursor shared), and their spectra ([`super::spectra`]). Built from the run report's pieces
 //! ([`crate::report::html`]: uPlot, shared script, styles, the quantised signals).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use super::pipeline::{Comparison, RunValidation};
+use super::spectra;
 use super::ValidateError;
 use crate::report::figure::{Rgb, MEASURED, SIMULATED};
 use crate::report::html::{quantised, string};
-use crate::signal::psd::{segment_length, welch};
-
-/// Longest Welch segment [samples] (as the run report's).
-const PSD_MAX_SEGMENT: usize = 2048;
 
 fn hex(c: Rgb) -> String {
     format!("#{:02x}{:02x}{:02x}", c[0], c[1], c[2])
@@ -69,17 +66,18 @@ fn comparison(d: &mut String, c: &Comparison) {
     d.push_str("]}");
 }
 
-/// Welch spectra of the measured and simulated curves of the primary comparison, on
-/// one frequency grid.
-fn spectra(d: &mut String, c: &Comparison) {
+/// Spectra of the measured and simulated curves of the primary comparison, on one
+/// frequency grid up to the band both carry ([`super::spectra`]).
+fn spectra(d: &mut String, run: &RunValidation) {
+    let c = run.primary();
     let n = c.time_s.len();
     let fs = if n > 1 {
         (n - 1) as f64 / (c.time_s[n - 1] - c.time_s[0])
     } else {
         0.0
     };
-    let len = segment_length(n, PSD_MAX_SEGMENT);
-    let mut freq: Option<Vec<f64>> = None;
+    let band = spectra::band_hz(fs, run.simulation_rate_hz, run.acquisition_cutoff_hz);
+    let mut grid: Option<spectra::Spectrum> = None;
     let mut per = String::from("[");
     for (k, f) in c.channels.iter().enumerate() {
         if k > 0 {
@@ -94,14 +92,13 @@ fn spectra(d: &mut String, c: &Comparison) {
                 per.push(',');
             }
             let _ = write!(per, "\"{key}\":");
-            let p = map
+            match map
                 .get(&f.channel)
-                .filter(|_| fs > 0.0)
-                .and_then(|v| welch(v, fs, len));
-            match p {
+                .and_then(|v| spectra::density(v, fs, band))
+            {
                 Some(p) => {
                     json(&mut per, &p.density);
-                    freq.get_or_insert(p.freq);
+                    grid.get_or_insert(p);
                 }
                 None => per.push_str("null"),
             }
@@ -109,11 +106,46 @@ fn spectra(d: &mut String, c: &Comparison) {
         per.push('}');
     }
     per.push(']');
-    let _ = write!(d, "{{\"segment\":{len},\"fs\":{},\"f\":", num(fs));
-    json(d, &freq.unwrap_or_default());
+    let (segment_s, segments, freq) = grid.map_or((f64::NAN, 0, Vec::new()), |g| {
+        (g.segment_s, g.segments, g.freq)
+    });
+    let _ = write!(
+        d,
+        "{{\"fs\":{},\"band_hz\":{},\"recording_hz\":{},\"simulation_hz\":{},\"cutoff_hz\":{},\"segment_s\":{},\"segments\":{segments},\"f\":",
+        num(fs),
+        num(band),
+        num(run.sample_rate_hz),
+        num(run.simulation_rate_hz),
+        num(run.acquisition_cutoff_hz),
+        num(segment_s)
+    );
+    json(d, &freq);
     d.push_str(",\"channels\":");
     d.push_str(&per);
     d.push('}');
+}
+
+/// Styles of the validation pages beyond the reports' own: wide tables scroll inside
+/// their box, never past the page; figures take the content width.
+const VALIDATE_CSS: &str = ".wide { overflow-x: auto; max-width: 100%; }\n\
+    svg.trend { width: 100%; max-width: 1600px; height: auto; display: block; }\n\
+    img.page { max-width: 100%; }\n\
+    td.l, th.l { text-align: left; }";
+
+/// A page without script (a folder's index and trends) in the reports' shell: the same
+/// head and styles as a run's report and a validated run's page; `body` is HTML.
+pub(crate) fn static_page(title: &str, body: &str) -> String {
+    use crate::report::html::{escape, REPORT_CSS};
+    format!(
+        "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
+         <meta name=\"generator\" content=\"towride {}\">\
+         <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\
+         <title>{}</title>\n<style>{REPORT_CSS}\n{VALIDATE_CSS}</style></head>\n\
+         <body>\n<h1>{}</h1>\n{body}\n</body></html>\n",
+        env!("CARGO_PKG_VERSION"),
+        escape(title),
+        escape(title),
+    )
 }
 
 /// The page of run `run`.
@@ -135,7 +167,7 @@ pub fn page(run: &RunValidation) -> String {
     d.push_str("],\"channels\":");
     json(&mut d, &run.channels);
     d.push_str(",\"psd\":");
-    spectra(&mut d, run.primary());
+    spectra(&mut d, run);
     d.push('}');
     crate::report::html::page(
         &format!("towride validate: {}", run.name),

@@ -54,6 +54,8 @@ pub struct Column {
     pub flat_top_g: Option<f64>,
     /// The scene's channel it is mapped onto, if any.
     pub simulated: Option<String>,
+    /// Mapped as the vehicle-speed channel (the draft's `[speed] column`).
+    pub speed_channel: bool,
     /// Why it is not mapped, when it is not.
     pub unmapped: Option<String>,
 }
@@ -303,6 +305,7 @@ pub fn sniff(file: &Path, rate_hz: Option<f64>) -> Result<Sniff, InputError> {
                 median,
                 flat_top_g,
                 simulated: None,
+                speed_channel: false,
                 unmapped: None,
             }
         })
@@ -393,18 +396,31 @@ pub fn scene_sensors(scene: &Path) -> Result<Vec<(String, [bool; 3])>, InputErro
         .collect())
 }
 
-/// Maps the sniffed acceleration columns onto `sensors`; each scene channel once.
+/// Maps the sniffed acceleration columns onto `sensors`, each scene channel once, and
+/// the first speed column as the vehicle-speed channel (it is mapped, not unmapped).
 pub fn map_columns(s: &mut Sniff, sensors: &[(String, [bool; 3])]) {
     let mut taken: Vec<String> = Vec::new();
+    let mut speed: Option<String> = None;
     for c in s.columns.iter_mut() {
+        c.speed_channel = false;
+        if c.kind == Kind::Speed {
+            match &speed {
+                None => {
+                    c.unmapped = None;
+                    c.speed_channel = true;
+                    speed = Some(c.name.clone());
+                }
+                Some(first) => {
+                    c.unmapped = Some(format!("a second speed: `{first}` is the speed channel"))
+                }
+            }
+            continue;
+        }
         if c.kind != Kind::Acceleration {
-            c.unmapped = Some(match c.kind {
-                Kind::Speed => "vehicle speed".into(),
-                _ => format!(
-                    "not an acceleration (unit {})",
-                    c.unit.as_deref().unwrap_or("none")
-                ),
-            });
+            c.unmapped = Some(format!(
+                "not an acceleration (unit {})",
+                c.unit.as_deref().unwrap_or("none")
+            ));
             continue;
         }
         match map_channel(&c.name, sensors) {
@@ -527,7 +543,13 @@ pub fn draft(s: &Sniff, scene: &Path, out: &Path) -> String {
             s.time_base.rate_hz
         );
     }
-    if let Some(c) = s.columns.iter().find(|c| c.kind == Kind::Speed) {
+    // The speed channel as mapped (the first speed column when not mapped yet).
+    let speed = s
+        .columns
+        .iter()
+        .find(|c| c.speed_channel)
+        .or_else(|| s.columns.iter().find(|c| c.kind == Kind::Speed));
+    if let Some(c) = speed {
         let _ = writeln!(t, "\n[speed]  # the vehicle-speed channel: the simulated speed is its mean over the passage");
         let _ = writeln!(t, "column = {}", quoted(&c.name));
     } else {
@@ -574,8 +596,11 @@ pub fn draft(s: &Sniff, scene: &Path, out: &Path) -> String {
             }
         }
     }
-    let unmapped: Vec<&super::init::Column> =
-        s.columns.iter().filter(|c| c.simulated.is_none()).collect();
+    let unmapped: Vec<&super::init::Column> = s
+        .columns
+        .iter()
+        .filter(|c| c.simulated.is_none() && speed.is_none_or(|v| v.name != c.name))
+        .collect();
     if !unmapped.is_empty() {
         let _ = writeln!(t, "\n# Columns not mapped onto the scene's channels:");
         for c in unmapped {

@@ -37,10 +37,12 @@ pub mod report;
 pub mod scene_info;
 mod text;
 
+pub mod spectra;
 pub mod speed;
 pub mod synth;
 pub mod timebase;
 pub mod trends;
+pub(crate) mod trends_svg;
 pub(crate) mod trigger;
 pub mod units;
 pub(crate) mod vehicle_sim;

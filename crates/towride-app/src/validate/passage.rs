@@ -7,7 +7,10 @@
 //! peak stands at least [`SNR_MIN`] times above the envelope's median (the noise), else
 //! detection fails with an error rather than a guess. Its onset is where the envelope
 //! last rose above max(4 x median, 5 % of the peak) before the peak, gaps below that
-//! shorter than 30 ms (zero crossings of the wheel hop) bridged.
+//! bridged when shorter than 30 ms (zero crossings of the wheel hop) or than the time to
+//! travel [`QUIET_M`] (the dip between an obstacle's entry and its exit: at 10 km/h the
+//! exit of a 0.5 m bump is a second event 0.2 s after the entry, often the larger one,
+//! and a time-only bridge put the onset at the exit, 0.5 m late).
 //!
 //! The rear axle (and a trailer's axle) is then looked for where the wheelbase at the
 //! measured speed puts it, within +-40 % of that delay, by the same rule on its own
@@ -31,6 +34,19 @@ const DETREND_S: f64 = 0.05;
 const SMOOTH_S: f64 = 0.005;
 /// Dips below the threshold shorter than this are bridged [s].
 const QUIET_S: f64 = 0.03;
+/// Dips shorter than this much travel are bridged too [m]: an obstacle's entry and exit
+/// are one passage (the plan's bump and ramp are 0.5 m long; the dip between their
+/// events is at most 0.2 m of travel at 10 km/h, see the module text).
+pub const QUIET_M: f64 = 0.5;
+
+/// The longest dip bridged at `speed_mps` [s] (30 ms when the speed is unknown).
+fn quiet_s(speed_mps: f64) -> f64 {
+    if speed_mps.is_finite() && speed_mps > 0.0 {
+        QUIET_S.max(QUIET_M / speed_mps)
+    } else {
+        QUIET_S
+    }
+}
 /// The rear axle is searched within this share of the expected delay around it.
 const REAR_WINDOW: f64 = 0.4;
 
@@ -218,15 +234,16 @@ pub struct Onset {
 }
 
 /// The onset of the largest event of `env` (times `t`) inside [`lo`, `hi`]; the noise is
-/// the median over `noise` (indices). `None` when the peak is not `snr_min` above it or
-/// the event runs into the window's start.
+/// the median over `noise` (indices); dips shorter than `quiet_s` [s] are bridged. An
+/// error when the peak is not `snr_min` above the noise or the event runs into the
+/// window's start.
 pub fn onset(
     t: &[f64],
     env: &[f64],
-    lo: f64,
-    hi: f64,
+    [lo, hi]: [f64; 2],
     noise: &[f64],
     snr_min: f64,
+    quiet_s: f64,
 ) -> Result<Onset, OnsetError> {
     let idx: Vec<usize> = (0..env.len())
         .filter(|&k| t[k] >= lo && t[k] <= hi)
@@ -257,7 +274,7 @@ pub fn onset(
         k -= 1;
         if env[k] > thr {
             above = k;
-        } else if t[above] - t[k] > QUIET_S {
+        } else if t[above] - t[k] > quiet_s {
             break;
         }
     }
@@ -308,12 +325,13 @@ fn slices<'a>(channels: &'a BTreeMap<String, Vec<f64>>, names: &[String]) -> Vec
 }
 
 /// Onset of the front axle's event in a uniformly sampled set of channels (`t`), within
-/// `window`, or an error saying why none is visible.
+/// `window`, driven at `speed_mps` (NaN: unknown), or an error saying why none is visible.
 pub fn front_onset(
     t: &[f64],
     channels: &BTreeMap<String, Vec<f64>>,
     front: &[String],
     window: Option<[f64; 2]>,
+    speed_mps: f64,
 ) -> Result<Onset, OnsetError> {
     let ch = slices(channels, front);
     if ch.is_empty() || t.len() < 10 {
@@ -323,8 +341,8 @@ pub fn front_onset(
     }
     let dt = (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64;
     let env = envelope(&ch, dt);
-    let [lo, hi] = window.unwrap_or([t[0], t[t.len() - 1]]);
-    onset(t, &env, lo, hi, &env, SNR_MIN)
+    let w = window.unwrap_or([t[0], t[t.len() - 1]]);
+    onset(t, &env, w, &env, SNR_MIN, quiet_s(speed_mps))
 }
 
 /// Finds the passage: the front axle, then the rear and trailer axles where the
@@ -338,7 +356,10 @@ pub fn detect(
     window: Option<[f64; 2]>,
     notes: &mut Vec<String>,
 ) -> Result<Passage, PassageError> {
-    let front = front_onset(t, channels, &sets.front, window).map_err(|onset| {
+    // The mean speed over the search: it scales the dips bridged.
+    let [lo, hi] = window.unwrap_or([t[0], t[t.len() - 1]]);
+    let speed = (track.position(hi) - track.position(lo)) / (hi - lo);
+    let front = front_onset(t, channels, &sets.front, window, speed).map_err(|onset| {
         PassageError::NotVisible {
             front: sets.front.clone(),
             onset,
@@ -379,7 +400,8 @@ pub fn detect(
         } else {
             env.clone()
         };
-        match onset(t, &env, lo, hi, &noise, SNR_MIN) {
+        let v = d / delay;
+        match onset(t, &env, [lo, hi], &noise, SNR_MIN, quiet_s(v)) {
             Ok(o) => {
                 let implied = track.position(o.time_s) - x0;
                 if (implied / d - 1.0).abs() > 0.1 {

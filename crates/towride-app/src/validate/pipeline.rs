@@ -85,6 +85,10 @@ pub struct RunValidation {
     pub speed: SpeedInfo,
     /// Sample rate of the recording [Hz].
     pub sample_rate_hz: f64,
+    /// Sample rate of the simulation before the acquisition chain [Hz] (NaN: unknown).
+    pub simulation_rate_hz: f64,
+    /// Cut-off of the acquisition low-pass [Hz] (the descriptor's).
+    pub acquisition_cutoff_hz: f64,
     /// How the recording's sample times were found.
     pub time_base: TimeBase,
     /// The passage as found in the signals, when searched for.
@@ -196,10 +200,16 @@ pub fn validate_run(
         notes.push("no nominal speed in the descriptor: the uncorrected comparison uses the measured speed".into());
     }
     let load = desc.load_case.clone().unwrap_or_default();
+    // The simulation's own sample rate (before the acquisition chain resamples it): its
+    // curves carry nothing above half of it.
+    let sim_rate = std::cell::Cell::new(f64::NAN);
     let run_sim = |v: f64| -> Result<(Acquired, Option<f64>), ValidateError> {
         let s = sim
             .simulate(&desc.scene, v, &load)
             .map_err(|e| ValidateError::Simulation(Box::new(e)))?;
+        if let [t0, .., t1] = s.time_s[..] {
+            sim_rate.set((s.time_s.len() - 1) as f64 / (t1 - t0));
+        }
         for c in &desc.channels {
             if !s.channels.contains_key(&c.simulated) {
                 let known: Vec<&String> = s.channels.keys().collect();
@@ -216,7 +226,7 @@ pub fn validate_run(
             let n = a.channels.values().next().map_or(0, |v| v.len());
             let t: Vec<f64> = (0..n).map(|k| a.t0_s + k as f64 * a.dt_s).collect();
             let w = [a.obstacle_time_s - 0.3, a.obstacle_time_s + 0.5];
-            passage::front_onset(&t, &a.channels, &sets.front, Some(w))
+            passage::front_onset(&t, &a.channels, &sets.front, Some(w), v)
                 .ok()
                 .map(|o| o.time_s - a.obstacle_time_s)
         });
@@ -363,6 +373,8 @@ pub fn validate_run(
         load_case: load.clone(),
         nominal_speed_mps: nominal,
         sample_rate_hz: meas.time_base.rate_hz,
+        simulation_rate_hz: sim_rate.get(),
+        acquisition_cutoff_hz: desc.filter.cutoff_hz,
         time_base: meas.time_base.clone(),
         obstacle_time_s: primary.obstacle_time_s,
         rear_axle_time_s: rear,

@@ -212,61 +212,77 @@ pub fn page(run: &RunValidation, path: &Path) -> Result<(), ValidateError> {
     Ok(())
 }
 
-/// An HTML index of the report pages (relative links), best-rated last.
+/// An HTML index of the report pages (relative links), worst-rated first, in the
+/// reports' page shell ([`super::html::static_page`]).
 pub fn index(
     runs: &[(RunValidation, PathBuf)],
     failures: &[(PathBuf, String)],
     path: &Path,
 ) -> Result<(), ValidateError> {
+    use crate::report::html::escape;
     let dir = path.parent().unwrap_or(Path::new("."));
-    let mut h = String::from("<!doctype html><meta charset=\"utf-8\"><title>towride validate</title>\n<h1>towride validate</h1>\n<table border=1 cellpadding=4><tr><th>run</th><th>synthetic</th><th>rating uncorrected</th><th>rating corrected</th><th>shift [ms]</th><th>interactive</th></tr>\n");
+    let rel = |p: &Path| escape(&p.strip_prefix(dir).unwrap_or(p).display().to_string());
+    let mut h = String::new();
     let mut sorted: Vec<&(RunValidation, PathBuf)> = runs.iter().collect();
     sorted.sort_by(|a, b| {
         a.0.primary()
             .mean_rating
             .total_cmp(&b.0.primary().mean_rating)
     });
+    let _ = write!(
+        h,
+        "<p>{} run(s), worst mean rating first; {} failed. The trends over the folder: <a href=\"trends.html\">trends.html</a>.</p>",
+        runs.len(),
+        failures.len()
+    );
+    for (f, err) in failures {
+        let _ = writeln!(
+            h,
+            "<p class=\"failed\">{}: {}</p>",
+            escape(&f.display().to_string()),
+            escape(err)
+        );
+    }
+    h.push_str("<div class=\"wide\"><table><tr><th>run</th><th class=\"l\">obstacle</th><th class=\"l\">load case</th><th>speed [km/h]</th><th>synthetic</th><th>rating uncorrected</th><th>rating corrected</th><th>shift [ms]</th><th>interactive</th></tr>\n");
     for (r, page) in &sorted {
-        let rel = page.strip_prefix(dir).unwrap_or(page).display().to_string();
-        let (rc, sh) = r.corrected.as_ref().map_or(("-".into(), "-".into()), |c| {
+        let (rc, sh) = r.corrected.as_ref().map_or(("–".into(), "–".into()), |c| {
             (
-                format!("{:.3}", c.mean_rating),
+                format!("{:.3} ({})", c.mean_rating, grade(c.mean_rating)),
                 format!("{:+.1}", c.shift_s * 1e3),
             )
         });
         // The run's HTML report beside its page, when written.
         let html = page.with_file_name("report.html");
         let link = if html.is_file() {
-            let rel = html
-                .strip_prefix(dir)
-                .unwrap_or(&html)
-                .display()
-                .to_string();
-            format!("<a href=\"{rel}\">report.html</a>")
+            format!("<a href=\"{}\">report.html</a>", rel(&html))
         } else {
             String::new()
         };
-        let _ = writeln!(h, "<tr><td><a href=\"{rel}\">{}</a></td><td>{}</td><td>{:.3}</td><td>{rc}</td><td>{sh}</td><td>{link}</td></tr>", r.name, r.synthetic, r.uncorrected.mean_rating);
-    }
-    h.push_str("</table>\n");
-    for (f, err) in failures {
+        let u = r.uncorrected.mean_rating;
         let _ = writeln!(
             h,
-            "<p style=\"color:red\">{}: {}</p>",
-            f.display(),
-            err.replace('<', "&lt;")
+            "<tr><td><a href=\"#{0}\">{0}</a></td><td class=\"l\">{1}</td><td class=\"l\">{2}</td><td>{3:.2}</td><td>{4}</td><td>{u:.3} ({5})</td><td>{rc}</td><td>{sh}</td><td>{link}</td></tr>",
+            escape(&r.name),
+            escape(&r.obstacle),
+            escape(&r.load_case),
+            r.speed.speed_mps * 3.6,
+            if r.synthetic { "yes" } else { "no" },
+            grade(u),
         );
     }
+    h.push_str("</table></div>\n");
     for (r, page) in &sorted {
-        let rel = page.strip_prefix(dir).unwrap_or(page).display().to_string();
         let _ = writeln!(
             h,
-            "<h2 id=\"{0}\">{0}</h2><img src=\"{rel}\" style=\"max-width:100%\">",
-            r.name
+            "<h2 id=\"{0}\">{0}</h2><p><a href=\"{1}\">{1}</a></p><img class=\"page\" src=\"{1}\" alt=\"the report page of {0}\">",
+            escape(&r.name),
+            rel(page)
         );
     }
-    std::fs::write(path, h).map_err(|e| ValidateError::Io {
-        path: path.to_path_buf(),
-        source: e,
+    crate::atomic::write(path, super::html::static_page("towride validate", &h)).map_err(|e| {
+        ValidateError::Io {
+            path: path.to_path_buf(),
+            source: e,
+        }
     })
 }

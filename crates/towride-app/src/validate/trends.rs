@@ -1,21 +1,29 @@
 //! What a folder of runs says beyond each run's rating: per channel the trend of its peak
-//! against the measured speed, measured and simulated (a least-squares line each), and
-//! its dominant frequencies (body bounce, wheel hop, from [`crate::signal::spectrum`]) measured
-//! against simulated. Written as `trends.csv` (one row per run and channel) and
-//! `trends.html` (per channel a scatter of peak against speed as inline SVG, no script,
-//! and the frequency table), beside the summary.
+//! against the measured speed, measured and simulated, and its dominant frequencies
+//! (body bounce, wheel hop, from [`crate::signal::spectrum`]) measured against
+//! simulated. Runs differ in more than speed (obstacle, trailer load), so every trend is
+//! per group of runs with the same obstacle and load case: a line pooled over a 25 mm
+//! bump and a 50 mm ramp, or over four loads, would mix their peaks into one slope that
+//! fits none of them. Written as `trends.csv` (one row per run and channel) and
+//! `trends.html` (per channel the scatter of peak against speed, a panel per obstacle and
+//! a colour per load case, as inline SVG, [`super::trends_svg`], and a table per group).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use super::folder::FolderResult;
 use super::ValidateError;
+use crate::report::html::escape;
 
 /// One run's figures for one channel.
 #[derive(Clone, Debug)]
 pub struct Point {
     /// Run name.
     pub run: String,
+    /// The obstacle driven over.
+    pub obstacle: String,
+    /// Trailer load case (empty: the scene's).
+    pub load_case: String,
     /// Measured speed [km/h].
     pub speed_kmh: f64,
     /// Measured and simulated peak magnitude [m/s^2] (primary comparison).
@@ -26,6 +34,33 @@ pub struct Point {
     pub wheel_hz: [Option<f64>; 2],
 }
 
+impl Point {
+    /// The group of runs it belongs to: (obstacle, load case).
+    pub fn group(&self) -> (&str, &str) {
+        (&self.obstacle, &self.load_case)
+    }
+}
+
+/// A group's name for legends and tables.
+pub fn group_label(obstacle: &str, load_case: &str) -> String {
+    if load_case.is_empty() {
+        obstacle.to_string()
+    } else {
+        format!("{obstacle}, {load_case}")
+    }
+}
+
+/// The groups present in `pts`, sorted (obstacle, then load case).
+pub fn groups(pts: &[Point]) -> Vec<(String, String)> {
+    let mut g: Vec<(String, String)> = pts
+        .iter()
+        .map(|p| (p.obstacle.clone(), p.load_case.clone()))
+        .collect();
+    g.sort();
+    g.dedup();
+    g
+}
+
 /// Per channel the points of every run, channels in first-seen order.
 pub fn collect(res: &FolderResult) -> Vec<(String, Vec<Point>)> {
     let mut out: Vec<(String, Vec<Point>)> = Vec::new();
@@ -34,6 +69,8 @@ pub fn collect(res: &FolderResult) -> Vec<(String, Vec<Point>)> {
         for (f, c) in p.channels.iter().zip(&r.channels) {
             let point = Point {
                 run: r.name.clone(),
+                obstacle: r.obstacle.clone(),
+                load_case: r.load_case.clone(),
                 speed_kmh: r.speed.speed_mps * 3.6,
                 peak_mps2: [f.peak_measured_mps2.abs(), f.peak_simulated_mps2.abs()],
                 body_hz: [c.measured_hz.body_hz, c.simulated_hz.body_hz],
@@ -64,6 +101,14 @@ pub fn line(x: &[f64], y: &[f64]) -> Option<(f64, f64)> {
     Some((my - b * mx, b))
 }
 
+/// The least-squares line of peak against speed over `pts`, measured (`k` = 0) or
+/// simulated (1).
+pub fn fit(pts: &[&Point], k: usize) -> Option<(f64, f64)> {
+    let x: Vec<f64> = pts.iter().map(|p| p.speed_kmh).collect();
+    let y: Vec<f64> = pts.iter().map(|p| p.peak_mps2[k]).collect();
+    line(&x, &y)
+}
+
 fn opt(v: Option<f64>) -> String {
     v.map_or(String::new(), |x| format!("{x:.4}"))
 }
@@ -77,6 +122,7 @@ pub fn write(res: &FolderResult, dir: &Path) -> Result<(PathBuf, PathBuf), Valid
     let data = collect(res);
     let csv_path = dir.join("trends.csv");
     let mut w = csv::Writer::from_path(&csv_path).map_err(|x| io(&csv_path, &x))?;
+    // The group's keys last: the earlier columns keep their places.
     w.write_record([
         "channel",
         "run",
@@ -87,6 +133,8 @@ pub fn write(res: &FolderResult, dir: &Path) -> Result<(PathBuf, PathBuf), Valid
         "body_simulated [Hz]",
         "wheel_measured [Hz]",
         "wheel_simulated [Hz]",
+        "obstacle",
+        "load_case",
     ])
     .map_err(|x| io(&csv_path, &x))?;
     for (ch, pts) in &data {
@@ -101,13 +149,16 @@ pub fn write(res: &FolderResult, dir: &Path) -> Result<(PathBuf, PathBuf), Valid
                 opt(p.body_hz[1]),
                 opt(p.wheel_hz[0]),
                 opt(p.wheel_hz[1]),
+                p.obstacle.clone(),
+                p.load_case.clone(),
             ])
             .map_err(|x| io(&csv_path, &x))?;
         }
     }
     w.flush().map_err(|x| io(&csv_path, &x))?;
     let html_path = dir.join("trends.html");
-    std::fs::write(&html_path, html(&data, &res.simulator)).map_err(|x| io(&html_path, &x))?;
+    crate::atomic::write(&html_path, html(&data, &res.simulator))
+        .map_err(|x| io(&html_path, &x))?;
     Ok((csv_path, html_path))
 }
 
@@ -117,109 +168,58 @@ fn mean(v: impl Iterator<Item = Option<f64>>) -> Option<f64> {
     (!x.is_empty()).then(|| x.iter().sum::<f64>() / x.len() as f64)
 }
 
-fn scatter(pts: &[Point]) -> String {
-    let (w, h, m) = (520.0, 260.0, 48.0);
-    let xs: Vec<f64> = pts.iter().map(|p| p.speed_kmh).collect();
-    let ys: Vec<f64> = pts.iter().flat_map(|p| p.peak_mps2).collect();
-    let (x0, x1) = xs.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, v| {
-        (a.0.min(*v), a.1.max(*v))
-    });
-    // 5 % room each side so no point sits on an axis.
-    let pad = (0.05 * (x1 - x0)).max(1.0);
-    let (x0, x1) = (x0 - pad, x1 + pad);
-    let y1 = ys.iter().fold(0.0_f64, |a, v| a.max(*v)) * 1.1 + 1e-9;
-    let px = |x: f64| m + (x - x0) / (x1 - x0) * (w - 1.5 * m);
-    let py = |y: f64| h - m + -(y / y1) * (h - 1.5 * m);
-    let mut s = format!(
-        "<svg width=\"{w}\" height=\"{h}\" xmlns=\"http://www.w3.org/2000/svg\" font-size=\"11\">"
-    );
-    let _ = write!(
-        s,
-        "<line x1=\"{m}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"black\"/><line x1=\"{m}\" y1=\"{}\" x2=\"{m}\" y2=\"{}\" stroke=\"black\"/>",
-        h - m, w - 0.5 * m, h - m, h - m, 0.5 * m
-    );
-    // Round ticks with distinct labels (the figures' rules: no repeated values, no `.0`).
-    use crate::report::ticks;
-    let (xt, xstep) = ticks::linear(x0, x1, 5);
-    for (xv, label) in xt.iter().zip(ticks::labels(&xt, xstep)) {
+/// A number for a table cell: four decimals, a dash when absent.
+fn cell(v: Option<f64>) -> String {
+    v.map_or("–".into(), |x| format!("{x:.4}"))
+}
+
+/// The table of one channel: per group its runs, slopes and mean frequencies.
+fn group_table(pts: &[Point]) -> String {
+    let mut s = String::from("<div class=\"wide\"><table><tr><th>obstacle</th><th class=\"l\">load case</th><th>runs</th><th>speeds [km/h]</th><th>peak slope measured [m/s² per km/h]</th><th>simulated</th><th>body measured [Hz]</th><th>simulated</th><th>wheel hop measured [Hz]</th><th>simulated</th></tr>");
+    for (o, l) in groups(pts) {
+        let g: Vec<&Point> = pts.iter().filter(|p| p.group() == (&o, &l)).collect();
+        let (lo, hi) = g.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| {
+            (a.0.min(p.speed_kmh), a.1.max(p.speed_kmh))
+        });
         let _ = write!(
             s,
-            "<text x=\"{:.1}\" y=\"{}\" text-anchor=\"middle\">{label}</text>",
-            px(*xv),
-            h - m + 14.0
+            "<tr><td>{}</td><td class=\"l\">{}</td><td>{}</td><td>{lo:.1}–{hi:.1}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+            escape(&o),
+            escape(if l.is_empty() { "(the scene's)" } else { &l }),
+            g.len(),
+            cell(fit(&g, 0).map(|l| l.1)),
+            cell(fit(&g, 1).map(|l| l.1)),
+            cell(mean(g.iter().map(|p| p.body_hz[0]))),
+            cell(mean(g.iter().map(|p| p.body_hz[1]))),
+            cell(mean(g.iter().map(|p| p.wheel_hz[0]))),
+            cell(mean(g.iter().map(|p| p.wheel_hz[1]))),
         );
     }
-    let (yt, ystep) = ticks::linear(0.0, y1, 4);
-    for (yv, label) in yt.iter().zip(ticks::labels(&yt, ystep)) {
-        let _ = write!(
-            s,
-            "<text x=\"{}\" y=\"{:.1}\" text-anchor=\"end\">{label}</text>",
-            m - 4.0,
-            py(*yv) + 4.0
-        );
-    }
-    let _ = write!(
-        s,
-        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">measured speed [km/h]</text><text x=\"12\" y=\"{}\" transform=\"rotate(-90 12 {})\" text-anchor=\"middle\">peak |a| [m/s^2]</text>",
-        0.5 * w, h - 8.0, 0.5 * h, 0.5 * h
-    );
-    for (k, colour) in [(0, "#0072B2"), (1, "#D55E00")] {
-        let y: Vec<f64> = pts.iter().map(|p| p.peak_mps2[k]).collect();
-        if let Some((a, b)) = line(&xs, &y) {
-            let _ = write!(
-                s,
-                "<line x1=\"{:.1}\" y1=\"{:.1}\" x2=\"{:.1}\" y2=\"{:.1}\" stroke=\"{colour}\" stroke-dasharray=\"4 3\"/>",
-                px(x0), py(a + b * x0), px(x1), py(a + b * x1)
-            );
-        }
-        for p in pts {
-            let (cx, cy) = (px(p.speed_kmh), py(p.peak_mps2[k]));
-            if k == 0 {
-                let _ = write!(s, "<circle cx=\"{cx:.1}\" cy=\"{cy:.1}\" r=\"3.5\" fill=\"{colour}\"><title>{} measured {:.3}</title></circle>", p.run, p.peak_mps2[0]);
-            } else {
-                let _ = write!(
-                    s,
-                    "<path d=\"M{:.1} {:.1}l7 7m0 -7l-7 7\" stroke=\"{colour}\" stroke-width=\"1.5\"><title>{} simulated {:.3}</title></path>",
-                    cx - 3.5, cy - 3.5, p.run, p.peak_mps2[1]
-                );
-            }
-        }
-    }
-    s.push_str("</svg>");
+    s.push_str("</table></div>");
     s
 }
 
 fn html(data: &[(String, Vec<Point>)], simulator: &str) -> String {
-    let mut s = String::from("<!doctype html><html><head><meta charset=\"utf-8\"><title>towride validation trends</title><style>body{font-family:sans-serif;margin:1.5em}table{border-collapse:collapse}td,th{border:1px solid #bbb;padding:2px 8px;text-align:right}</style></head><body>");
-    let _ = write!(
-        s,
-        "<h1>Trends over the folder</h1><p>Simulator: {simulator}. Per channel: peak |a| against the measured speed (dots measured, crosses simulated, dashed least-squares lines), and the dominant frequencies of the compared window (body bounce 0.5-6 Hz, wheel hop 6-30 Hz), means over the runs.</p>"
+    let mut s = format!(
+        "<p>Simulator: {}. Per channel: peak |a| against the measured speed, a panel per obstacle and a colour per trailer load case (dots and solid lines measured, crosses and dashed lines simulated; a least-squares line per obstacle and load case), then per group the slopes and the mean dominant frequencies of the compared window (body bounce 0.5–6 Hz, wheel hop 6–30 Hz).</p>",
+        escape(simulator)
     );
-    s.push_str("<table><tr><th>channel</th><th>runs</th><th>peak slope measured [m/s^2 per km/h]</th><th>simulated</th><th>body measured [Hz]</th><th>simulated</th><th>wheel hop measured [Hz]</th><th>simulated</th></tr>");
+    s.push_str("<p>Channels: ");
+    for (k, (ch, _)) in data.iter().enumerate() {
+        let (sep, c) = (if k > 0 { ", " } else { "" }, escape(ch));
+        let _ = write!(s, "{sep}<a href=\"#{c}\">{c}</a>");
+    }
+    s.push_str("</p>");
     for (ch, pts) in data {
-        let xs: Vec<f64> = pts.iter().map(|p| p.speed_kmh).collect();
-        let slope = |k: usize| {
-            let y: Vec<f64> = pts.iter().map(|p| p.peak_mps2[k]).collect();
-            line(&xs, &y).map(|l| l.1)
-        };
         let _ = write!(
             s,
-            "<tr><td style=\"text-align:left\">{ch}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
-            pts.len(),
-            opt(slope(0)),
-            opt(slope(1)),
-            opt(mean(pts.iter().map(|p| p.body_hz[0]))),
-            opt(mean(pts.iter().map(|p| p.body_hz[1]))),
-            opt(mean(pts.iter().map(|p| p.wheel_hz[0]))),
-            opt(mean(pts.iter().map(|p| p.wheel_hz[1]))),
+            "<h2 id=\"{0}\">{0}</h2>{1}{2}",
+            escape(ch),
+            super::trends_svg::scatter(pts),
+            group_table(pts)
         );
     }
-    s.push_str("</table>");
-    for (ch, pts) in data {
-        let _ = write!(s, "<h2>{ch}</h2>{}", scatter(pts));
-    }
-    s.push_str("</body></html>");
-    s
+    super::html::static_page("Validation trends over the folder", &s)
 }
 
 #[cfg(test)]
@@ -229,29 +229,5 @@ mod tests {
         let (a, b) = super::line(&[10.0, 20.0, 40.0], &[3.0, 5.0, 9.0]).unwrap();
         assert!((a - 1.0).abs() < 1e-12 && (b - 0.2).abs() < 1e-12);
         assert!(super::line(&[5.0, 5.0], &[1.0, 2.0]).is_none());
-    }
-
-    #[test]
-    fn scatter_tick_labels_are_distinct() {
-        // Two runs 0.6 km/h apart: the old labels read "48, 48, 49, 49, 50".
-        let p = |speed_kmh: f64, peak: f64| super::Point {
-            run: format!("r{speed_kmh}"),
-            speed_kmh,
-            peak_mps2: [peak, 0.9 * peak],
-            body_hz: [None; 2],
-            wheel_hz: [None; 2],
-        };
-        let svg = super::scatter(&[p(48.55, 11.2), p(49.15, 11.9)]);
-        let labels: Vec<&str> = svg
-            .split("text-anchor=\"middle\">")
-            .skip(1)
-            .map(|t| t.split('<').next().unwrap())
-            .filter(|t| t.chars().all(|c| c.is_ascii_digit() || c == '.'))
-            .collect();
-        assert!(labels.len() >= 3, "{labels:?}");
-        let mut sorted = labels.clone();
-        sorted.dedup();
-        assert_eq!(sorted, labels, "repeated x tick labels");
-        assert!(labels.iter().all(|l| !l.ends_with(".0")), "{labels:?}");
     }
 }
