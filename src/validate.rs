@@ -179,7 +179,12 @@ pub fn run(a: &ValidateArgs) -> CliResult {
             towride_app::validate::html::write(r, &dir)?;
             pages.push((r.clone(), page));
         }
-        report::index(&pages, &res.failures, &a.out.join("index.html"))?;
+        report::index(
+            &pages,
+            &res.failures,
+            &res.not_run,
+            &a.out.join("index.html"),
+        )?;
     }
     for (f, e) in &res.failures {
         eprintln!("error: {}: {e}", f.display());

@@ -142,7 +142,7 @@ fn ctrl_c_stops_bench_with_its_runs_labelled() {
 fn ctrl_c_stops_a_folder_validation_with_the_runs_not_validated_listed() {
     let d = tmp("validate_sigint");
     let out = stopped(
-        &["validate", "measurements/synthetic", "--no-plots"],
+        &["validate", "measurements/synthetic"],
         &d,
         Duration::from_millis(2500),
     );
@@ -160,4 +160,9 @@ fn ctrl_c_stops_a_folder_validation_with_the_runs_not_validated_listed() {
         "{s}"
     );
     assert!(s["failures"].as_array().unwrap().is_empty(), "{s}");
+    let index = std::fs::read_to_string(d.join("index.html")).unwrap();
+    assert!(
+        index.contains(&format!("Interrupted: {not_run} run(s) not validated")),
+        "{index}"
+    );
 }

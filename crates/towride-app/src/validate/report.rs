@@ -214,9 +214,11 @@ pub fn page(run: &RunValidation, path: &Path) -> Result<(), ValidateError> {
 
 /// An HTML index of the report pages (relative links), worst-rated first, in the
 /// reports' page shell ([`super::html::static_page`]).
+/// `not_run`: descriptors an interruption kept from being validated, said first.
 pub fn index(
     runs: &[(RunValidation, PathBuf)],
     failures: &[(PathBuf, String)],
+    not_run: &[PathBuf],
     path: &Path,
 ) -> Result<(), ValidateError> {
     use crate::report::html::escape;
@@ -235,6 +237,18 @@ pub fn index(
         runs.len(),
         failures.len()
     );
+    if !not_run.is_empty() {
+        let names: Vec<String> = not_run
+            .iter()
+            .map(|f| escape(&f.display().to_string()))
+            .collect();
+        let _ = writeln!(
+            h,
+            "<p class=\"failed\">Interrupted: {} run(s) not validated: {}.</p>",
+            not_run.len(),
+            names.join(", ")
+        );
+    }
     for (f, err) in failures {
         let _ = writeln!(
             h,
