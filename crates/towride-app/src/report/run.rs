@@ -8,6 +8,26 @@ use super::ReportError;
 use crate::scene::channels;
 use towride_mbs::model::run::Samples;
 
+/// Channel `c` of `res` as a trace, values times `factor`: a left/right channel in its
+/// pair's colour, any other in the `n`-th free colour (`n` counts them).
+pub(super) fn trace(res: &Samples, c: usize, factor: f64, n: &mut usize) -> Trace {
+    let name = &res.channels[c].name;
+    let style = match side_of(name) {
+        Some((k, right)) => Style::side(k, right),
+        None => {
+            *n += 1;
+            Style::nth(*n - 1)
+        }
+    };
+    let points = res
+        .times
+        .iter()
+        .zip(&res.rows)
+        .map(|(t, r)| (*t, r[c] * factor))
+        .collect();
+    Trace::new(name.clone(), points, style)
+}
+
 /// Left/right pairs by the last part of a channel name: the colour index of the pair
 /// and whether this is the right side (fl/fr, rl/rr, tl/tr; *_left_*/*_right_*).
 pub(crate) fn side_of(name: &str) -> Option<(usize, bool)> {
@@ -63,22 +83,7 @@ pub fn run_panels(res: &Samples) -> Vec<Panel> {
             .filter(|(_, ch)| !channels::is_band_limited(&ch.name) && pred(&ch.name))
             .map(|(c, _)| shown(c))
             .map(|c| (c, &res.channels[c]))
-            .map(|(c, ch)| {
-                let style = match side_of(&ch.name) {
-                    Some((k, right)) => Style::side(k, right),
-                    None => {
-                        n += 1;
-                        Style::nth(n - 1)
-                    }
-                };
-                let points = res
-                    .times
-                    .iter()
-                    .zip(&res.rows)
-                    .map(|(t, r)| (*t, r[c]))
-                    .collect();
-                Trace::new(ch.name.clone(), points, style)
-            })
+            .map(|(c, _)| trace(res, c, 1.0, &mut n))
             .collect()
     };
     // A panel of band-limited traces says so in its title (the axis label has no room).

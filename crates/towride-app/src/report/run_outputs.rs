@@ -5,8 +5,8 @@
 use std::path::Path;
 
 use super::families::families;
-use super::figure::{render, Figure, Panel, Style, Trace};
-use super::run::side_of;
+use super::figure::{render, Figure, Panel};
+use super::run::trace;
 use super::ReportError;
 use towride_mbs::model::run::Samples;
 
@@ -21,23 +21,7 @@ pub fn output_panels(res: &Samples, requested: &[String]) -> Vec<Panel> {
             let traces = f
                 .members
                 .iter()
-                .map(|&c| {
-                    let name = &res.channels[c].name;
-                    let style = match side_of(name) {
-                        Some((k, right)) => Style::side(k, right),
-                        None => {
-                            n += 1;
-                            Style::nth(n - 1)
-                        }
-                    };
-                    let points = res
-                        .times
-                        .iter()
-                        .zip(&res.rows)
-                        .map(|(t, r)| (*t, r[c] * f.factor))
-                        .collect();
-                    Trace::new(name.clone(), points, style)
-                })
+                .map(|&c| trace(res, c, f.factor, &mut n))
                 .collect();
             Panel {
                 traces,
