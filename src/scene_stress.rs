@@ -90,7 +90,7 @@ pub fn run_stress(a: &StressArgs) -> CliResult {
                 o.case,
                 if o.status == "completed" {
                     "completed"
-                } else if o.status == stress::NOT_RUN || o.status.starts_with("interrupted") {
+                } else if towride_app::study::stopped(&o.status) {
                     "STOPPED"
                 } else {
                     "FAILED"

@@ -211,9 +211,6 @@ fn run_at(
         .run(stop)
 }
 
-/// The status of a run an interruption kept from starting.
-pub const NOT_RUN: &str = "not run: interrupted";
-
 /// A point before anything is known of it.
 fn blank(method: Method, rtol: f64) -> Point {
     Point {
@@ -252,7 +249,7 @@ fn point(method: Method, rtol: f64, r: &Result<RunResult>, reference: &Reference
             p.sensor_band_error = reference.band_error(r);
         }
         Ok(r) => match r.samples.interrupted {
-            Some(t) => p.status = format!("interrupted at t = {t:.4} s"),
+            Some(t) => p.status = super::interrupted_at(t),
             None => p.status = format!("failed: {}", r.failure().map_or("", |f| f.0)),
         },
         Err(e) => p.status = format!("failed: {e}"),
@@ -296,7 +293,7 @@ pub fn run(scene: &Path, s: &Settings, progress: &dyn Progress) -> Result<Bench>
                 // Stopped: runs not begun say so (their timings would mean nothing).
                 if progress.cancelled() {
                     return Point {
-                        status: NOT_RUN.into(),
+                        status: super::NOT_RUN.into(),
                         ..blank(m, t)
                     };
                 }
@@ -324,10 +321,7 @@ pub fn run(scene: &Path, s: &Settings, progress: &dyn Progress) -> Result<Bench>
         ErrorMeasure::SensorBand,
     ));
     let (step_histories, histories) = step_histories(scene, &s.methods, &s.loader, &stop)?;
-    let interrupted = points
-        .iter()
-        .filter(|p| p.status == NOT_RUN || p.status.starts_with("interrupted"))
-        .count();
+    let interrupted = points.iter().filter(|p| super::stopped(&p.status)).count();
     let job = &reference.summary;
     Ok(Bench {
         schema_version: SCHEMA_VERSION,

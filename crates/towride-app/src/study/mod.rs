@@ -13,6 +13,19 @@ use crate::job::{Extremes, RunResult};
 use crate::scene::channels::{ACC_PREFIX, HITCH_FX};
 use crate::signal::butterworth::Butterworth;
 
+/// The status of a case or run an interruption (Ctrl-C) kept from starting.
+pub const NOT_RUN: &str = "not run: interrupted";
+
+/// The status of a run the interruption stopped midway.
+pub fn interrupted_at(t: f64) -> String {
+    format!("interrupted at t = {t:.4} s")
+}
+
+/// True for a status the interruption gave: not begun or stopped midway.
+pub fn stopped(status: &str) -> bool {
+    status == NOT_RUN || status.starts_with("interrupted at")
+}
+
 /// RMS of the difference of two equally sampled signals, relative to the RMS of `b`.
 pub fn rel_rms(a: &[f64], b: &[f64]) -> f64 {
     let n = a.len().min(b.len()).max(1) as f64;

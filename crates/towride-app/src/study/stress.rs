@@ -49,9 +49,6 @@ pub struct Case {
     pub h_max: Option<f64>,
 }
 
-/// The status of a case an interruption kept from starting.
-pub const NOT_RUN: &str = "not run: interrupted";
-
 /// What a case gave.
 #[derive(Clone, Debug, Serialize)]
 pub struct Outcome {
@@ -275,7 +272,7 @@ pub fn run(
                 // Stopped: cases not begun say so, rather than failing or vanishing.
                 if progress.cancelled() {
                     return Outcome {
-                        status: NOT_RUN.into(),
+                        status: super::NOT_RUN.into(),
                         ..blank(c)
                     };
                 }
@@ -290,7 +287,7 @@ pub fn run(
     let disagree = outcomes.iter().filter(|o| o.agrees == Some(false)).count();
     let interrupted = outcomes
         .iter()
-        .filter(|o| o.status == NOT_RUN || o.status.starts_with("interrupted"))
+        .filter(|o| super::stopped(&o.status))
         .count();
     Ok(Stress {
         schema_version: SCHEMA_VERSION,
@@ -395,7 +392,7 @@ fn outcome(c: &Case, r: Result<RunResult>, refdata: &Reference) -> Outcome {
             o.agrees = c.same_physics.then(|| agrees(x, r));
         }
         Ok(r) => match r.samples.interrupted {
-            Some(t) => o.status = format!("interrupted at t = {t:.4} s"),
+            Some(t) => o.status = super::interrupted_at(t),
             None => {
                 let (e, t) = r.failure().unwrap_or_default();
                 o.status = format!("failed at t = {t:.4} s: {e}");
