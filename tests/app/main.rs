@@ -49,6 +49,7 @@ mod validate_passage;
 mod validate_recovery;
 mod validate_vehicle;
 mod vehicle_assembly;
+mod vehicle_braking;
 mod vehicle_engine;
 mod vehicle_errors;
 mod vehicle_scene;

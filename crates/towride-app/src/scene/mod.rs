@@ -21,6 +21,12 @@
 //! start = "equilibrium_at_speed"
 //! settle_s = 0.5
 //!
+//! [run.manoeuvre]              # optional: a speed change instead of the held speed
+//! start_s = 0.5                # ([`manoeuvre`]: braking to rest here)
+//! to_speed_km_h = 0.0
+//! acceleration_m_s2 = 5.0
+//! jerk_m_s3 = 25.0
+//!
 //! [solver]                     # any SolverOptions field
 //! rtol = 1e-4
 //!
@@ -45,6 +51,7 @@
 //! template scene over obstacles, speeds and load cases.
 
 pub mod channels;
+pub mod manoeuvre;
 pub mod outputs;
 pub mod plan;
 
@@ -158,6 +165,8 @@ struct RunSec {
     /// own solution) or "solve" (the acceleration-level equations at every sample).
     #[serde(default)]
     accelerations: towride_mbs::model::desc::Accelerations,
+    /// A speed change instead of the held speed ([`manoeuvre`]).
+    manoeuvre: Option<manoeuvre::ManoeuvreSec>,
 }
 
 fn one() -> f64 {
@@ -395,6 +404,10 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
     )?;
     let sample_rate = src.positive(&path!["run", "sample_rate_hz"], f.run.sample_rate_hz)?;
     let settle = src.non_negative(&path!["run", "settle_s"], f.run.settle_s)?;
+    let speed_target = match &f.run.manoeuvre {
+        Some(m) => Some(manoeuvre::target(&src, m, speed, duration)?),
+        None => None,
+    };
     let animation_rate = match o.animation_rate_hz {
         Some(r) if r.is_finite() && r >= 0.0 => r,
         Some(r) => {
@@ -481,6 +494,7 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
         ball_coupling: f.scene.ball_coupling,
         rear_cross_member: f.scene.rear_cross_member,
         run_modes,
+        speed_target: speed_target.clone(),
     };
     let mut v = vehicle::load(&vehicle_file, &opts, &loader).map_err(|e| {
         // A variant the hitch's flexible body lacks is the scene's mistake when the scene
@@ -504,6 +518,17 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
             },
         }
     })?;
+    if speed_target.as_ref().is_some_and(manoeuvre::slows)
+        && v.model.controls.iter().any(|c| c.brakes.is_none())
+    {
+        return Err(src.error(
+            &path!["run", "manoeuvre", "to_speed_km_h"],
+            format!(
+                "slows the vehicle, but {} has no brakes (its driveline file needs [brakes])",
+                vehicle_file.display()
+            ),
+        ));
+    }
     let extra = {
         let model = std::mem::take(&mut v.model);
         let mut b = Builder::new(ModelBuilder::from_model(model), &loader, None);

@@ -9,7 +9,7 @@ use serde::Deserialize;
 use super::wheel::WheelHandle;
 use towride_mbs::input::InputError;
 use towride_mbs::model::builder::MarkerHandle;
-use towride_mbs::model::desc::SpeedControl;
+use towride_mbs::model::desc::{Brakes, SpeedControl};
 use towride_mbs::model::function::TimeFunction;
 use towride_mbs::path;
 
@@ -17,6 +17,26 @@ use towride_mbs::path;
 #[serde(deny_unknown_fields)]
 struct File {
     speed_control: Control,
+    brakes: Option<BrakesSec>,
+}
+
+/// Friction brakes: what the speed controller asks beyond the engine's drag.
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct BrakesSec {
+    /// Share of the total brake torque on the front wheels (brake balance) [-].
+    front_share: f64,
+    /// Short names of the front and rear braked wheels.
+    front_wheels: Vec<String>,
+    rear_wheels: Vec<String>,
+    /// Magnitude limit of the total brake torque at the wheels [N m].
+    max_torque_n_m: f64,
+    /// Drag torque the drive takes before the brakes engage (engine braking) [N m].
+    engine_drag_n_m: f64,
+    /// Width of the smooth hand-over from the drive to the brakes [N m].
+    blend_n_m: f64,
+    /// Relative wheel spin over which a brake's torque changes sign [rad/s].
+    release_rad_s: f64,
 }
 
 #[derive(Deserialize, Debug)]
@@ -65,6 +85,8 @@ pub fn control(
             .filter(|w| g.driven_wheels.contains(&w.name))
             .map(|w| (w.centre, w.carrier_centre))
             .collect(),
+        feedforward_kg_m: 0.0,
+        brakes: None,
     }
 }
 
@@ -87,17 +109,55 @@ pub fn build(
     if c.driven_wheels.is_empty() {
         return Err(src.error(&p("driven_wheels"), "name at least one driven wheel"));
     }
-    let mut driven = Vec::new();
-    for (k, name) in c.driven_wheels.iter().enumerate() {
-        let w = wheels.iter().find(|w| &w.name == name).ok_or_else(|| {
-            let known: Vec<&str> = wheels.iter().map(|w| w.name.as_str()).collect();
-            src.error(
-                &path!["speed_control", "driven_wheels", k],
-                format!("no wheel '{name}' (the car has {})", known.join(", ")),
-            )
-        })?;
-        driven.push((w.centre, w.carrier_centre));
-    }
+    let find = |names: &[String], key: &str, table: &str| {
+        names
+            .iter()
+            .enumerate()
+            .map(|(k, name)| {
+                let w = wheels.iter().find(|w| &w.name == name).ok_or_else(|| {
+                    let known: Vec<&str> = wheels.iter().map(|w| w.name.as_str()).collect();
+                    src.error(
+                        &path![table, key, k],
+                        format!("no wheel '{name}' (the car has {})", known.join(", ")),
+                    )
+                })?;
+                Ok((w.centre, w.carrier_centre))
+            })
+            .collect::<Result<Vec<_>, InputError>>()
+    };
+    let driven = find(&c.driven_wheels, "driven_wheels", "speed_control")?;
+    let brakes = match &f.brakes {
+        None => None,
+        Some(b) => {
+            let p = |k: &str| path!["brakes", k];
+            let front = src.non_negative(&p("front_share"), b.front_share)?;
+            if front > 1.0 {
+                return Err(src.error(
+                    &p("front_share"),
+                    format!("is a share of the brake torque, 0 to 1, got {front}"),
+                ));
+            }
+            let mut shared = Vec::new();
+            for (key, names, share) in [
+                ("front_wheels", &b.front_wheels, front),
+                ("rear_wheels", &b.rear_wheels, 1.0 - front),
+            ] {
+                if names.is_empty() && share > 0.0 {
+                    return Err(src.error(&p(key), "name the wheels that take this share"));
+                }
+                for (w, c) in find(names, key, "brakes")? {
+                    shared.push((w, c, share / names.len() as f64));
+                }
+            }
+            Some(Brakes {
+                wheels: shared,
+                max_torque: src.positive(&p("max_torque_n_m"), b.max_torque_n_m)?,
+                engine_drag: src.non_negative(&p("engine_drag_n_m"), b.engine_drag_n_m)?,
+                blend: src.positive(&p("blend_n_m"), b.blend_n_m)?,
+                release_rad_s: src.positive(&p("release_rad_s"), b.release_rad_s)?,
+            })
+        }
+    };
     Ok(SpeedControl {
         name: "driveline".into(),
         sensor,
@@ -106,5 +166,7 @@ pub fn build(
         ki,
         max_torque,
         wheels: driven,
+        feedforward_kg_m: 0.0,
+        brakes,
     })
 }

@@ -117,6 +117,9 @@ pub struct Options {
     /// Modes of the modal bodies selected from an earlier run's strain-energy shares,
     /// replacing the files' selection rules (`--modes-from`, a scene's `modes_from`).
     pub run_modes: Option<Arc<RunModes>>,
+    /// The speed the driveline follows (a scene's `[run.manoeuvre]`); `None` holds
+    /// `speed`.
+    pub speed_target: Option<towride_mbs::model::function::TimeFunction>,
 }
 
 /// A vehicle ready for a scene.

@@ -541,6 +541,31 @@ pub struct SpeedControl {
     /// carrier that takes the reaction, e.g. the knuckle). Torque +T/n about the wheel
     /// marker's y axis on the wheel, -T/n on the carrier.
     pub wheels: Vec<(MarkerHandle, MarkerHandle)>,
+    /// Feed-forward on the target's rate [N m / (m/s^2)]: the vehicle's mass (with its
+    /// wheels' spin inertia) times the rolling radius, so that a demanded acceleration
+    /// needs no speed error to build its torque. No effect on a constant target.
+    pub feedforward_kg_m: f64,
+    /// Friction brakes taking what the controller asks beyond the drive's drag; without
+    /// them the drive takes any torque, as an engine that brakes would.
+    pub brakes: Option<Brakes>,
+}
+
+/// Friction brakes under a [`SpeedControl`]: the torque asked below `-engine_drag` goes
+/// to them, blended in over `blend` so the split stays differentiable.
+#[derive(Clone, Debug)]
+pub struct Brakes {
+    /// Braked wheels: (wheel-centre marker, y axis = spin axis; carrier marker taking the
+    /// reaction; share of the total brake torque, the shares summing to 1).
+    pub wheels: Vec<(MarkerHandle, MarkerHandle, f64)>,
+    /// Limit of the total brake torque magnitude [N m].
+    pub max_torque: f64,
+    /// Torque the drive takes before the brakes engage (engine braking) [N m].
+    pub engine_drag: f64,
+    /// Width of the smooth hand-over from the drive to the brakes [N m].
+    pub blend: f64,
+    /// Wheel spin rate relative to the carrier over which a brake's torque changes sign
+    /// (tanh(w / release)): friction regularised, so a wheel at rest is not held [rad/s].
+    pub release_rad_s: f64,
 }
 
 /// Where sampled accelerations and joint reactions come from.

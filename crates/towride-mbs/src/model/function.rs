@@ -2,6 +2,7 @@
 //! (force-deflection, force-velocity), each with the derivatives the solver needs.
 
 use crate::input::FieldError;
+pub use crate::model::function_jerk::JerkLimited;
 use serde::Deserialize;
 
 /// A function of time, written in a mechanism file as an inline table, e.g.
@@ -50,6 +51,21 @@ pub enum TimeFunction {
         /// Mean value.
         #[serde(default)]
         offset: f64,
+    },
+    /// A jerk-limited change from `from` at `start_s` to `to`: the rate rises at `jerk`
+    /// to `rate` (magnitudes), holds, and falls so the value lands with zero rate
+    /// ([`JerkLimited`]); a speed target for braking or accelerating.
+    JerkLimited {
+        /// Start of the change [s].
+        start_s: f64,
+        /// Value up to `start_s`.
+        from: f64,
+        /// Value at the end.
+        to: f64,
+        /// Largest rate magnitude [unit/s].
+        rate: f64,
+        /// Rate of change of the rate [unit/s^2].
+        jerk: f64,
     },
     /// A natural cubic spline through (time_s, value), held constant outside.
     Table {
@@ -111,7 +127,21 @@ impl TimeFunction {
                 }
                 Ok(())
             }
+            TimeFunction::JerkLimited { .. } => self.jerk_limited().map(|_| ()),
             TimeFunction::Table { time_s, value } => Spline::new(time_s, value).map(|_| ()),
+        }
+    }
+
+    fn jerk_limited(&self) -> Result<JerkLimited, FieldError> {
+        match *self {
+            TimeFunction::JerkLimited {
+                start_s,
+                from,
+                to,
+                rate,
+                jerk,
+            } => JerkLimited::new(start_s, from, to, rate, jerk),
+            _ => unreachable!("called on a jerk-limited function only"),
         }
     }
 
@@ -154,6 +184,7 @@ impl TimeFunction {
                     -amplitude * w * w * arg.sin(),
                 )
             }
+            TimeFunction::JerkLimited { .. } => self.jerk_limited().expect("checked").eval(t),
             TimeFunction::Table { time_s, value } => {
                 let s = Spline::new(time_s, value).expect("checked table");
                 if t <= time_s[0] {
@@ -200,6 +231,7 @@ impl TimeFunction {
                 }
                 offset * t + amplitude / w * (phase_rad.cos() - (w * t + phase_rad).cos())
             }
+            TimeFunction::JerkLimited { .. } => self.jerk_limited().expect("checked").integral(t),
             TimeFunction::Table { time_s, value } => {
                 let s = Spline::new(time_s, value).expect("checked table");
                 let int_to = |x: f64| -> f64 {

@@ -13,6 +13,7 @@ pub(crate) mod dual;
 pub mod elements;
 pub mod energy;
 pub mod function;
+mod function_jerk;
 pub mod ic;
 pub(crate) mod joint;
 pub mod linear;

@@ -83,8 +83,10 @@ impl System {
                 .collect(),
             ExtKind::Control(k) => {
                 let c = &self.model.controls[k];
+                let braked = c.brakes.iter().flat_map(|b| &b.wheels);
                 std::iter::once(c.sensor)
                     .chain(c.wheels.iter().flat_map(|&(a, b)| [a, b]))
+                    .chain(braked.flat_map(|&(a, b, _)| [a, b]))
                     .filter_map(|mk| self.body_of(mk))
                     .collect()
             }
@@ -104,15 +106,59 @@ impl System {
         vo[0] * x[0] + vo[1] * x[1] + vo[2] * x[2]
     }
 
-    /// Total drive torque of controller `k` at speed error state `z` [N m].
-    pub fn control_torque(&self, k: usize, t: f64, speed: f64, z: f64) -> f64 {
+    /// Total torque controller `k` asks at `speed` with speed-error integral `z` [N m]:
+    /// feed-forward on the target's rate plus PI on the speed error.
+    pub fn control_demand(&self, k: usize, t: f64, speed: f64, z: f64) -> f64 {
         let c = &self.model.controls[k];
         if !self.controls_active.get() {
             return 0.0;
         }
-        let lin = c.kp * (c.target.eval(t).0 - speed) + c.ki * z;
-        // Smooth saturation keeps the residual differentiable.
-        c.max_torque * (lin / c.max_torque).tanh()
+        let (target, rate, _) = c.target.eval(t);
+        c.feedforward_kg_m * rate + c.kp * (target - speed) + c.ki * z
+    }
+
+    /// How controller `k` meets a `demand` [N m]: (engine, brake) totals. Without brakes
+    /// the engine takes it all, either sign (the thesis's engine). With brakes the engine
+    /// takes down to its drag and the brakes the rest (brake <= 0). Saturations and the
+    /// hand-over are smooth so the residual stays differentiable.
+    pub fn control_split(&self, k: usize, demand: f64) -> (f64, f64) {
+        let c = &self.model.controls[k];
+        let saturate = |x: f64, limit: f64| limit * (x / limit).tanh();
+        match &c.brakes {
+            None => (saturate(demand, c.max_torque), 0.0),
+            // Exact below 80 % of the limits, so a manoeuvre gets the torque it asks
+            // (tanh alone gives 90 % of a demand at half the limit).
+            Some(b) => {
+                let brake = smooth_min0(demand + b.engine_drag, b.blend);
+                (
+                    soft_clip(demand - brake, c.max_torque),
+                    soft_clip(brake, b.max_torque),
+                )
+            }
+        }
+    }
+
+    /// Spin rate of wheel marker `wheel` relative to marker `carrier`, about the wheel
+    /// marker's y axis [rad/s].
+    fn relative_spin(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        wheel: MarkerHandle,
+        carrier: MarkerHandle,
+    ) -> f64 {
+        let omega = |mk: MarkerHandle| -> [f64; 3] {
+            match self.body_of(mk) {
+                Some(b) => {
+                    let ff = self.flex_frame(q, mk);
+                    ff.rates(&v[self.vo[b]..self.vo[b] + 6 + self.nm[b]]).1
+                }
+                None => [0.0; 3],
+            }
+        };
+        let (w, c) = (omega(wheel), omega(carrier));
+        let a = self.marker_frame(q, wheel).axes;
+        (0..3).map(|r| (w[r] - c[r]) * a[r][1]).sum()
     }
 
     /// Adds one extension element's loads to `f` and writes its residual `res` (its own
@@ -159,12 +205,37 @@ impl System {
                     0.0
                 };
                 res[0] = xd[0] - err;
-                let tq = self.control_torque(k, t, speed, x[0]) / c.wheels.len().max(1) as f64;
-                for &(wm, cm) in &c.wheels {
+                let demand = self.control_demand(k, t, speed, x[0]);
+                let (engine, brake) = self.control_split(k, demand);
+                let mut spin_torque = |wm: MarkerHandle, cm: MarkerHandle, tq: f64| {
                     let a = self.marker_frame(q, wm).axes;
                     let spin = [a[0][1] * tq, a[1][1] * tq, a[2][1] * tq];
                     add(wm, [0.0; 3], spin);
                     add(cm, [0.0; 3], spin.map(|s| -s));
+                };
+                let n = c.wheels.len().max(1) as f64;
+                let Some(b) = &c.brakes else {
+                    for &(wm, cm) in &c.wheels {
+                        spin_torque(wm, cm, engine / n);
+                    }
+                    return;
+                };
+                // Friction (the engine's drag, the brakes) opposes each wheel's spin on its
+                // carrier, whichever way it turns, and vanishes with it (tanh over
+                // `release_rad_s`): a stopped car is not driven backwards by its brakes.
+                // The engine pushes; a pull beyond `blend` is drag (weight w: 1 -> 0).
+                let friction = |wm, cm| (self.relative_spin(q, v, wm, cm) / b.release_rad_s).tanh();
+                let w = smooth_step01((engine + b.blend) / b.blend);
+                for &(wm, cm) in &c.wheels {
+                    let slip = if w == 1.0 {
+                        1.0
+                    } else {
+                        w + (1.0 - w) * friction(wm, cm)
+                    };
+                    spin_torque(wm, cm, engine / n * slip);
+                }
+                for &(wm, cm, share) in &b.wheels {
+                    spin_torque(wm, cm, brake * share * friction(wm, cm));
                 }
             }
         }
@@ -272,5 +343,34 @@ impl System {
             lim = Some(lim.map_or(h, |l: f64| l.min(h)));
         }
         lim
+    }
+}
+
+/// min(x, 0) with the corner rounded by a parabola over [-w/2, w/2]: C1, and exactly 0
+/// from w/2 up, so a controller that never asks for the brakes is not changed by them.
+fn smooth_min0(x: f64, w: f64) -> f64 {
+    if x >= 0.5 * w {
+        0.0
+    } else if x <= -0.5 * w {
+        x
+    } else {
+        -(x - 0.5 * w).powi(2) / (2.0 * w)
+    }
+}
+
+/// 0 below 0, 1 above 1, 3 s^2 - 2 s^3 between (C1).
+fn smooth_step01(s: f64) -> f64 {
+    let s = s.clamp(0.0, 1.0);
+    s * s * (3.0 - 2.0 * s)
+}
+
+/// x up to 80 % of `limit` in magnitude, then bending smoothly (C1) towards the limit.
+fn soft_clip(x: f64, limit: f64) -> f64 {
+    let knee = 0.8 * limit;
+    if x.abs() <= knee {
+        x
+    } else {
+        let room = limit - knee;
+        x.signum() * (knee + room * ((x.abs() - knee) / room).tanh())
     }
 }
