@@ -27,6 +27,7 @@ mod provenance;
 mod reliability;
 mod sensitivity;
 mod slurm;
+mod slurm_real;
 mod sweep;
 mod sweep_inputs;
 mod tyre_rig;

@@ -36,7 +36,7 @@ fn step(script: &str, out: &Path, shards: usize, task: Option<usize>) -> std::pr
 }
 
 /// The table's rows by column name, numbers parsed; wall times left out.
-fn table(path: &Path) -> Vec<Vec<(String, String)>> {
+pub(super) fn table(path: &Path) -> Vec<Vec<(String, String)>> {
     let mut r = csv::Reader::from_path(path).unwrap();
     let h: Vec<String> = r.headers().unwrap().iter().map(String::from).collect();
     r.records()
@@ -48,6 +48,21 @@ fn table(path: &Path) -> Vec<Vec<(String, String)>> {
                 .collect()
         })
         .collect()
+}
+
+/// Two tables equal row by row, number for number.
+pub(super) fn same_tables(a: &[Vec<(String, String)>], b: &[Vec<(String, String)>]) {
+    assert_eq!(a.len(), b.len());
+    for (x, y) in a.iter().zip(b) {
+        assert_eq!(x.len(), y.len());
+        for ((n1, v1), (n2, v2)) in x.iter().zip(y) {
+            assert_eq!(n1, n2);
+            match (v1.parse::<f64>(), v2.parse::<f64>()) {
+                (Ok(p), Ok(q)) => assert_eq!(p, q, "{n1}"),
+                _ => assert_eq!(v1, v2, "{n1}"),
+            }
+        }
+    }
 }
 
 #[test]
@@ -84,17 +99,7 @@ fn the_slurm_array_run_locally_merges_to_the_unsharded_summary() {
         table(&arr.join("summary.csv")),
     );
     assert_eq!(a.len(), 6);
-    assert_eq!(a.len(), b.len());
-    for (x, y) in a.iter().zip(&b) {
-        assert_eq!(x.len(), y.len());
-        for ((n1, v1), (n2, v2)) in x.iter().zip(y) {
-            assert_eq!(n1, n2);
-            match (v1.parse::<f64>(), v2.parse::<f64>()) {
-                (Ok(p), Ok(q)) => assert_eq!(p, q, "{n1}"),
-                _ => assert_eq!(v1, v2, "{n1}"),
-            }
-        }
-    }
+    same_tables(&a, &b);
     // The merged page links every case's report, kept by the tasks.
     let html = std::fs::read_to_string(arr.join("report.html")).unwrap();
     for k in 0..6 {
