@@ -1,7 +1,7 @@
 //! `towride sweep SWEEP.toml [--jobs N] [--shard I/N] [--resume] [--keep-histories]
 //! [--set FILE:PATH=VALUE] [--overrides FILE]` and `towride sweep merge`.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::{Args, Subcommand};
 use towride_app::sweep::exec::{merge, run_sweep_with, Options};
@@ -63,9 +63,87 @@ enum SweepCmd {
         #[arg(long)]
         json: bool,
     },
+    /// Rank the values of one swept parameter (the crossbeam variants) by each figure of
+    /// a summary, over the band the other parameters span: mean, smallest and largest,
+    /// rank by the mean (lowest first), the best value per figure.
+    Rank {
+        /// A sweep's (or merge's) summary CSV.
+        summary: PathBuf,
+        /// The parameter whose values are ranked.
+        #[arg(long, default_value = "hitch_variant")]
+        by: String,
+        /// Only these figures (names as in the summary, with or without the unit);
+        /// default: every figure but solver effort and verdicts.
+        #[arg(long, value_delimiter = ',')]
+        figures: Vec<String>,
+        /// Folder for ranking.csv, ranking.json and ranking.png (default: the summary's).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Print the ranking as JSON.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+/// `sweep rank`: the ranking table on the console, its files beside the summary.
+fn rank(summary: &Path, by: &str, figures: &[String], out: Option<&Path>, json: bool) -> CliResult {
+    let t = towride_app::sweep::page::read(summary)?;
+    let r = towride_app::sweep::rank::rank(&t, by, figures)
+        .map_err(|e| format!("{}: {e}", summary.display()))?;
+    let dir = out.unwrap_or_else(|| summary.parent().unwrap_or(Path::new(".")));
+    let files = towride_app::sweep::rank::write(&r, dir)?;
+    if json {
+        println!("{}", serde_json::to_string_pretty(&r)?);
+        return Ok(0);
+    }
+    println!(
+        "{} ranked by {} over {} (mean, [smallest, largest]; 1 = lowest mean):",
+        summary.display(),
+        r.by,
+        r.over.join(", ")
+    );
+    for f in &r.figures {
+        println!(
+            "  {}: best {} {}; spread over the band up to {:.0} % of the mean",
+            f.figure,
+            r.by,
+            f.best,
+            100.0 * f.largest_spread
+        );
+        for e in &f.entries {
+            let note = match (e.missing, e.unconverged) {
+                (0, 0) => String::new(),
+                (m, u) => format!("  ({m} without a result, {u} not converged)"),
+            };
+            println!(
+                "    {:>3}. {} {:<6} {:>12.5e} [{:.5e}, {:.5e}]{note}",
+                e.rank, r.by, e.value, e.mean, e.min, e.max
+            );
+        }
+    }
+    if r.rankings_disagree {
+        println!("the figures do not all rank the same {} first", r.by);
+    }
+    println!(
+        "files: {}, {}, {}",
+        files.csv.display(),
+        files.json.display(),
+        files.png.display()
+    );
+    Ok(0)
 }
 
 pub fn run(a: &SweepArgs) -> CliResult {
+    if let Some(SweepCmd::Rank {
+        summary,
+        by,
+        figures,
+        out,
+        json,
+    }) = &a.cmd
+    {
+        return rank(summary, by, figures, out.as_deref(), *json);
+    }
     if let Some(SweepCmd::Merge { inputs, out, json }) = &a.cmd {
         let m = merge(inputs, out)?;
         if *json {

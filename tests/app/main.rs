@@ -37,6 +37,7 @@ mod study_sensitivity;
 mod study_sensitivity_page;
 mod study_sensitivity_runs;
 mod summary_schema;
+mod sweep_rank;
 mod sweep_report;
 mod tyre_cleat;
 mod tyre_enveloping;

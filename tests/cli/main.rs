@@ -30,6 +30,7 @@ mod slurm;
 mod slurm_real;
 mod sweep;
 mod sweep_inputs;
+mod sweep_rank;
 mod tyre_rig;
 mod validate_folder;
 mod validate_pages;

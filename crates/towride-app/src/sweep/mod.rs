@@ -26,6 +26,7 @@ pub mod figures;
 pub mod fingerprint;
 pub mod guard;
 pub mod page;
+pub mod rank;
 pub mod resume;
 
 use std::path::{Path, PathBuf};
