@@ -498,8 +498,9 @@ fn print_summary(r: &RunResult) {
         let judged = v.channels.len();
         println!(
             "convergence (--check: rtol {:e} against {:e}, {} steps; max, min and RMS within {} %): {}",
-            v.rtol,
-            v.check_rtol,
+            // Round-off of rtol / 10 (1.0000000000000002e-6) is not a setting: 12 digits.
+            short(v.rtol),
+            short(v.check_rtol),
             v.check_steps,
             100.0 * v.threshold,
             if v.converged {
@@ -555,4 +556,10 @@ fn print_assumed(scene: &Path) {
             }
         );
     }
+}
+
+/// `x` rounded to 12 significant digits, so that `{:e}` prints 1e-6, not the round-off
+/// of a division.
+fn short(x: f64) -> f64 {
+    format!("{x:.11e}").parse().unwrap_or(x)
 }

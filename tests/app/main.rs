@@ -56,6 +56,7 @@ mod vehicle_errors;
 mod vehicle_scene;
 mod vehicle_simple;
 mod vehicle_statics;
+mod vehicle_steering;
 mod vehicle_templates;
 mod vehicle_twist_beam;
 mod vehicle_variants;

@@ -66,3 +66,21 @@ pub fn target(
 pub fn slows(f: &TimeFunction) -> bool {
     matches!(f, TimeFunction::JerkLimited { from, to, .. } if to < from)
 }
+
+/// `[run.steering]`: the steering rack's travel to the left [m] over time, any function
+/// of time of the mechanism files (`{ type = "table", time_s = [...], value = [...] }` for
+/// a lane change). With the tie rods behind the wheel centres (the Fabia's rack sits
+/// behind the front axle), rack travel to the left steers the car to the right.
+#[derive(Deserialize, Debug, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct SteeringSec {
+    rack_m: TimeFunction,
+}
+
+/// The rack travel of `sec`, checked.
+pub fn steering(src: &Source, sec: &SteeringSec) -> Result<TimeFunction, InputError> {
+    sec.rack_m
+        .check()
+        .map_err(|e| src.error(&path!["run", "steering", "rack_m"], e.to_string()))?;
+    Ok(sec.rack_m.clone())
+}

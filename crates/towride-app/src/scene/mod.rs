@@ -167,6 +167,8 @@ struct RunSec {
     accelerations: towride_mbs::model::desc::Accelerations,
     /// A speed change instead of the held speed ([`manoeuvre`]).
     manoeuvre: Option<manoeuvre::ManoeuvreSec>,
+    /// The steering rack's travel over time ([`manoeuvre`]).
+    steering: Option<manoeuvre::SteeringSec>,
 }
 
 fn one() -> f64 {
@@ -408,6 +410,10 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
         Some(m) => Some(manoeuvre::target(&src, m, speed, duration)?),
         None => None,
     };
+    let steering = match &f.run.steering {
+        Some(s) => Some(manoeuvre::steering(&src, s)?),
+        None => None,
+    };
     let animation_rate = match o.animation_rate_hz {
         Some(r) if r.is_finite() && r >= 0.0 => r,
         Some(r) => {
@@ -495,6 +501,7 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
         rear_cross_member: f.scene.rear_cross_member,
         run_modes,
         speed_target: speed_target.clone(),
+        steering: steering.clone(),
     };
     let mut v = vehicle::load(&vehicle_file, &opts, &loader).map_err(|e| {
         // A variant the hitch's flexible body lacks is the scene's mistake when the scene
@@ -525,6 +532,15 @@ pub fn load_with(path: &Path, o: &Changes, loader: &Loader) -> Result<Scene, Inp
             &path!["run", "manoeuvre", "to_speed_km_h"],
             format!(
                 "slows the vehicle, but {} has no brakes (its driveline file needs [brakes])",
+                vehicle_file.display()
+            ),
+        ));
+    }
+    if steering.is_some() && !v.model.motions.iter().any(|m| m.name == "steering_rack") {
+        return Err(src.error(
+            &path!["run", "steering"],
+            format!(
+                "{}'s front axle has no steering rack (only the McPherson template builds one)",
                 vehicle_file.display()
             ),
         ));

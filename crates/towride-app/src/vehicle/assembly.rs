@@ -45,10 +45,10 @@ pub fn assemble(d: Description, opts: &Options, loader: &Loader) -> Result<Vehic
     let car_ref = b.mb.marker_by_name("car_body.cm").expect("body marker");
     let mut axles = Vec::new();
     let slots = [
-        ("front", ["fl", "fr"], None),
-        ("rear", ["rl", "rr"], opts.rear_cross_member),
+        ("front", ["fl", "fr"], None, opts.steering.as_ref()),
+        ("rear", ["rl", "rr"], opts.rear_cross_member, None),
     ];
-    for (a, (name, wheels, cross_member)) in d.axles.into_iter().zip(slots) {
+    for (a, (name, wheels, cross_member, steering)) in d.axles.into_iter().zip(slots) {
         let tyre = a.tyre.tyre(d.tyre_kind, loader)?;
         let slot = AxleSlot {
             carrier: car_body,
@@ -57,6 +57,7 @@ pub fn assemble(d: Description, opts: &Options, loader: &Loader) -> Result<Vehic
             name,
             prefix: "",
             cross_member,
+            steering,
         };
         axles.push(a.spec.build(&mut b, &slot)?);
     }

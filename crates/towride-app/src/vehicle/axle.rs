@@ -36,6 +36,9 @@ pub struct AxleSlot<'a> {
     /// The cross member asked for by the scene (the twist beam's rigid or flexible one),
     /// if any; a template without that choice refuses it.
     pub cross_member: Option<CrossMember>,
+    /// The steering rack's travel to the left over time [m], when the scene steers
+    /// (`[run.steering]`); only a steerable template (McPherson) builds a rack for it.
+    pub steering: Option<&'a towride_mbs::model::function::TimeFunction>,
 }
 
 /// A built axle: what the design statics, the ride heights and the scene need.

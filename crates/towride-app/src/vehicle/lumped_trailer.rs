@@ -180,6 +180,7 @@ impl TrailerData for Props {
                 name: "trailer",
                 prefix: "trailer_",
                 cross_member: None,
+                steering: None,
             },
         )?;
         // Design statics of the empty trailer: its weight (body, the axle's parts, the

@@ -25,8 +25,8 @@ use super::props::{
 use super::strut::{rates, StrutPoints};
 use super::wheel::{self, WheelHandle};
 use towride_mbs::input::{InputError, Source};
-use towride_mbs::model::builder::SpringLine;
-use towride_mbs::model::desc::{JointKind, Law, Stop};
+use towride_mbs::model::builder::{BodyHandle, Link, SpringLine};
+use towride_mbs::model::desc::{JointKind, Law, MotionDof, Stop};
 use towride_mbs::model::elements::{JointBushing, StopSpec};
 use towride_mbs::model::math::{cross, scale, sub};
 use towride_mbs::path;
@@ -40,6 +40,9 @@ struct File {
     lower_arm: MassProps,
     strut_rod: MassProps,
     tie_rod: MassProps,
+    /// The steering rack between the tie rods' inner joints, built only when a scene
+    /// steers; without steering the tie rods sit on the body.
+    steering_rack: Option<MassProps>,
     wheel: WheelProps,
     spring: Spring,
     damper: DamperProps,
@@ -103,6 +106,9 @@ struct Props {
     lca: Mass,
     rod: Mass,
     tie: Mass,
+    rack: Option<Mass>,
+    /// Where a scene that steers is told the file has no rack.
+    rack_at: InputError,
     rim: Mass,
     belt: f64,
     spring: f64,
@@ -176,6 +182,15 @@ fn read(file: Source, tyre: &Tyre) -> Result<Props, InputError> {
         lca: f.lower_arm.check(src, &path!["lower_arm"])?,
         rod: f.strut_rod.check(src, &path!["strut_rod"])?,
         tie: f.tie_rod.check(src, &path!["tie_rod"])?,
+        rack: f
+            .steering_rack
+            .as_ref()
+            .map(|r| r.check(src, &path!["steering_rack"]))
+            .transpose()?,
+        rack_at: src.error(
+            &path!["steering_rack"],
+            "the scene steers, but this axle has no [steering_rack]",
+        ),
         rim: wheel::rim_mass(src, &path!["wheel"], &f.wheel, tyre, pts.wheel_centre)?,
         belt: wheel::tyre_own_mass(tyre),
         spring: src.positive(&path!["spring", "stiffness_n_m"], f.spring.stiffness_n_m)?,
@@ -206,8 +221,12 @@ impl AxleData for Props {
             body_mounts: Vec::new(),
             flexible: None,
         };
+        let rack = match slot.steering {
+            Some(travel) => Some(rack(b, &self, slot, travel)?),
+            None => None,
+        };
         for (right, name) in [(false, slot.wheels[0]), (true, slot.wheels[1])] {
-            let (wheel, corner, top) = side(b, &self, slot, right, name)?;
+            let (wheel, corner, top) = side(b, &self, slot, rack, right, name)?;
             out.wheels.push(wheel);
             out.corners.push(corner);
             out.body_mounts.push(top);
@@ -216,11 +235,50 @@ impl AxleData for Props {
     }
 }
 
+/// The steering rack: a body sliding across the car on a translational joint at the tie
+/// rods' inner joints' height, its travel prescribed (`travel`, to the left [m]).
+fn rack(
+    b: &mut Builder,
+    c: &Props,
+    slot: &AxleSlot,
+    travel: &towride_mbs::model::function::TimeFunction,
+) -> Result<BodyHandle, InputError> {
+    let m = c.rack.as_ref().ok_or_else(|| c.rack_at.clone())?;
+    let rack = b.body(&format!("{}steering_rack", slot.prefix), m)?;
+    let at = [c.points.tie_rod_inner[0], 0.0, c.points.tie_rod_inner[2]];
+    let axes = frame([0.0, 1.0, 0.0], Some([1.0, 0.0, 0.0])).expect("y is not along x");
+    // Ideal whatever `joints_as_bushings` says: the motion prescribes it.
+    let link = b.add(|mb| {
+        mb.ideal_joint(
+            "steering_rack",
+            JointKind::Translational,
+            Some(rack),
+            Some(slot.carrier),
+            at,
+            &axes,
+        )
+    })?;
+    let Link::Joint(joint) = link else {
+        unreachable!("an ideal joint is a joint")
+    };
+    b.add(|mb| {
+        mb.motion(
+            "steering_rack",
+            joint,
+            Some(MotionDof::Translation),
+            travel.clone(),
+            false,
+        )
+    })?;
+    Ok(rack)
+}
+
 /// One side: parts, joints, bushings, damper, wheel; the spring awaits its load.
 fn side(
     b: &mut Builder,
     c: &Props,
     slot: &AxleSlot,
+    rack: Option<BodyHandle>,
     right: bool,
     name: &str,
 ) -> Result<(WheelHandle, Corner, V), InputError> {
@@ -268,7 +326,7 @@ fn side(
             "tie_rod_inner",
             JointKind::Universal,
             tie,
-            body,
+            rack.unwrap_or(body),
             p.tie_rod_inner,
             &u_axes,
         ),

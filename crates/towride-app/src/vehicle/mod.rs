@@ -120,6 +120,9 @@ pub struct Options {
     /// The speed the driveline follows (a scene's `[run.manoeuvre]`); `None` holds
     /// `speed`.
     pub speed_target: Option<towride_mbs::model::function::TimeFunction>,
+    /// The steering rack's travel to the left over time [m] (a scene's
+    /// `[run.steering]`); `None`: no rack is built and the tie rods sit on the body.
+    pub steering: Option<towride_mbs::model::function::TimeFunction>,
 }
 
 /// A vehicle ready for a scene.
