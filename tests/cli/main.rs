@@ -28,6 +28,7 @@ mod reliability;
 mod sensitivity;
 mod slurm;
 mod slurm_real;
+mod sway;
 mod sweep;
 mod sweep_inputs;
 mod sweep_rank;
