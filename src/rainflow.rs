@@ -90,7 +90,7 @@ pub fn run(a: &RainflowArgs) -> CliResult {
                 format!("{stem}.png"),
             ];
             let writes: Vec<&str> = writes.iter().map(String::as_str).collect();
-            towride_app::atomic::claim(dir, "rainflow", &writes, &[a.file.clone()])?;
+            towride_app::atomic::claim(dir, "rainflow", &writes, std::slice::from_ref(&a.file))?;
             let matrix = RangeMeanMatrix::of(&cycles, a.bins, a.bins).map_err(at)?;
             let title = format!(
                 "{} `{}`: {:.1} cycles, DEL {:.4e} {unit} at N_ref {:.0e} (m = {})",
