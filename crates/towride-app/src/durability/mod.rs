@@ -72,3 +72,38 @@ pub(crate) fn positive(name: &'static str, value: f64) -> Result<f64, Durability
         })
     }
 }
+
+/// A run channel's durability figures, for `summary.json` (`docs/durability.md`).
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct ChannelDurability {
+    /// The channel (`hitch_fx`, ...).
+    pub channel: String,
+    /// Cycles counted (full plus half of the half cycles), gate 0.
+    pub cycles: f64,
+    /// Largest range counted (channel unit).
+    pub largest_range: f64,
+    /// S-N slope m of the DEL ([`DEFAULT_M`]).
+    pub m: f64,
+    /// Reference cycle count of the DEL ([`DEFAULT_N_REF`]).
+    pub n_ref: f64,
+    /// DEL at `n_ref` cycles (channel unit): the constant range that, applied `n_ref`
+    /// times, does the damage of `n_ref` passages.
+    pub del_at_n_ref: f64,
+    /// Damage-equivalent range of one passage: DEL at one cycle (channel unit).
+    pub del_per_passage: f64,
+}
+
+/// The durability figures of one channel of a run at the defaults; `None` when the
+/// channel cannot be counted (fewer than 3 samples, a non-finite sample).
+pub fn channel_block(channel: &str, values: &[f64]) -> Option<ChannelDurability> {
+    let cycles = count(&turning_points(values, 0.0).ok()?);
+    Some(ChannelDurability {
+        channel: channel.to_string(),
+        cycles: rainflow::total_cycles(&cycles),
+        largest_range: cycles.iter().map(|c| c.range).fold(0.0, f64::max),
+        m: DEFAULT_M,
+        n_ref: DEFAULT_N_REF,
+        del_at_n_ref: del(&cycles, DEFAULT_M, DEFAULT_N_REF).ok()?,
+        del_per_passage: del(&cycles, DEFAULT_M, 1.0).ok()?,
+    })
+}
