@@ -20,6 +20,7 @@ mod interrupt;
 mod modes;
 mod out;
 mod provenance;
+mod rainflow;
 mod run;
 mod scaling;
 mod scene_bench;
@@ -79,6 +80,9 @@ enum Command {
     /// Overlay the channels of two or more runs (HTML page and PNG) with max, min, |peak|
     /// and RMS differences against the first.
     Compare(compare::CompareArgs),
+    /// Rainflow count (ASTM E1049-85) of a CSV column, its damage-equivalent load and
+    /// Miner damage.
+    Rainflow(rainflow::RainflowArgs),
 }
 
 #[derive(clap::Args, Debug)]
@@ -147,6 +151,7 @@ fn run() -> i32 {
         Command::Stress(a) => scene_stress::run_stress(&a),
         Command::Validate(a) => validate::run(&a),
         Command::Compare(a) => compare::run(&a),
+        Command::Rainflow(a) => rainflow::run(&a),
     };
     match result {
         Ok(code) => code,

@@ -434,6 +434,26 @@ fn print_summary(r: &RunResult) {
         s.solver.jacobian_evals,
         s.outputs_csv.as_deref().unwrap_or("")
     );
+    if !s.durability.is_empty() {
+        // One line: the DEL of each hitch ball force (docs/durability.md).
+        let dels: Vec<String> = s
+            .durability
+            .iter()
+            .map(|d| {
+                format!(
+                    "{} {:.4e} N ({} cycles)",
+                    d.channel, d.del_at_n_ref, d.cycles
+                )
+            })
+            .collect();
+        let d = &s.durability[0];
+        println!(
+            "  DEL at N_ref {:.0e}, m = {} (rainflow, ASTM E1049): {}",
+            d.n_ref,
+            d.m,
+            dels.join(", ")
+        );
+    }
     for l in &s.lift_off {
         println!(
             "  wheel {} off the road from {:.3} s for {:.3} s",

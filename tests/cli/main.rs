@@ -24,6 +24,7 @@ mod modes;
 mod out_guard;
 mod overrides;
 mod provenance;
+mod rainflow;
 mod reliability;
 mod sensitivity;
 mod slurm;

@@ -371,6 +371,10 @@ pub struct RunSummary {
     pub hitch_force: Option<super::ringing::Ringing>,
     /// The acquisition chain of the band-limited channels (`None`: raw channels only).
     pub acquisition: Option<Acquisition>,
+    /// Rainflow cycles and damage-equivalent loads (m = 3, N_ref = 2e6) of the hitch
+    /// ball forces present (`crate::durability`); empty without them.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub durability: Vec<crate::durability::ChannelDurability>,
     /// Per channel, by name (raw and band-limited): unit, which it is, max, min and
     /// |peak| with their times; written in natural order (`hitch_eta_2` before
     /// `hitch_eta_10`).
@@ -470,6 +474,10 @@ impl RunSummary {
                 .acquisition()
                 .map(|f| Acquisition::of(&f, job.settings.sample_rate)),
             channels: channels(samples, job.acquisition().as_ref()),
+            durability: ["hitch_fx", "hitch_fy", "hitch_fz"]
+                .iter()
+                .filter_map(|c| crate::durability::channel_block(c, &samples.channel(c)?))
+                .collect(),
             produced_by: job.produced_by.clone(),
             outputs_csv: None,
             plots: None,

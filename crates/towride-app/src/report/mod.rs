@@ -12,6 +12,7 @@ pub mod linear;
 pub mod lineplot;
 pub mod plan_run;
 pub mod plot;
+pub mod rainflow;
 
 mod run;
 pub mod run_files;
