@@ -20,6 +20,7 @@ mod validate_sim;
 mod fuzz;
 mod fuzz_loggers;
 mod fuzz_overrides;
+mod hitch_stress;
 mod inputs_and_builder;
 mod job_ringing;
 mod model_mechanisms;

@@ -102,13 +102,11 @@ fn raw_channels(m: &Model, o: &Output) -> Vec<ChannelInfo> {
             }
             ModalQuantity::StrainEnergy => out.push(one("J")),
             ModalQuantity::Deflection { .. } => out.extend(vec_channels(&o.name, "m")),
-            ModalQuantity::Stress { .. } => {
-                out.extend(STRESS_PARTS.iter().map(|c| ChannelInfo {
-                    name: format!("{}.{c}", o.name),
-                    unit: "Pa",
-                    angle: false,
-                }))
-            }
+            ModalQuantity::Stress { .. } => out.extend(STRESS_PARTS.iter().map(|c| ChannelInfo {
+                name: format!("{}.{c}", o.name),
+                unit: "Pa",
+                angle: false,
+            })),
         },
         Request::Marker { quantity, .. } => {
             let unit = match quantity {
