@@ -49,7 +49,7 @@ fn skew(v: &Vector3<f64>) -> Matrix3<f64> {
 
 /// Rows of an interface node's six DOFs in modal-body coordinates
 /// (rigid translation, rigid rotation about the body origin, modal coordinates).
-fn rows(md: &ModalData, name: &str) -> DMatrix<f64> {
+pub(super) fn rows(md: &ModalData, name: &str) -> DMatrix<f64> {
     let n = md.node(name).unwrap();
     let nm = md.modes.len();
     let mut g = DMatrix::zeros(6, 6 + nm);
@@ -73,7 +73,7 @@ fn rows(md: &ModalData, name: &str) -> DMatrix<f64> {
 /// (a, theta, eta), from the inertia invariants only: kinetic energy
 /// 1/2 int rho |a + theta x s + Phi eta'|^2 gives [[I1 1, -~I2, I3], [~I2, I7, I4],
 /// [I3^T, I4^T, I6]].
-fn modal_body_matrices(md: &ModalData) -> (DMatrix<f64>, DMatrix<f64>) {
+pub(super) fn modal_body_matrices(md: &ModalData) -> (DMatrix<f64>, DMatrix<f64>) {
     let inv = &md.invariants;
     let nm = md.modes.len();
     let n = 6 + nm;

@@ -19,6 +19,7 @@ mod common;
 mod flex_beam;
 mod flex_hitch;
 mod flex_input;
+mod flex_stress;
 mod inputs_provenance;
 mod model_modal;
 mod model_modal_full;

@@ -275,6 +275,23 @@ pub fn standard(v: &Vehicle) -> (Vec<Output>, Vec<Channel>) {
                 &HITCH_DEFLECTION,
                 1.0,
             ));
+            // Nominal stresses at the flex file's stress points (flex::stress).
+            for (point, sp) in md.data.stress.points.iter().enumerate() {
+                let names: Vec<String> = towride_mbs::model::output::STRESS_PARTS
+                    .iter()
+                    .map(|c| format!("hitch_stress_{}_{c}", sp.name))
+                    .collect();
+                let refs: Vec<&str> = names.iter().map(|s| s.as_str()).collect();
+                out.push(named(
+                    &format!("hitch_stress_{}", sp.name),
+                    Request::Modal {
+                        body: hh.body,
+                        quantity: ModalQuantity::Stress { point },
+                    },
+                    &refs,
+                    1.0,
+                ));
+            }
         }
     }
     let mut m = v.model.clone();

@@ -43,6 +43,8 @@ pub struct FlexFile {
     pub interface: Vec<InterfaceIn>,
     #[serde(default)]
     pub marker: Vec<MarkerIn>,
+    #[serde(default)]
+    pub stress_point: Vec<StressPointIn>,
     pub selection: Option<SelectionIn>,
     pub damping: Option<DampingIn>,
     #[serde(default)]
@@ -197,6 +199,17 @@ pub struct InterfaceIn {
 pub struct MarkerIn {
     pub name: String,
     pub node: String,
+}
+
+/// A section where nominal stresses are recovered: on the member `node_a`-`node_b` (as
+/// an `[[element]]` names it, either order), at `at_fraction` of the way from `node_a`.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StressPointIn {
+    pub name: String,
+    pub node_a: String,
+    pub node_b: String,
+    pub at_fraction: f64,
 }
 
 /// How a flex file's default selection picks modes (`selection.rule`).

@@ -88,6 +88,8 @@ pub struct Mesh {
     pub interfaces: Vec<Interface>,
     /// Marker nodes, reported only (sensors).
     pub markers: Vec<Marker>,
+    /// Sections where nominal stresses are recovered (`[[stress_point]]`).
+    pub stress_points: Vec<super::stress::StressPoint>,
     /// Fixed-interface modes of the Craig-Bampton reduction (file's value or
     /// `DEFAULT_FIXED_INTERFACE_MODES`).
     pub fixed_interface_modes: usize,
@@ -575,6 +577,7 @@ fn build(src: &Source, f: &FlexFile, variant: Option<u32>) -> Result<Mesh, Input
         ));
     }
 
+    let stress_points = super::stress::resolve(src, f, &sections, &elements)?;
     let interface_names: Vec<String> = interfaces.iter().map(|i| i.name.clone()).collect();
     let selection = match &f.selection {
         Some(s) => Rule::from_input(src, &path!["selection"], s, &interface_names)?,
@@ -599,6 +602,7 @@ fn build(src: &Source, f: &FlexFile, variant: Option<u32>) -> Result<Mesh, Input
         point_masses,
         interfaces,
         markers,
+        stress_points,
         fixed_interface_modes: f
             .fixed_interface_modes
             .unwrap_or(DEFAULT_FIXED_INTERFACE_MODES),

@@ -24,6 +24,7 @@ pub mod modes;
 pub mod report;
 pub mod section;
 pub mod selection;
+pub mod stress;
 
 use std::path::Path;
 

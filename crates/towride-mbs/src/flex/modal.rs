@@ -16,6 +16,7 @@ use super::damping::Damping;
 use super::invariants::Invariants;
 use super::mesh::Mesh;
 use super::modes::frequency_hz;
+use super::stress::StressModes;
 
 /// Role of a named node of a modal body.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -80,6 +81,8 @@ pub struct ModalData {
     pub invariants: Invariants,
     /// The whole mesh, for drawing the body deformed.
     pub skeleton: Skeleton,
+    /// Section forces per unit modal coordinate at the file's stress points, over `modes`.
+    pub stress: StressModes,
 }
 
 /// Every FE node and beam element of a modal body with the nodes' translations in each
@@ -161,6 +164,7 @@ impl ModalData {
             modes,
             invariants,
             skeleton,
+            stress: StressModes::build(mesh, asm, cb),
         }
     }
 
@@ -216,6 +220,7 @@ impl ModalData {
                     .collect(),
                 ..self.skeleton.clone()
             },
+            stress: self.stress.restrict(keep),
         }
     }
 

@@ -405,6 +405,13 @@ pub enum ModalQuantity {
         /// Modal nodes whose mean displacement is subtracted.
         reference: Vec<usize>,
     },
+    /// Nominal stresses at a stress point of the flex file (index into the body's
+    /// `stress.points`) from the modal coordinates: sx_max, sx_min, tau, eq [Pa]
+    /// (`flex::stress`).
+    Stress {
+        /// Stress point index.
+        point: usize,
+    },
 }
 
 /// What an output measures.

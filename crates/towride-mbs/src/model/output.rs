@@ -34,6 +34,9 @@ fn vec_channels(base: &str, unit: &'static str) -> Vec<ChannelInfo> {
         .collect()
 }
 
+/// Components of a stress-point output, in order (`flex::stress::NominalStress`).
+pub const STRESS_PARTS: [&str; 4] = ["sx_max", "sx_min", "tau", "eq"];
+
 /// The channels of every requested output, in order.
 pub fn channels(sys: &System) -> Vec<ChannelInfo> {
     channels_of(&sys.model)
@@ -99,6 +102,11 @@ fn raw_channels(m: &Model, o: &Output) -> Vec<ChannelInfo> {
             }
             ModalQuantity::StrainEnergy => out.push(one("J")),
             ModalQuantity::Deflection { .. } => out.extend(vec_channels(&o.name, "m")),
+            ModalQuantity::Stress { .. } => out.extend(STRESS_PARTS.iter().map(|c| ChannelInfo {
+                name: format!("{}.{c}", o.name),
+                unit: "Pa",
+                angle: false,
+            })),
         },
         Request::Marker { quantity, .. } => {
             let unit = match quantity {
@@ -319,6 +327,11 @@ pub fn evaluate(sys: &System, t: f64, y: &[f64], yp: &[f64]) -> Vec<f64> {
                 match quantity {
                     ModalQuantity::Coordinates => out.extend_from_slice(eta),
                     ModalQuantity::StrainEnergy => out.push(sys.strain_energy(k, q).0),
+                    ModalQuantity::Stress { point } => {
+                        let md = &m.bodies[*body].modal.as_ref().expect("modal body").data;
+                        let s = md.stress.stress_at(*point, eta);
+                        out.extend([s.sx_max, s.sx_min, s.tau, s.eq]);
+                    }
                     ModalQuantity::Deflection { node, reference } => {
                         let md = &m.bodies[*body].modal.as_ref().expect("modal body").data;
                         let disp = |n: usize| -> [f64; 3] {
