@@ -25,6 +25,7 @@ mod model_modal_full;
 mod model_tyres;
 mod road_obstacles;
 mod road_profile_mesh;
+mod road_random;
 mod tyre_lateral;
 mod tyre_lift_off;
 mod tyre_rolling;
