@@ -24,6 +24,7 @@ mod model_modal;
 mod model_modal_full;
 mod model_tyres;
 mod road_obstacles;
+mod road_one_sided;
 mod road_profile_mesh;
 mod road_random;
 mod tyre_lateral;
