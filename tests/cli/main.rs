@@ -25,6 +25,7 @@ mod out_guard;
 mod overrides;
 mod provenance;
 mod reliability;
+mod road;
 mod sensitivity;
 mod slurm;
 mod sweep;

@@ -12,6 +12,7 @@ pub mod linear;
 pub mod lineplot;
 pub mod plan_run;
 pub mod plot;
+pub mod road;
 
 mod run;
 pub mod run_files;
