@@ -9,7 +9,7 @@ use realfft::RealFftPlanner;
 use towride_mbs::input::Loader;
 use towride_mbs::road::Road;
 
-/// ISO 8608:2016 class C (via Loprencipe & Zoccali 2017, Table 1): lower limit, geometric
+/// ISO 8608:2016 class C (as reproduced by Loprencipe & Zoccali 2017): lower limit, geometric
 /// mean and upper limit of Gd(n0) [m^3] at n0 = 0.1 cycles/m, waviness 2.
 const C_LOWER: f64 = 128e-6;
 const C_MEAN: f64 = 256e-6;

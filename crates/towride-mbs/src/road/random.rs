@@ -1,8 +1,8 @@
 //! ISO 8608 random road: two seeded tracks with a power-law displacement PSD and a stated
 //! left/right coherence, built as a two-track [`TrackProfile`] (linear between samples).
 //!
-//! **Spectrum** (ISO 8608:2016, section 5 and Annex C, via Loprencipe & Zoccali 2017,
-//! J. Mod. Transport. 25(1):24-33, doi:10.1007/s40534-017-0122-1, eq. (1) and Table 1):
+//! **Spectrum** (ISO 8608:2016 as reproduced by Loprencipe & Zoccali 2017, J. Mod.
+//! Transport. 25(1):24-33, doi:10.1007/s40534-017-0122-1; see `docs/roads.md`):
 //! the one-sided displacement PSD is `Gd(n) = Gd(n0) (n / n0)^-w` with n0 = 0.1 cycles/m
 //! and waviness w = 2 for the class table. Classes A..H have geometric-mean
 //! `Gd(n0)` = 16, 64, 256, 1024, 4096, 16384, 65536, 262144 x 1e-6 m^3 (each 4x the one
