@@ -23,6 +23,7 @@ mod inputs_provenance;
 mod model_modal;
 mod model_modal_full;
 mod model_tyres;
+mod road_crg;
 mod road_obstacles;
 mod road_one_sided;
 mod road_profile_mesh;

@@ -9,7 +9,8 @@
 //! - a longitudinal profile per track (left and right) read from CSV (see [`profile`]);
 //! - a 3D road: a height field on a regular grid, triangulated and queried through
 //!   `parry3d-f64` (see [`mesh`]);
-//! - an ISO 8608 random road: two seeded tracks built as a profile (see [`random`]).
+//! - an ISO 8608 random road: two seeded tracks built as a profile (see [`random`]);
+//! - an OpenCRG grid from a text `.crg` file (see [`crg`]).
 //!
 //! Queries: [`Road::height`], [`Road::slope`], [`Road::flat_height`] / [`Road::is_flat`]
 //! (a cheap "is there anything here" test so a scene can skip contact work), and
@@ -22,6 +23,7 @@
 //! height at the face is the value just after it. The file format and the ramp convention
 //! are documented in `docs/road_tyre.md`.
 
+pub mod crg;
 pub(crate) mod mesh;
 pub(crate) mod obstacle;
 pub(crate) mod profile;
@@ -55,6 +57,8 @@ enum Kind {
     },
     Profile(TrackProfile),
     Mesh(Box<HeightField>),
+    /// An OpenCRG grid (see [`crg`]).
+    Crg(Box<crg::CrgGrid>),
     /// A random road: its spec and the profile built from it.
     Random(Box<(RandomSpec, TrackProfile)>),
 }
@@ -100,6 +104,10 @@ enum RoadSection {
     },
     /// ISO 8608 random road (see [`random`]).
     Random(random::RandomToml),
+    /// OpenCRG text file (path relative to the TOML; see [`crg`]).
+    Crg {
+        file: String,
+    },
 }
 
 impl Road {
@@ -203,6 +211,18 @@ impl Road {
                 let csv = src.existing_file(&path!["road", "file"], &file)?;
                 Kind::Mesh(Box::new(HeightField::from_csv(&csv, loader)?))
             }
+            RoadSection::Crg { file } => {
+                if !f.obstacle.is_empty() {
+                    return Err(src.error(
+                        &path!["obstacle"],
+                        "obstacles are only allowed on a flat road",
+                    ));
+                }
+                let crg = src.existing_file(&path!["road", "file"], &file)?;
+                let g =
+                    crg::CrgGrid::read(&crg).map_err(|m| src.error(&path!["road", "file"], m))?;
+                Kind::Crg(Box::new(g))
+            }
             RoadSection::Random(r) => {
                 if !f.obstacle.is_empty() {
                     return Err(src.error(
@@ -236,6 +256,7 @@ impl Road {
             }
             Kind::Profile(p) => p.height(x, y),
             Kind::Random(r) => r.1.height(x, y),
+            Kind::Crg(g) => g.height(x, y),
             Kind::Mesh(m) => m.height(x, y),
         }
     }
@@ -253,6 +274,7 @@ impl Road {
             }
             Kind::Profile(p) => p.slope(x, y),
             Kind::Random(r) => r.1.slope(x, y),
+            Kind::Crg(g) => g.slope(x, y),
             Kind::Mesh(m) => m.slope(x, y),
         }
     }
@@ -272,6 +294,8 @@ impl Road {
             }
             Kind::Profile(p) => p.flat_height(x0, x1, y0, y1),
             Kind::Random(r) => r.1.flat_height(x0, x1, y0, y1),
+            // A measured surface: never skip the contact work.
+            Kind::Crg(_) => None,
             Kind::Mesh(m) => m.flat_height(x0, x1, y0, y1),
         }
     }
@@ -296,6 +320,7 @@ impl Road {
             }
             Kind::Profile(pr) => pr.kinks_along(p, d, s0, s1, out),
             Kind::Random(r) => r.1.kinks_along(p, d, s0, s1, out),
+            Kind::Crg(g) => g.kinks_along(p, d, s0, s1, out),
             Kind::Mesh(m) => m.kinks_along(p, d, s0, s1, out),
         }
         out[from..].sort_by(f64::total_cmp);
@@ -324,6 +349,7 @@ impl Road {
                 r.0.seed
             ),
             Kind::Mesh(m) => m.describe(),
+            Kind::Crg(g) => g.describe(),
         }
     }
 
@@ -350,6 +376,7 @@ impl Road {
             Kind::Profile(p) => Some(p.x_range()),
             Kind::Random(r) => Some(r.1.x_range()),
             Kind::Mesh(m) => Some(m.x_range()),
+            Kind::Crg(g) => Some(g.x_range()),
             Kind::Flat { obstacles, .. } => {
                 let ends = obstacles.iter().map(|o| o.x_range());
                 let lo = ends.clone().map(|e| e.0).fold(f64::INFINITY, f64::min);
