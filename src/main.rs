@@ -21,6 +21,7 @@ mod modes;
 mod out;
 mod provenance;
 mod rainflow;
+mod road;
 mod run;
 mod scaling;
 mod scene_bench;
@@ -63,6 +64,9 @@ enum Command {
     Modes(modes::ModesArgs),
     /// Run a tyre test rig (cleat or quarter rig) from a TOML file.
     TyreRig(tyre_rig::TyreRigArgs),
+    /// Sample a road along its two tracks: profile CSV and plot; for an ISO 8608 random
+    /// road its displacement PSD against the class band.
+    Road(road::RoadArgs),
     /// Source class (measured, published, scaled, assumed) of every value of property
     /// files; exit code 1 when a number has none.
     Provenance(provenance::ProvenanceArgs),
@@ -145,6 +149,7 @@ fn run() -> i32 {
         Command::Doctor(a) => analyse::doctor(&a),
         Command::Modes(a) => modes::run(&a),
         Command::TyreRig(a) => tyre_rig::run(&a),
+        Command::Road(a) => road::run(&a),
         Command::Provenance(a) => provenance::run(&a),
         Command::Sweep(a) => sweep::run(&a),
         Command::Sensitivity(a) => sensitivity::run(&a),

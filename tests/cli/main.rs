@@ -26,6 +26,7 @@ mod overrides;
 mod provenance;
 mod rainflow;
 mod reliability;
+mod road;
 mod sensitivity;
 mod slurm;
 mod slurm_real;

@@ -13,6 +13,7 @@ pub mod lineplot;
 pub mod plan_run;
 pub mod plot;
 pub mod rainflow;
+pub mod road;
 
 mod run;
 pub mod run_files;

@@ -325,6 +325,11 @@ impl HeightField {
         }
     }
 
+    /// First and last x of the grid [m].
+    pub fn x_range(&self) -> (f64, f64) {
+        (self.xs[0], self.xs[self.xs.len() - 1])
+    }
+
     /// A short description for logs and reports.
     pub fn describe(&self) -> String {
         format!(

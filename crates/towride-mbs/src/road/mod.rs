@@ -8,7 +8,9 @@
 //!   [`obstacle`]);
 //! - a longitudinal profile per track (left and right) read from CSV (see [`profile`]);
 //! - a 3D road: a height field on a regular grid, triangulated and queried through
-//!   `parry3d-f64` (see [`mesh`]).
+//!   `parry3d-f64` (see [`mesh`]);
+//! - an ISO 8608 random road: two seeded tracks built as a profile (see [`random`]);
+//! - an OpenCRG grid from a text `.crg` file (see [`crg`]).
 //!
 //! Queries: [`Road::height`], [`Road::slope`], [`Road::flat_height`] / [`Road::is_flat`]
 //! (a cheap "is there anything here" test so a scene can skip contact work), and
@@ -21,9 +23,11 @@
 //! height at the face is the value just after it. The file format and the ramp convention
 //! are documented in `docs/road_tyre.md`.
 
+pub mod crg;
 pub(crate) mod mesh;
 pub(crate) mod obstacle;
 pub(crate) mod profile;
+pub mod random;
 
 use std::path::{Path, PathBuf};
 
@@ -35,6 +39,7 @@ use crate::path;
 pub use mesh::HeightField;
 pub use obstacle::Obstacle;
 pub use profile::TrackProfile;
+pub use random::RandomSpec;
 
 /// A road surface.
 #[derive(Clone, Debug)]
@@ -52,6 +57,10 @@ enum Kind {
     },
     Profile(TrackProfile),
     Mesh(Box<HeightField>),
+    /// An OpenCRG grid (see [`crg`]).
+    Crg(Box<crg::CrgGrid>),
+    /// A random road: its spec and the profile built from it.
+    Random(Box<(RandomSpec, TrackProfile)>),
 }
 
 /// A road that cannot be built from the values given.
@@ -91,6 +100,12 @@ enum RoadSection {
     },
     HeightField {
         /// CSV with columns x_m, y_m, z_m on a regular grid (path relative to the TOML).
+        file: String,
+    },
+    /// ISO 8608 random road (see [`random`]).
+    Random(random::RandomToml),
+    /// OpenCRG text file (path relative to the TOML; see [`crg`]).
+    Crg {
         file: String,
     },
 }
@@ -196,6 +211,31 @@ impl Road {
                 let csv = src.existing_file(&path!["road", "file"], &file)?;
                 Kind::Mesh(Box::new(HeightField::from_csv(&csv, loader)?))
             }
+            RoadSection::Crg { file } => {
+                if !f.obstacle.is_empty() {
+                    return Err(src.error(
+                        &path!["obstacle"],
+                        "obstacles are only allowed on a flat road",
+                    ));
+                }
+                let crg = src.existing_file(&path!["road", "file"], &file)?;
+                let g =
+                    crg::CrgGrid::read(&crg).map_err(|m| src.error(&path!["road", "file"], m))?;
+                Kind::Crg(Box::new(g))
+            }
+            RoadSection::Random(r) => {
+                if !f.obstacle.is_empty() {
+                    return Err(src.error(
+                        &path!["obstacle"],
+                        "obstacles are only allowed on a flat road",
+                    ));
+                }
+                let spec = r.build(src)?;
+                let p = spec
+                    .profile()
+                    .map_err(|e| src.error(&path!["road", "length_m"], e.to_string()))?;
+                Kind::Random(Box::new((spec, p)))
+            }
         };
         Ok(Road {
             kind,
@@ -215,6 +255,8 @@ impl Road {
                     .unwrap_or(*height)
             }
             Kind::Profile(p) => p.height(x, y),
+            Kind::Random(r) => r.1.height(x, y),
+            Kind::Crg(g) => g.height(x, y),
             Kind::Mesh(m) => m.height(x, y),
         }
     }
@@ -231,6 +273,8 @@ impl Road {
                     .map_or((0.0, 0.0), |o| o.slope(x, y))
             }
             Kind::Profile(p) => p.slope(x, y),
+            Kind::Random(r) => r.1.slope(x, y),
+            Kind::Crg(g) => g.slope(x, y),
             Kind::Mesh(m) => m.slope(x, y),
         }
     }
@@ -249,6 +293,9 @@ impl Road {
                 }
             }
             Kind::Profile(p) => p.flat_height(x0, x1, y0, y1),
+            Kind::Random(r) => r.1.flat_height(x0, x1, y0, y1),
+            // A measured surface: never skip the contact work.
+            Kind::Crg(_) => None,
             Kind::Mesh(m) => m.flat_height(x0, x1, y0, y1),
         }
     }
@@ -272,6 +319,8 @@ impl Road {
                 }
             }
             Kind::Profile(pr) => pr.kinks_along(p, d, s0, s1, out),
+            Kind::Random(r) => r.1.kinks_along(p, d, s0, s1, out),
+            Kind::Crg(g) => g.kinks_along(p, d, s0, s1, out),
             Kind::Mesh(m) => m.kinks_along(p, d, s0, s1, out),
         }
         out[from..].sort_by(f64::total_cmp);
@@ -289,7 +338,54 @@ impl Road {
                 }
             }
             Kind::Profile(p) => p.describe(),
+            Kind::Random(r) => format!(
+                "ISO 8608 random road ({}, Gd(n0) = {:e} m^3, w = {}), {} m at {} m, seed {}",
+                r.0.class
+                    .map_or("no class".to_string(), |c| format!("class {c}")),
+                r.0.gd_n0,
+                r.0.waviness,
+                r.0.length,
+                r.0.dx,
+                r.0.seed
+            ),
             Kind::Mesh(m) => m.describe(),
+            Kind::Crg(g) => g.describe(),
+        }
+    }
+
+    /// The spec of a random road, else `None`.
+    pub fn random_spec(&self) -> Option<&RandomSpec> {
+        match &self.kind {
+            Kind::Random(r) => Some(&r.0),
+            _ => None,
+        }
+    }
+
+    /// Lateral distance of the two tracks of a profile or random road, else `None`.
+    pub fn track_width(&self) -> Option<f64> {
+        match &self.kind {
+            Kind::Profile(p) => Some(p.track_width()),
+            Kind::Random(r) => Some(r.1.track_width()),
+            _ => None,
+        }
+    }
+
+    /// The x range the road's data cover (profile, random, height field), else `None`.
+    pub fn x_extent(&self) -> Option<(f64, f64)> {
+        match &self.kind {
+            Kind::Profile(p) => Some(p.x_range()),
+            Kind::Random(r) => Some(r.1.x_range()),
+            Kind::Mesh(m) => Some(m.x_range()),
+            Kind::Crg(g) => Some(g.x_range()),
+            Kind::Flat { obstacles, .. } => {
+                let ends = obstacles.iter().map(|o| o.x_range());
+                let lo = ends.clone().map(|e| e.0).fold(f64::INFINITY, f64::min);
+                let hi = ends
+                    .map(|e| e.1)
+                    .filter(|v| v.is_finite())
+                    .fold(lo, f64::max);
+                lo.is_finite().then_some((lo, hi))
+            }
         }
     }
 }

@@ -257,9 +257,44 @@ impl Obstacle {
         }
     }
 
+    /// A pothole: a ramp `depth` deep (a trapezoid turned down), `length` at the rim.
+    pub fn pothole(
+        start: f64,
+        depth: f64,
+        length: f64,
+        flank_angle_deg: f64,
+        base: f64,
+    ) -> Result<Obstacle, RoadError> {
+        let mut o = Obstacle::ramp(start, depth, length, LengthAt::Base, flank_angle_deg, base)
+            .map_err(|e| {
+                RoadError::Geometry(e.to_string().replace("ramp height", "pothole depth"))
+            })?;
+        if let Shape::Ramp { h, .. } = &mut o.shape {
+            *h = -*h;
+        }
+        Ok(o)
+    }
+
+    /// " on the left/right half" for a one-sided obstacle, else "".
+    fn side(&self) -> String {
+        match (self.y_min.is_finite(), self.y_max.is_finite()) {
+            (false, false) => String::new(),
+            _ => format!(", y {}..{} m", self.y_min, self.y_max),
+        }
+    }
+
     /// A short description for logs and reports.
     pub fn describe(&self) -> String {
         match self.shape {
+            Shape::Ramp { x, h } if h < 0.0 => format!(
+                "pothole {:.0} mm deep, rim {:.3}..{:.3} m, bottom {:.3}..{:.3} m{}",
+                -h * 1e3,
+                x[0],
+                x[3],
+                x[1],
+                x[2],
+                self.side()
+            ),
             Shape::Ramp { x, h } => format!(
                 "ramp {:.0} mm high, base {:.3}..{:.3} m, plateau {:.3}..{:.3} m",
                 h * 1e3,
@@ -279,6 +314,16 @@ impl Obstacle {
     }
 }
 
+/// Which half of the road a one-sided obstacle covers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Track {
+    /// y >= 0.
+    Left,
+    /// y <= 0.
+    Right,
+}
+
 /// One `[[obstacle]]` table of a road file.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields, tag = "kind", rename_all = "snake_case")]
@@ -293,6 +338,8 @@ pub(crate) enum ObstacleToml {
         y_min_m: Option<f64>,
         #[serde(default)]
         y_max_m: Option<f64>,
+        #[serde(default)]
+        track: Option<Track>,
     },
     Bump {
         start_m: f64,
@@ -302,6 +349,8 @@ pub(crate) enum ObstacleToml {
         y_min_m: Option<f64>,
         #[serde(default)]
         y_max_m: Option<f64>,
+        #[serde(default)]
+        track: Option<Track>,
     },
     Step {
         start_m: f64,
@@ -310,6 +359,20 @@ pub(crate) enum ObstacleToml {
         y_min_m: Option<f64>,
         #[serde(default)]
         y_max_m: Option<f64>,
+        #[serde(default)]
+        track: Option<Track>,
+    },
+    Pothole {
+        start_m: f64,
+        depth_m: f64,
+        length_m: f64,
+        flank_angle_deg: f64,
+        #[serde(default)]
+        y_min_m: Option<f64>,
+        #[serde(default)]
+        y_max_m: Option<f64>,
+        #[serde(default)]
+        track: Option<Track>,
     },
 }
 
@@ -317,7 +380,7 @@ impl ObstacleToml {
     /// Checks and builds obstacle number `i` of the file.
     pub(crate) fn build(&self, src: &Source, i: usize, base: f64) -> Result<Obstacle, InputError> {
         let at = |k: &str| path!["obstacle", i, k];
-        let (mut o, y_min, y_max, key) = match self {
+        let (mut o, y_min, y_max, track) = match self {
             ObstacleToml::Ramp {
                 start_m,
                 height_m,
@@ -326,6 +389,7 @@ impl ObstacleToml {
                 flank_angle_deg,
                 y_min_m,
                 y_max_m,
+                track,
             } => {
                 src.finite(&at("start_m"), *start_m)?;
                 src.positive(&at("height_m"), *height_m)?;
@@ -345,7 +409,7 @@ impl ObstacleToml {
                     base,
                 )
                 .map_err(|m| src.error(&at("length_m"), m.to_string()))?;
-                (o, y_min_m, y_max_m, "height_m")
+                (o, y_min_m, y_max_m, track)
             }
             ObstacleToml::Bump {
                 start_m,
@@ -353,27 +417,62 @@ impl ObstacleToml {
                 chord_m,
                 y_min_m,
                 y_max_m,
+                track,
             } => {
                 src.finite(&at("start_m"), *start_m)?;
                 src.positive(&at("height_m"), *height_m)?;
                 src.positive(&at("chord_m"), *chord_m)?;
                 let o = Obstacle::bump(*start_m, *height_m, *chord_m, base)
                     .map_err(|m| src.error(&at("height_m"), m.to_string()))?;
-                (o, y_min_m, y_max_m, "height_m")
+                (o, y_min_m, y_max_m, track)
             }
             ObstacleToml::Step {
                 start_m,
                 height_m,
                 y_min_m,
                 y_max_m,
+                track,
             } => {
                 src.finite(&at("start_m"), *start_m)?;
                 let o = Obstacle::step(*start_m, *height_m, base)
                     .map_err(|m| src.error(&at("height_m"), m.to_string()))?;
-                (o, y_min_m, y_max_m, "height_m")
+                (o, y_min_m, y_max_m, track)
+            }
+            ObstacleToml::Pothole {
+                start_m,
+                depth_m,
+                length_m,
+                flank_angle_deg,
+                y_min_m,
+                y_max_m,
+                track,
+            } => {
+                src.finite(&at("start_m"), *start_m)?;
+                src.positive(&at("depth_m"), *depth_m)?;
+                src.positive(&at("length_m"), *length_m)?;
+                if !(*flank_angle_deg > 0.0 && *flank_angle_deg <= 90.0) {
+                    return Err(src.error(
+                        &at("flank_angle_deg"),
+                        format!("must be in (0, 90], got {flank_angle_deg}"),
+                    ));
+                }
+                let o = Obstacle::pothole(*start_m, *depth_m, *length_m, *flank_angle_deg, base)
+                    .map_err(|m| src.error(&at("length_m"), m.to_string()))?;
+                (o, y_min_m, y_max_m, track)
             }
         };
-        let _ = key;
+        if let Some(t) = track {
+            if y_min.is_some() || y_max.is_some() {
+                return Err(src.error(
+                    &at("track"),
+                    "give either `track` or `y_min_m` / `y_max_m`, not both",
+                ));
+            }
+            match t {
+                Track::Left => o.y_min = 0.0,
+                Track::Right => o.y_max = 0.0,
+            }
+        }
         if let Some(y) = y_min {
             o.y_min = src.finite(&at("y_min_m"), *y)?;
         }

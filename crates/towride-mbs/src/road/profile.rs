@@ -190,6 +190,16 @@ impl TrackProfile {
         push_y_crossing(p, d, -self.half_track, s0, s1, out);
     }
 
+    /// Lateral distance of the two tracks [m].
+    pub fn track_width(&self) -> f64 {
+        2.0 * self.half_track
+    }
+
+    /// First and last x of the data [m].
+    pub fn x_range(&self) -> (f64, f64) {
+        (self.x[0], self.x[self.x.len() - 1])
+    }
+
     /// A short description for logs and reports.
     pub fn describe(&self) -> String {
         format!(
