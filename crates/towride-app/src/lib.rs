@@ -15,6 +15,7 @@
 //! | [`atomic`] | files written whole or not at all |
 //! | [`error`] | the application's errors and [`Error`] |
 //! | [`signal`] | filters, spectra, power spectral densities |
+//! | [`comfort`] | ride comfort after ISO 2631-1: weightings, a_w, VDV, MTVV |
 //! | [`vehicle`] | vehicle templates: property files into builder calls |
 //! | [`scene`] | scenes and plans: a vehicle on a road, what to run and record |
 //! | [`job`] | the run pipeline and its summary (data, no files) |
@@ -70,6 +71,8 @@ pub mod atomic;
 pub mod error;
 
 pub mod signal;
+
+pub mod comfort;
 
 pub mod vehicle;
 
