@@ -17,6 +17,7 @@ macro_rules! repo {
 mod common;
 mod validate_sim;
 
+mod comfort_iso2631;
 mod durability_rainflow;
 mod fuzz;
 mod fuzz_loggers;

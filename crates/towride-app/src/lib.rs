@@ -15,6 +15,7 @@
 //! | [`atomic`] | files written whole or not at all |
 //! | [`error`] | the application's errors and [`Error`] |
 //! | [`signal`] | filters, spectra, power spectral densities |
+//! | [`comfort`] | ride comfort after ISO 2631-1: weightings, a_w, VDV, MTVV |
 //! | [`durability`] | rainflow counting, Miner damage, damage-equivalent loads |
 //! | [`vehicle`] | vehicle templates: property files into builder calls |
 //! | [`scene`] | scenes and plans: a vehicle on a road, what to run and record |
@@ -72,6 +73,7 @@ pub mod error;
 
 pub mod signal;
 
+pub mod comfort;
 pub mod durability;
 
 pub mod vehicle;

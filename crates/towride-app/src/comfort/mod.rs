@@ -1,0 +1,17 @@
+//! Ride comfort after ISO 2631-1:1997: the frequency weightings as digital filters
+//! ([`weighting`]) and the measures of a weighted acceleration ([`metrics`]): r.m.s.,
+//! VDV, MTVV, crest factor and the combined vibration total value. `docs/comfort.md`
+//! gives the definitions and sources.
+
+pub mod metrics;
+pub mod weighting;
+
+pub use metrics::{combined, measures, Assessment, Measures};
+pub use weighting::{Weighting, WeightingFilter};
+
+/// The measures of the acceleration `a` [m/s^2] sampled at `rate_hz`, weighted by `w`;
+/// `None` when the rate is too low for the weighting or the signal is empty.
+pub fn weighted_measures(a: &[f64], rate_hz: f64, w: Weighting) -> Option<Measures> {
+    let f = WeightingFilter::new(w, rate_hz)?;
+    measures(&f.apply(a), 1.0 / rate_hz)
+}
