@@ -48,7 +48,7 @@ pub fn samples_mf4(samples: &Samples, path: &Path) -> std::io::Result<()> {
     for (c, info) in samples.channels.iter().enumerate() {
         col.clear();
         col.extend(samples.rows.iter().map(|r| r[c]));
-        g.add_channel(&info.name, &info.unit, &col).map_err(bad)?;
+        g.add_channel(&info.name, info.unit, &col).map_err(bad)?;
     }
     let mut out = Atomic::create(path)?;
     w.write(&mut out).map_err(bad)?;
