@@ -54,6 +54,10 @@ pub fn is_mdf(file: &Path) -> bool {
     if matches!(ext.as_deref(), Some("mf4" | "mdf")) {
         return true;
     }
+    // Only a regular file is opened: a FIFO would block here (the readers refuse it).
+    if !std::fs::metadata(file).is_ok_and(|m| m.is_file()) {
+        return false;
+    }
     let mut head = [0u8; 8];
     use std::io::Read;
     std::fs::File::open(file)
