@@ -56,9 +56,22 @@ pub struct RunArgs {
     /// With --check: the relative difference a converged channel may show [%] (default 2).
     #[arg(long, requires = "check", value_parser = crate::bounded::share_pct)]
     pub(crate) check_threshold: Option<f64>,
+    /// Output formats: `csv` (outputs.csv, always written: the run page and `compare`
+    /// read it) and `mf4` (outputs.mf4 as well, ASAM MDF4); comma-separated.
+    #[arg(long, value_delimiter = ',', value_enum, default_value = "csv")]
+    pub(crate) format: Vec<OutFormat>,
     /// Plans: cases run at once (default: the machine's cores).
     #[arg(long, value_parser = crate::bounded::jobs)]
     pub(crate) jobs: Option<usize>,
+}
+
+/// A format `run` writes its samples in.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OutFormat {
+    /// outputs.csv
+    Csv,
+    /// outputs.mf4 (ASAM MDF4)
+    Mf4,
 }
 
 pub fn run(a: &RunArgs) -> CliResult {
@@ -95,6 +108,7 @@ pub fn run(a: &RunArgs) -> CliResult {
         return list_names(a, &loader, run_modes);
     }
     let check = Check::of(a);
+    let mf4 = a.format.contains(&OutFormat::Mf4);
     if !plan::is_plan(&a.file) {
         // Plan-only options would change nothing here: say so rather than ignore them.
         let plan_only = [
@@ -139,7 +153,7 @@ pub fn run(a: &RunArgs) -> CliResult {
             None => None,
         };
         crate::interrupt::install();
-        let res = run_job(&job, companion.as_ref().zip(check), &a.out, a.json)
+        let res = run_job(&job, companion.as_ref().zip(check), &a.out, a.json, mf4)
             .map_err(|e| -> Box<dyn std::error::Error> { e })?;
         if a.json && job.scene.is_some() {
             // The summary plus the assumed inputs, as the text output lists them.
@@ -203,7 +217,13 @@ pub fn run(a: &RunArgs) -> CliResult {
                 Some(_) => Some(build()?.tightened(convergence::TIGHTEN)),
                 None => None,
             };
-            run_job(&job, companion.as_ref().zip(check), &out, a.json || quiet)
+            run_job(
+                &job,
+                companion.as_ref().zip(check),
+                &out,
+                a.json || quiet,
+                mf4,
+            )
         };
         go().map(Some)
     };
@@ -368,6 +388,7 @@ fn run_job(
     check: Option<(&Job, Check)>,
     out: &Path,
     json: bool,
+    mf4: bool,
 ) -> Result<RunResult, DynError> {
     if !json {
         for w in &job.warnings {
@@ -391,7 +412,7 @@ fn run_job(
             );
         }
     }
-    towride_app::report::write_run(&mut res, &job.system, out)?;
+    towride_app::report::write_run_as(&mut res, &job.system, out, mf4)?;
     if !json {
         print_summary(&res);
     }

@@ -49,6 +49,7 @@ mod validate_filter_rating;
 mod validate_init;
 mod validate_init_inputs;
 mod validate_logger;
+mod validate_mf4;
 mod validate_passage;
 mod validate_recovery;
 mod validate_vehicle;

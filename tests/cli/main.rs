@@ -20,6 +20,7 @@ mod doctor;
 mod fuzz_tools;
 mod inputs;
 mod interrupt;
+mod mf4;
 mod modes;
 mod out_guard;
 mod overrides;

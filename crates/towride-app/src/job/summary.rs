@@ -388,6 +388,9 @@ pub struct RunSummary {
     pub produced_by: super::ProducedBy,
     /// The CSV written, once written.
     pub outputs_csv: Option<String>,
+    /// The MDF4 file written (`run --format mf4`), once written.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub outputs_mf4: Option<String>,
     /// The plot page written (or why not), once written.
     pub plots: Option<String>,
     /// The page of the scene's `[[output]]` channels (or why not), once written; `None`
@@ -480,6 +483,7 @@ impl RunSummary {
                 .collect(),
             produced_by: job.produced_by.clone(),
             outputs_csv: None,
+            outputs_mf4: None,
             plots: None,
             plots_outputs: None,
             report: None,

@@ -27,4 +27,4 @@ pub mod tyre_rig;
 
 pub use crate::error::ReportError;
 pub use run::run_page;
-pub use run_files::{samples_csv, write_run};
+pub use run_files::{samples_csv, samples_mf4, write_run, write_run_as};

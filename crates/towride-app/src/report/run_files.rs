@@ -38,6 +38,23 @@ pub fn samples_csv(samples: &Samples, path: &Path) -> std::io::Result<()> {
     out.into_inner().map_err(|e| e.into_error())?.commit()
 }
 
+/// Writes the samples as an ASAM MDF4 file (`falcon_mdf`): one channel group, its master
+/// `time [s]`, every output channel as a float64 with its unit; whole or not at all.
+pub fn samples_mf4(samples: &Samples, path: &Path) -> std::io::Result<()> {
+    let bad = |e: falcon_mdf::error::Mf4Error| std::io::Error::other(e.to_string());
+    let mut w = falcon_mdf::write::Mf4Writer::new();
+    let g = w.add_group(&samples.times).map_err(bad)?;
+    let mut col = Vec::with_capacity(samples.times.len());
+    for (c, info) in samples.channels.iter().enumerate() {
+        col.clear();
+        col.extend(samples.rows.iter().map(|r| r[c]));
+        g.add_channel(&info.name, info.unit, &col).map_err(bad)?;
+    }
+    let mut out = Atomic::create(path)?;
+    w.write(&mut out).map_err(bad)?;
+    out.commit()
+}
+
 /// Writes `outputs.csv` (units in the headers), the plot pages of a scene (`plots.png`,
 /// and `plots_outputs.png` for its `[[output]]` channels),
 /// the HTML report (`report.html`, with the 3D view of `system` when the run recorded
@@ -45,10 +62,20 @@ pub fn samples_csv(samples: &Samples, path: &Path) -> std::io::Result<()> {
 /// wall time. Each file is written whole or not at all ([`crate::atomic`]), the summary
 /// last. `system` is the one the run integrated (`Job::system`).
 pub fn write_run(run: &mut RunResult, system: &System, dir: &Path) -> Result<()> {
+    write_run_as(run, system, dir, false)
+}
+
+/// [`write_run`], and with `mf4` the samples as `outputs.mf4` too ([`samples_mf4`]).
+pub fn write_run_as(run: &mut RunResult, system: &System, dir: &Path, mf4: bool) -> Result<()> {
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     let csv = dir.join("outputs.csv");
     samples_csv(&run.samples, &csv).map_err(|e| Error::io(&csv, e))?;
     run.summary.outputs_csv = Some(csv.display().to_string());
+    if mf4 {
+        let f = dir.join("outputs.mf4");
+        samples_mf4(&run.samples, &f).map_err(|e| Error::io(&f, e))?;
+        run.summary.outputs_mf4 = Some(f.display().to_string());
+    }
     if run.summary.scene.is_some() {
         let plot = dir.join("plots.png");
         run.summary.plots = Some(match super::run_page(&run.samples, &plot) {

@@ -59,7 +59,7 @@ pub fn welch(y: &[f64], fs: f64, len: usize) -> Option<Psd> {
         .iter()
         .enumerate()
         .map(|(k, a)| {
-            let twice = if k == 0 || (k == last && len % 2 == 0) {
+            let twice = if k == 0 || (k == last && len.is_multiple_of(2)) {
                 1.0
             } else {
                 2.0

@@ -264,6 +264,9 @@ pub fn read_table_with(
     time: &TimeSpec,
     columns: &[&str],
 ) -> Result<Table, InputError> {
+    if super::mdf::is_mdf(file) {
+        return super::mdf::read_table(file, time, columns);
+    }
     let lines = lines_of(file)?;
     let mut wanted: Vec<&str> = Vec::new();
     if let Some(t) = &time.column {

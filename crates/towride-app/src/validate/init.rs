@@ -187,6 +187,9 @@ fn checked_rate(
 /// Sniffs `file`; `rate_hz`: the sample rate when the file has no time column (else read
 /// from a comment such as `# sample rate: 2000 Hz`).
 pub fn sniff(file: &Path, rate_hz: Option<f64>) -> Result<Sniff, InputError> {
+    if super::mdf::is_mdf(file) {
+        return sniff_mdf(file, rate_hz);
+    }
     let lines = lines_of(file)?;
     let (sep, h, u) = layout(&lines).ok_or_else(|| match first_content(&lines) {
         Some(i) => err(
@@ -274,7 +277,44 @@ pub fn sniff(file: &Path, rate_hz: Option<f64>) -> Result<Sniff, InputError> {
         .filter(|k| Some(*k) != time)
         .map(|k| names[k].0.as_str())
         .collect();
-    let table = read_table_with(file, &spec, &others)?;
+    finish(file, spec, &others)
+}
+
+/// An MDF4 recording: every non-master channel (each group has its own master clock).
+fn sniff_mdf(file: &Path, rate_hz: Option<f64>) -> Result<Sniff, InputError> {
+    if rate_hz.is_some() {
+        return Err(err(
+            file,
+            None,
+            None,
+            "--rate-hz",
+            "an MDF4 file times every channel group with its master channel; --rate-hz \
+             applies only to text files without a time column"
+                .into(),
+        ));
+    }
+    let chans = super::mdf::read_channels(file)?;
+    let master = chans
+        .iter()
+        .find(|c| !c.master.is_empty())
+        .map(|c| c.master.clone());
+    let mut others: Vec<&str> = Vec::new();
+    for c in &chans {
+        if !others.contains(&c.name.as_str()) {
+            others.push(&c.name);
+        }
+    }
+    let spec = TimeSpec {
+        column: master,
+        rate_hz: None,
+        fall_back_to_rate: false,
+    };
+    finish(file, spec, &others)
+}
+
+/// Reads the columns and describes each.
+fn finish(file: &Path, spec: TimeSpec, others: &[&str]) -> Result<Sniff, InputError> {
+    let table = read_table_with(file, &spec, others)?;
     let rows = table.time_s.len();
     let columns = others
         .iter()
@@ -312,7 +352,7 @@ pub fn sniff(file: &Path, rate_hz: Option<f64>) -> Result<Sniff, InputError> {
         .collect();
     Ok(Sniff {
         file: file.to_path_buf(),
-        separator: sep,
+        separator: table.separator,
         decimal_comma: table.decimal_comma,
         header_line: table.header_line,
         units_line: table.units_line,
@@ -478,8 +518,9 @@ pub fn draft(s: &Sniff, scene: &Path, out: &Path) -> String {
         .unwrap_or(Path::new("."));
     let path = |p: &Path| quoted(&relative(p, dir).to_string_lossy());
     let sep = match s.separator {
-        '\t' => "tab".to_string(),
-        c => format!("`{c}`"),
+        '\t' => "separator tab".to_string(),
+        '\0' => "ASAM MDF4".to_string(),
+        c => format!("separator `{c}`"),
     };
     let mut t = String::new();
     let _ = writeln!(
@@ -489,13 +530,17 @@ pub fn draft(s: &Sniff, scene: &Path, out: &Path) -> String {
     );
     let _ = writeln!(
         t,
-        "# separator {sep}{}, header on line {}{}, {} rows, {} at {} Hz.",
+        "# {sep}{}{}{}, {} rows, {} at {} Hz.",
         if s.decimal_comma {
             ", decimal commas"
         } else {
             ""
         },
-        s.header_line,
+        if s.header_line > 0 {
+            format!(", header on line {}", s.header_line)
+        } else {
+            String::new()
+        },
         s.units_line
             .map_or(String::new(), |u| format!(", units row on line {u}")),
         s.rows,

@@ -26,6 +26,7 @@ pub mod filter;
 pub mod folder;
 pub mod html;
 pub mod init;
+pub mod mdf;
 pub mod measurement;
 pub(crate) mod metrics;
 pub mod passage;
