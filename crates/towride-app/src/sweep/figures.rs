@@ -59,6 +59,19 @@ pub fn figures(r: &RunResult) -> Figures {
         }
         out.push((format!("{name} abs_peak [{}]", c.unit), c.extremes.abs_peak));
     }
+    // Fatigue: the ball force's damage-equivalent load (rainflow, m and N_ref of
+    // `durability`); and the crossbeam's largest nominal equivalent stress per point.
+    for d in &s.durability {
+        out.push((format!("{} DEL [N]", d.channel), d.del_at_n_ref));
+    }
+    for (name, c) in &s.channels {
+        if name.starts_with("hitch_stress_")
+            && name.ends_with("_eq")
+            && c.signal == crate::job::Signal::Raw
+        {
+            out.push((format!("{name} max [Pa]"), c.extremes.max));
+        }
+    }
     let [dx, dy, dz] = channels::HITCH_DEFLECTION;
     if let (Some(x), Some(y), Some(z)) = (r.channel(dx), r.channel(dy), r.channel(dz)) {
         let d = (0..x.len()).fold(0.0f64, |m, k| {
