@@ -115,7 +115,7 @@ impl RandomSpec {
             let a = inverse_sinc(self.coherence(nk));
             let delta = a * (2.0 * rng.uniform() - 1.0);
             // The Nyquist bin of an even N must be real: leave it (and out-of-band) empty.
-            if nk < self.n_min || nk > self.n_max || (n % 2 == 0 && k == n / 2) {
+            if nk < self.n_min || nk > self.n_max || (n.is_multiple_of(2) && k == n / 2) {
                 continue;
             }
             let amp = (2.0 * self.gd(nk) / self.length).sqrt() / 2.0;
