@@ -337,7 +337,7 @@ fn merge_and_resume_refuse_the_previous_layout() {
         .unwrap_err()
         .to_string();
     assert!(
-        e.contains("summary_shard1of2.json") && e.contains("schema version 3"),
+        e.contains("summary_shard1of2.json") && e.contains("schema version 4"),
         "{e}"
     );
     // A version 3 summary whose twin is gone: known by its signed-peak columns.
