@@ -158,19 +158,7 @@ fn the_matrix_keeps_every_cycle_in_stated_bins() {
 /// A venv under the target dir with the PyPI `rainflow` package, created on first use.
 fn python_rainflow() -> PathBuf {
     let venv = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("rainflow-venv");
-    let py = venv.join("bin/python");
-    let ok = |c: &mut Command| c.status().map(|s| s.success()).unwrap_or(false);
-    if !ok(Command::new(&py).args(["-c", "import rainflow"])) {
-        assert!(
-            ok(Command::new("python3").arg("-m").arg("venv").arg(&venv)),
-            "python3 -m venv failed (install python3-venv)"
-        );
-        assert!(
-            ok(Command::new(&py).args(["-m", "pip", "install", "-q", "rainflow==3.2.0"])),
-            "pip install rainflow failed"
-        );
-    }
-    py
+    crate::common::python_with(&venv, "rainflow", &["rainflow==3.2.0"])
 }
 
 #[test]

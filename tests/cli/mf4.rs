@@ -11,29 +11,7 @@ use super::towride_ok;
 /// A Python with asammdf and numpy: a venv under the target folder, made once.
 fn asammdf_python() -> PathBuf {
     let venv = Path::new(env!("CARGO_TARGET_TMPDIR")).join("asammdf-venv");
-    let py = venv.join("bin/python");
-    let has = |py: &Path| {
-        Command::new(py)
-            .args(["-c", "import asammdf, numpy"])
-            .status()
-            .is_ok_and(|s| s.success())
-    };
-    if !has(&py) {
-        let ok = Command::new("python3")
-            .args(["-m", "venv"])
-            .arg(&venv)
-            .status()
-            .expect("python3 -m venv")
-            .success();
-        assert!(ok, "python3 -m venv {}", venv.display());
-        let ok = Command::new(venv.join("bin/pip"))
-            .args(["install", "-q", "asammdf", "numpy"])
-            .status()
-            .expect("pip")
-            .success();
-        assert!(ok, "pip install asammdf numpy");
-    }
-    py
+    crate::common::python_with(&venv, "asammdf, numpy", &["asammdf", "numpy"])
 }
 
 fn tmp(tag: &str) -> PathBuf {

@@ -85,3 +85,26 @@ pub fn located(msg: &str) -> (bool, bool) {
     });
     (file_line, msg.contains("field `"))
 }
+
+/// A Python interpreter that can `import <import>`: a venv at `venv` (under the test
+/// target's temporary folder), made and filled from PyPI with `packages` on first use.
+/// The tests that compare with a well-known Python implementation share it.
+pub fn python_with(venv: &Path, import: &str, packages: &[&str]) -> std::path::PathBuf {
+    use std::process::Command;
+    let py = venv.join("bin/python");
+    let ok = |c: &mut Command| c.status().is_ok_and(|s| s.success());
+    if !ok(Command::new(&py).args(["-c", &format!("import {import}")])) {
+        assert!(
+            ok(Command::new("python3").args(["-m", "venv"]).arg(venv)),
+            "python3 -m venv {} failed (install python3-venv)",
+            venv.display()
+        );
+        assert!(
+            ok(Command::new(&py)
+                .args(["-m", "pip", "install", "-q"])
+                .args(packages)),
+            "pip install {packages:?} failed (network access to PyPI needed)"
+        );
+    }
+    py
+}

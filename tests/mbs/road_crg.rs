@@ -55,19 +55,7 @@ fn dir(tag: &str) -> PathBuf {
 /// A venv with pyopencrg, made once per target folder.
 fn python() -> PathBuf {
     let venv = Path::new(env!("CARGO_TARGET_TMPDIR")).join("pyopencrg-venv");
-    let py = venv.join("bin/python");
-    let ok = |c: &mut Command| c.status().map(|s| s.success()).unwrap_or(false);
-    if !ok(Command::new(&py).args(["-c", "import pyopencrg"])) {
-        assert!(
-            ok(Command::new("python3").args(["-m", "venv"]).arg(&venv)),
-            "python3 -m venv failed"
-        );
-        assert!(
-            ok(Command::new(&py).args(["-m", "pip", "install", "-q", "pyopencrg==0.2.2"])),
-            "pip install pyopencrg failed (network access to PyPI needed)"
-        );
-    }
-    py
+    crate::common::python_with(&venv, "pyopencrg", &["pyopencrg==0.2.2"])
 }
 
 #[test]
