@@ -380,6 +380,17 @@ impl ObstacleToml {
     /// Checks and builds obstacle number `i` of the file.
     pub(crate) fn build(&self, src: &Source, i: usize, base: f64) -> Result<Obstacle, InputError> {
         let at = |k: &str| path!["obstacle", i, k];
+        // A ramp's or a pothole's flank: steeper than flat, at most vertical.
+        let flank = |deg: f64| {
+            if deg > 0.0 && deg <= 90.0 {
+                Ok(())
+            } else {
+                Err(src.error(
+                    &at("flank_angle_deg"),
+                    format!("must be in (0, 90], got {deg}"),
+                ))
+            }
+        };
         let (mut o, y_min, y_max, track) = match self {
             ObstacleToml::Ramp {
                 start_m,
@@ -394,12 +405,7 @@ impl ObstacleToml {
                 src.finite(&at("start_m"), *start_m)?;
                 src.positive(&at("height_m"), *height_m)?;
                 src.positive(&at("length_m"), *length_m)?;
-                if !(*flank_angle_deg > 0.0 && *flank_angle_deg <= 90.0) {
-                    return Err(src.error(
-                        &at("flank_angle_deg"),
-                        format!("must be in (0, 90], got {flank_angle_deg}"),
-                    ));
-                }
+                flank(*flank_angle_deg)?;
                 let o = Obstacle::ramp(
                     *start_m,
                     *height_m,
@@ -450,12 +456,7 @@ impl ObstacleToml {
                 src.finite(&at("start_m"), *start_m)?;
                 src.positive(&at("depth_m"), *depth_m)?;
                 src.positive(&at("length_m"), *length_m)?;
-                if !(*flank_angle_deg > 0.0 && *flank_angle_deg <= 90.0) {
-                    return Err(src.error(
-                        &at("flank_angle_deg"),
-                        format!("must be in (0, 90], got {flank_angle_deg}"),
-                    ));
-                }
+                flank(*flank_angle_deg)?;
                 let o = Obstacle::pothole(*start_m, *depth_m, *length_m, *flank_angle_deg, base)
                     .map_err(|m| src.error(&at("length_m"), m.to_string()))?;
                 (o, y_min_m, y_max_m, track)
