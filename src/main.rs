@@ -14,6 +14,7 @@ macro_rules! eprintln {
 mod analyse;
 mod bench;
 mod bounded;
+mod calibrate;
 mod compare;
 mod inputs;
 mod interrupt;
@@ -87,6 +88,9 @@ enum Command {
     /// Rainflow count (ASTM E1049-85) of a CSV column, its damage-equivalent load and
     /// Miner damage.
     Rainflow(rainflow::RainflowArgs),
+    /// Fit property values to recorded runs (Levenberg-Marquardt), with intervals, and
+    /// rate held-out runs with them.
+    Calibrate(calibrate::CalibrateArgs),
 }
 
 #[derive(clap::Args, Debug)]
@@ -157,6 +161,7 @@ fn run() -> i32 {
         Command::Validate(a) => validate::run(&a),
         Command::Compare(a) => compare::run(&a),
         Command::Rainflow(a) => rainflow::run(&a),
+        Command::Calibrate(a) => calibrate::run(&a),
     };
     match result {
         Ok(code) => code,

@@ -12,9 +12,7 @@ use towride_mbs::input::regular::same_file;
 use towride_app::validate::descriptor::{AcqFilter, Unit};
 use towride_app::validate::folder::{find_descriptors, summary_json, validate_folder_until};
 use towride_app::validate::synth::{make_synthetic, SensorModel, SynthRun, TriggerLayout};
-use towride_app::validate::{
-    default_simulator, init, plan, report, simulator_with, write_summary, Options,
-};
+use towride_app::validate::{init, plan, report, simulator_with, write_summary, Options};
 
 #[derive(Args, Debug)]
 #[command(args_conflicts_with_subcommands = true)]
@@ -45,7 +43,7 @@ pub struct ValidateArgs {
 #[derive(Subcommand, Debug)]
 enum ValidateCommand {
     /// Write synthetic runs (CSV + descriptor, labelled synthetic) made by the simulator.
-    Synth(SynthArgs),
+    Synth(Box<SynthArgs>),
     /// Sniff a recording (separator, header, units, time base, channels) and draft a
     /// commented descriptor mapping its columns onto the scene's sensors.
     Init(InitArgs),
@@ -118,6 +116,20 @@ struct SynthArgs {
     in_g: bool,
     #[arg(long, default_value_t = 1)]
     seed: u64,
+    /// RMS of a constant offset drawn per channel [m/s^2] (the descriptor then zeroes
+    /// each channel before the obstacle).
+    #[arg(long, default_value_t = 0.0, value_parser = crate::bounded::mps2)]
+    offset_rms_mps2: f64,
+    /// RMS of the run-to-run scatter of the trigger delay [ms].
+    #[arg(long, default_value_t = 0.0, value_parser = crate::bounded::time_ms)]
+    trigger_jitter_ms: f64,
+    /// Decimals of the written time column (a logger's time-stamp resolution).
+    #[arg(long, default_value_t = 6, value_parser = clap::value_parser!(u8).range(1..=9))]
+    time_decimals: u8,
+    /// The "true" vehicle: overrides the simulating model is made with (recorded in the
+    /// descriptor's `[injected] truth`; the descriptor's scene stays the files' model).
+    #[command(flatten)]
+    inputs: crate::inputs::InputArgs,
     /// Print what was written as JSON.
     #[arg(long)]
     json: bool,
@@ -338,10 +350,20 @@ fn synth(a: &SynthArgs) -> CliResult {
         foil_jitter_s: a.foil_jitter_ms * 1e-3,
         unit: if a.in_g { Unit::G } else { Unit::Mps2 },
         seed: a.seed,
+        offset_rms_mps2: a.offset_rms_mps2,
+        trigger_jitter_s: a.trigger_jitter_ms * 1e-3,
+        time_decimals: a.time_decimals as usize,
     };
-    let sim = default_simulator();
+    let truth: Vec<String> = a
+        .inputs
+        .overrides()?
+        .iter()
+        .map(|o| format!("{}:{}={}", o.file, o.path, o.value))
+        .collect();
+    let sim = simulator_with(a.inputs.loader()?);
     let files = if let Some(file) = &a.plan {
-        let runs = plan::plan(&towride_app::scene::plan::load(file)?);
+        let mut runs = plan::plan(&towride_app::scene::plan::load(file)?);
+        runs.iter_mut().for_each(|r| r.truth = truth.clone());
         let pb = crate::progress(runs.len() as u64, a.json);
         let files = plan::write_plan(sim.as_ref(), &runs, &sensor, &a.out, &|i| {
             pb.set_position(i as u64)
@@ -365,6 +387,7 @@ fn synth(a: &SynthArgs) -> CliResult {
             obstacle,
             nominal_speed_kmh: speed,
             load_case: a.load.clone(),
+            truth: truth.clone(),
         };
         vec![make_synthetic(
             sim.as_ref(),

@@ -34,6 +34,7 @@ fn injected_errors_are_recovered() {
             obstacle: "bump_25mm".into(),
             nominal_speed_kmh: kmh,
             load_case: "200kg_over_axle".into(),
+            truth: Vec::new(),
         };
         let s = SensorModel {
             seed: 11 + i as u64,
@@ -109,6 +110,7 @@ fn no_errors_no_shift() {
         obstacle: "bump_25mm".into(),
         nominal_speed_kmh: 30.0,
         load_case: "empty".into(),
+        truth: Vec::new(),
     };
     let desc = make_synthetic(&sim, &run, &s, &TriggerLayout::default(), &dir).unwrap();
     let r = validate_run(&desc, &sim, &Options::default()).unwrap();
@@ -134,6 +136,7 @@ fn gravity_offset_is_zeroed_when_asked() {
         obstacle: "bump_25mm".into(),
         nominal_speed_kmh: 20.0,
         load_case: "empty".into(),
+        truth: Vec::new(),
     };
     let desc = make_synthetic(
         &sim,

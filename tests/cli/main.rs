@@ -15,6 +15,7 @@ mod validate_sim;
 mod common;
 
 mod basics;
+mod calibrate;
 mod check;
 mod doctor;
 mod fuzz_tools;

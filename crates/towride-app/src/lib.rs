@@ -88,6 +88,8 @@ pub mod sweep;
 
 pub mod validate;
 
+pub mod calibrate;
+
 pub mod study;
 
 pub use error::{Error, Result};

@@ -137,7 +137,14 @@ pub(super) fn compare(
         })
         .collect();
     let offset = t_obs - acq.obstacle_time_s;
-    let sim_at = |c: usize, ti: f64, shift: f64| acq.at(sensors[c].name, ti - offset + shift);
+    let curves: Vec<&[f64]> = sensors
+        .iter()
+        .map(|s| acq.channels.get(s.name).map_or(&[][..], Vec::as_slice))
+        .collect();
+    let sim_at = |c: usize, ti: f64, shift: f64| match curves[c] {
+        [] => f64::NAN,
+        y => acq.sample(y, ti - offset + shift),
+    };
     let dt = 1.0 / rec.rate_hz;
     let (shift, at_bound, correlation) = match search {
         Some(bound) => {

@@ -102,6 +102,15 @@ pub struct Injected {
     pub sample_rate_hz: f64,
     /// Seed of the noise generator.
     pub seed: u64,
+    /// RMS of the constant per-channel offsets added [m/s^2].
+    #[serde(default)]
+    pub offset_rms_mps2: f64,
+    /// RMS of the run-to-run scatter of the trigger delay [s].
+    #[serde(default)]
+    pub trigger_jitter_s: f64,
+    /// The overrides the simulating ("true") model was made with.
+    #[serde(default)]
+    pub truth: Vec<String>,
 }
 
 /// A checked descriptor with paths resolved against its directory.

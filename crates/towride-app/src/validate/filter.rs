@@ -38,9 +38,15 @@ impl Acquired {
 
     /// Channel `name` at simulation time `t` (linear between grid points, held outside).
     pub fn at(&self, name: &str, t: f64) -> f64 {
-        let Some(y) = self.channels.get(name) else {
-            return f64::NAN;
-        };
+        match self.channels.get(name) {
+            Some(y) => self.sample(y, t),
+            None => f64::NAN,
+        }
+    }
+
+    /// Samples `y` (one of the channels, looked up once by the caller: the lookup by name
+    /// cost more than the interpolation in the alignment's search) at time `t`.
+    pub fn sample(&self, y: &[f64], t: f64) -> f64 {
         if y.is_empty() {
             return f64::NAN;
         }

@@ -445,10 +445,10 @@ fn speed_info(
 }
 
 /// The zeroing mean is taken up to this long before the obstacle [s].
-const ZERO_MARGIN_S: f64 = 0.1;
+pub(crate) const ZERO_MARGIN_S: f64 = 0.1;
 
 /// Subtracts from `y` its mean over t < `t_end` (needs 10 samples there).
-fn zero(t: &[f64], y: Option<&mut Vec<f64>>, t_end: f64) {
+pub(crate) fn zero(t: &[f64], y: Option<&mut Vec<f64>>, t_end: f64) {
     let Some(y) = y else { return };
     let n = t.iter().take_while(|&&ti| ti < t_end).count().min(y.len());
     if n >= 10 {

@@ -39,6 +39,7 @@ pub fn plan(p: &Plan) -> Vec<SynthRun> {
             obstacle: c.obstacle.clone(),
             nominal_speed_kmh: c.speed_km_h,
             load_case: c.load_case.clone(),
+            truth: Vec::new(),
         })
         .collect()
 }

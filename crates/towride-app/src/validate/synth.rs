@@ -44,6 +44,15 @@ pub struct SensorModel {
     pub unit: Unit,
     /// Seed of the noise generator.
     pub seed: u64,
+    /// RMS of a constant offset drawn once per channel and added to every sample [m/s^2]
+    /// (a sensor's zero error; the descriptor then zeroes each channel before the
+    /// obstacle, as a recording with offsets needs).
+    pub offset_rms_mps2: f64,
+    /// RMS of the run-to-run scatter of the photocell's delay [s] (drawn once per run and
+    /// added to `trigger_delay_s`: the timing error the cross-correlation must find).
+    pub trigger_jitter_s: f64,
+    /// Decimals of the time column (a logger's quantised time stamps; 6 by default).
+    pub time_decimals: usize,
 }
 
 impl Default for SensorModel {
@@ -62,6 +71,9 @@ impl Default for SensorModel {
             foil_jitter_s: 1e-4,
             unit: Unit::Mps2,
             seed: 1,
+            offset_rms_mps2: 0.0,
+            trigger_jitter_s: 0.0,
+            time_decimals: 6,
         }
     }
 }
@@ -99,6 +111,9 @@ pub struct SynthRun {
     pub nominal_speed_kmh: f64,
     /// Trailer load case.
     pub load_case: String,
+    /// The overrides (`FILE:PATH=VALUE`) the simulating model was made with: a "true"
+    /// vehicle that differs from the files (recorded in the descriptor's `[injected]`).
+    pub truth: Vec<String>,
 }
 
 /// Deterministic normal deviates (SplitMix64 + Box-Muller): the same seed gives the same
@@ -212,8 +227,15 @@ pub fn make_synthetic(
         .simulate(&run.scene, v_true, &run.load_case)
         .map_err(|e| ValidateError::Simulation(Box::new(e)))?;
     let acq = acquire(&simulated, s.filter)?;
-    // Recording clock: the photocell pulse is stamped 0, trigger_delay after the passage.
-    let t_obs = -s.trigger_delay_s - layout.photocell_m / v_true;
+    let mut noise = Noise::new(s.seed);
+    // This run's photocell delay: the nominal one plus its run-to-run scatter.
+    // (No deviate is drawn without scatter: the default files stay as they were.)
+    let delay = match s.trigger_jitter_s {
+        j if j > 0.0 => s.trigger_delay_s + j * noise.normal(),
+        _ => s.trigger_delay_s,
+    };
+    // Recording clock: the photocell pulse is stamped 0, `delay` after the passage.
+    let t_obs = -delay - layout.photocell_m / v_true;
     let to_sim = |t_rec: f64| t_rec - t_obs + acq.obstacle_time_s;
     let (s0, s1) = acq.span();
     let fs = s.sample_rate_hz;
@@ -225,8 +247,14 @@ pub fn make_synthetic(
             run.name
         )));
     }
-    let mut noise = Noise::new(s.seed);
     let names: Vec<&String> = acq.channels.keys().collect();
+    let offsets: Vec<f64> = names
+        .iter()
+        .map(|_| match s.offset_rms_mps2 {
+            o if o > 0.0 => o * noise.normal(),
+            _ => 0.0,
+        })
+        .collect();
     let unit = s.unit.to_si();
     let gain = |n: &str| {
         let pct = s
@@ -238,9 +266,10 @@ pub fn make_synthetic(
     };
     let column = |n: &str| n.strip_prefix(ACC_PREFIX).unwrap_or(n).to_string();
     let injected = format!(
-        "trigger delay {} ms, speedometer +{} %, gain error +{} %, noise {} m/s^2 RMS, foil jitter {} ms RMS, {}th-order {} Hz Butterworth, {} Hz, seed {}",
-        s.trigger_delay_s * 1e3, s.speed_error_pct, s.gain_error_pct, s.noise_rms_mps2,
-        s.foil_jitter_s * 1e3, s.filter.order, s.filter.cutoff_hz, fs, s.seed
+        "trigger delay {} ms (this run {:.3} ms), speedometer +{} %, gain error +{} %, noise {} m/s^2 RMS, offsets {} m/s^2 RMS, foil jitter {} ms RMS, {}th-order {} Hz Butterworth, {} Hz, time to {} decimals, seed {}",
+        s.trigger_delay_s * 1e3, delay * 1e3, s.speed_error_pct, s.gain_error_pct, s.noise_rms_mps2,
+        s.offset_rms_mps2, s.foil_jitter_s * 1e3, s.filter.order, s.filter.cutoff_hz, fs,
+        s.time_decimals, s.seed
     );
     let mut csv = format!(
         "{CSV_MARK}: made by `towride validate synth` with the {}\n# sensor model: {injected}\ntime [s]",
@@ -252,9 +281,10 @@ pub fn make_synthetic(
     csv.push('\n');
     for k in k0..=k1 {
         let t = k as f64 / fs;
-        let _ = write!(csv, "{t:.6}");
-        for n in &names {
-            let v = gain(n) * acq.at(n, to_sim(t)) + s.noise_rms_mps2 * noise.normal();
+        // Sampled at t, stamped with the logger's resolution.
+        let _ = write!(csv, "{t:.*}", s.time_decimals);
+        for (n, off) in names.iter().zip(&offsets) {
+            let v = gain(n) * acq.at(n, to_sim(t)) + off + s.noise_rms_mps2 * noise.normal();
             let _ = write!(csv, ",{:.6}", v / unit);
         }
         csv.push('\n');
@@ -270,7 +300,7 @@ pub fn make_synthetic(
         run.load_case, run.name, s.filter.order, s.filter.cutoff_hz, layout.photocell_m
     );
     for &x in &layout.foils_m {
-        let t = t_obs + x / v_true + s.trigger_delay_s + s.foil_jitter_s * noise.normal();
+        let t = t_obs + x / v_true + delay + s.foil_jitter_s * noise.normal();
         let _ = write!(
             toml,
             "\n[[trigger.foil]]\nposition_m = {x:?}\ntime_s = {t:.7}\n"
@@ -283,11 +313,14 @@ pub fn make_synthetic(
             .filter(|a| matches!(*a, "x" | "y" | "z"))
             .unwrap_or("z");
         let _ = write!(toml, "\n[[channel]]\ncolumn = \"{}\"\nsimulated = \"{n}\"\naxis = \"{axis}\"\nsign = 1\ngain = 1.0\n", column(n));
+        if s.offset_rms_mps2 > 0.0 {
+            toml.push_str("zero_before_obstacle = true\n");
+        }
     }
     let _ = write!(
         toml,
-        "\n[injected]\nsimulator = \"{}\"\ntrigger_delay_s = {:?}\nspeed_error_pct = {:?}\ngain_error_pct = {:?}\nnoise_rms_mps2 = {:?}\nfoil_jitter_s = {:?}\nsample_rate_hz = {:?}\nseed = {}\n",
-        sim.name(), s.trigger_delay_s, s.speed_error_pct, s.gain_error_pct, s.noise_rms_mps2, s.foil_jitter_s, fs, s.seed
+        "\n[injected]\nsimulator = \"{}\"\ntrigger_delay_s = {:?}\nspeed_error_pct = {:?}\ngain_error_pct = {:?}\nnoise_rms_mps2 = {:?}\noffset_rms_mps2 = {:?}\nfoil_jitter_s = {:?}\ntrigger_jitter_s = {:?}\nsample_rate_hz = {:?}\nseed = {}\ntruth = {:?}\n",
+        sim.name(), delay, s.speed_error_pct, s.gain_error_pct, s.noise_rms_mps2, s.offset_rms_mps2, s.foil_jitter_s, s.trigger_jitter_s, fs, s.seed, run.truth
     );
     let desc = out.join(format!("{}.toml", run.name));
     crate::atomic::write(&desc, toml).map_err(|e| ValidateError::Io {

@@ -51,6 +51,9 @@ pub struct Param {
     pub base: Base,
     /// 1-based line in its file.
     pub line: usize,
+    /// The file as read (for its provenance tags).
+    #[serde(skip)]
+    pub disk_path: PathBuf,
 }
 
 impl Param {
@@ -156,6 +159,17 @@ fn tir_kind(key: &str) -> Option<&'static str> {
 /// Every stiffness, damping and mass value of the files `scene` reads whose group is in
 /// `groups` (empty: all), before the inactive ones are dropped.
 pub fn candidates(scene: &Path, groups: &[String]) -> Result<Vec<Param>, crate::Error> {
+    collect(scene, groups, false)
+}
+
+/// Every numeric value of every file `scene` reads (the scene's and road's too), kind
+/// `value` where the name says neither stiffness, damping nor mass, group `scene` for
+/// files outside the vehicle's groups: what `calibrate --params` may address.
+pub fn every_value(scene: &Path) -> Result<Vec<Param>, crate::Error> {
+    collect(scene, &[], true)
+}
+
+fn collect(scene: &Path, groups: &[String], every: bool) -> Result<Vec<Param>, crate::Error> {
     let loader = Loader::new();
     let is_scene = crate::scene::is_scene(scene);
     if is_scene {
@@ -196,7 +210,12 @@ pub fn candidates(scene: &Path, groups: &[String]) -> Result<Vec<Param>, crate::
     let effective = Loader::with_overrides(scene_overrides);
     let mut out = Vec::new();
     for ((f, c), g) in files.iter().zip(&canon).zip(&group) {
-        let Some(g) = g else { continue };
+        let g = match (g, every) {
+            (Some(g), _) => g.clone(),
+            (None, true) => "scene".to_string(),
+            (None, false) => continue,
+        };
+        let g = &g;
         if !groups.is_empty() && !groups.contains(g) {
             continue;
         }
@@ -209,7 +228,10 @@ pub fn candidates(scene: &Path, groups: &[String]) -> Result<Vec<Param>, crate::
         let text = towride_mbs::input::read_text(f)?;
         if f.extension().is_some_and(|e| e == "tir") {
             let first = out.len();
-            tir_values(&text, &rel, g, &mut out);
+            tir_values(&text, &rel, g, every, &mut out);
+            out[first..]
+                .iter_mut()
+                .for_each(|p| p.disk_path = f.clone());
             for ov in effective.overrides_of(f)? {
                 let x = ov.value.trim().parse::<f64>();
                 let p = out[first..].iter_mut().find(|p| p.path == ov.path);
@@ -221,7 +243,7 @@ pub fn candidates(scene: &Path, groups: &[String]) -> Result<Vec<Param>, crate::
             let mut found = Vec::new();
             walk(t.as_item(), "", &mut found);
             for (path, base, key) in found {
-                let Some(kind) = toml_kind(&key) else {
+                let Some(kind) = toml_kind(&key).or(every.then_some("value")) else {
                     continue;
                 };
                 out.push(Param {
@@ -233,6 +255,7 @@ pub fn candidates(scene: &Path, groups: &[String]) -> Result<Vec<Param>, crate::
                     kind: kind.into(),
                     base,
                     line: line_of(&text, &key, &path),
+                    disk_path: f.clone(),
                 });
             }
         }
@@ -318,7 +341,7 @@ fn value(v: &toml_edit::Value, path: &str, out: &mut Vec<(String, Base, String)>
 }
 
 /// `.tir` values by a line scan: `[SECTION]`, `KEY = value  $ comment`.
-fn tir_values(text: &str, rel: &str, group: &str, out: &mut Vec<Param>) {
+fn tir_values(text: &str, rel: &str, group: &str, every: bool, out: &mut Vec<Param>) {
     let mut section = String::new();
     for (i, line) in text.lines().enumerate() {
         let l = line.split(['$', '!']).next().unwrap_or("").trim();
@@ -330,7 +353,8 @@ fn tir_values(text: &str, rel: &str, group: &str, out: &mut Vec<Param>) {
             continue;
         };
         let (k, v) = (k.trim(), v.trim());
-        let (Some(kind), Ok(x)) = (tir_kind(k), v.parse::<f64>()) else {
+        let kind = tir_kind(k).or(every.then_some("value"));
+        let (Some(kind), Ok(x)) = (kind, v.parse::<f64>()) else {
             continue;
         };
         if section == "UNITS" || x == 0.0 {
@@ -346,6 +370,7 @@ fn tir_values(text: &str, rel: &str, group: &str, out: &mut Vec<Param>) {
             kind: kind.into(),
             base: Base::Scalar(x),
             line: i + 1,
+            disk_path: PathBuf::new(),
         });
     }
 }
