@@ -105,7 +105,7 @@ fn hand() -> Hand {
 fn run(overrides: &[(&str, &str, &str)], duration_s: Option<f64>) -> (RunResult, f64) {
     let ov = overrides
         .iter()
-        .map(|(file, path, value)| Override::program(*file, *path, value.to_string(), "test"))
+        .map(|(file, path, value)| Override::program(file, path, value.to_string(), "test"))
         .collect();
     let loader = Loader::with_overrides(ov);
     let changes = scene::Changes {
