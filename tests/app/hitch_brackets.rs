@@ -265,3 +265,61 @@ fn newtons_law_for_the_hitch_closes_over_the_bump_run() {
     // The samples are interpolated between steps (measured: 4.0 N, 0.08 % of the peak).
     assert!(worst < 2e-3 * peak, "{worst} N vs peak {peak} N");
 }
+
+/// The run summary's durability block covers the ball force, every bracket load
+/// component and each stress point's equivalent stress, each in its unit; its DELs equal
+/// those of the PyPI `rainflow` package (3.2.0) run on the same samples:
+/// DEL = (sum n r^3 / 2e6)^(1/3).
+#[test]
+fn the_run_durability_block_covers_brackets_and_stresses_as_the_rainflow_package_counts() {
+    let (res, _) = run(&[], None);
+    let d = &res.summary.durability;
+    let units = |u: &str| d.iter().filter(|x| x.unit == u).count();
+    assert_eq!(
+        (d.len(), units("N"), units("N m"), units("Pa")),
+        (19, 9, 6, 4)
+    );
+    let py = crate::common::python_with(
+        &std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("rainflow-venv"),
+        "rainflow",
+        &["rainflow==3.2.0"],
+    );
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("brackets-del");
+    std::fs::create_dir_all(&dir).unwrap();
+    for name in [
+        "hitch_bracket_left_fx",
+        "hitch_bracket_right_my",
+        "hitch_stress_mid_span_eq",
+    ] {
+        let x = res.channel(name).unwrap();
+        let input = dir.join(format!("{name}.txt"));
+        let text: Vec<String> = x.iter().map(|v| format!("{v:e}")).collect();
+        std::fs::write(&input, text.join("\n")).unwrap();
+        let script = "import sys, rainflow\n\
+            x = [float(l) for l in open(sys.argv[1])]\n\
+            s = sum(n * r ** 3 for r, n in rainflow.count_cycles(x))\n\
+            print(repr((s / 2e6) ** (1 / 3)))\n";
+        let out = std::process::Command::new(&py)
+            .arg("-c")
+            .arg(script)
+            .arg(&input)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let theirs: f64 = String::from_utf8(out.stdout)
+            .unwrap()
+            .trim()
+            .parse()
+            .unwrap();
+        let ours = d.iter().find(|e| e.channel == name).unwrap().del_at_n_ref;
+        println!("{name}: DEL {ours:.6e}, rainflow package {theirs:.6e}");
+        assert!(
+            (ours / theirs - 1.0).abs() < 1e-9,
+            "{name}: {ours} vs {theirs}"
+        );
+    }
+}
