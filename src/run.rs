@@ -455,25 +455,28 @@ fn print_summary(r: &RunResult) {
         s.solver.jacobian_evals,
         s.outputs_csv.as_deref().unwrap_or("")
     );
-    if !s.durability.is_empty() {
-        // One line: the DEL of each hitch ball force (docs/durability.md).
-        let dels: Vec<String> = s
-            .durability
-            .iter()
-            .map(|d| {
-                format!(
-                    "{} {:.4e} N ({} cycles)",
-                    d.channel, d.del_at_n_ref, d.cycles
-                )
-            })
-            .collect();
-        let d = &s.durability[0];
+    if let Some(d) = s.durability.first() {
+        // One line per group: ball forces, bracket loads, crossbeam stresses
+        // (docs/durability.md).
         println!(
-            "  DEL at N_ref {:.0e}, m = {} (rainflow, ASTM E1049): {}",
-            d.n_ref,
-            d.m,
-            dels.join(", ")
+            "  DEL at N_ref {:.0e}, m = {} (rainflow, ASTM E1049):",
+            d.n_ref, d.m
         );
+        for (label, prefix) in [
+            ("ball", "hitch_f"),
+            ("brackets", "hitch_bracket_"),
+            ("stress", "hitch_stress_"),
+        ] {
+            let dels: Vec<String> = s
+                .durability
+                .iter()
+                .filter(|d| d.channel.starts_with(prefix))
+                .map(|d| format!("{} {:.3e} {}", d.channel, d.del_at_n_ref, d.unit))
+                .collect();
+            if !dels.is_empty() {
+                println!("    {label}: {}", dels.join(", "));
+            }
+        }
     }
     for l in &s.lift_off {
         println!(

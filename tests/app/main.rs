@@ -22,6 +22,7 @@ mod durability_rainflow;
 mod fuzz;
 mod fuzz_loggers;
 mod fuzz_overrides;
+mod hitch_brackets;
 mod hitch_stress;
 mod inputs_and_builder;
 mod job_ringing;

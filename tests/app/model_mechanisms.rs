@@ -647,3 +647,57 @@ fn rigid_constraint_patterns_from_topology_match_their_structural_evaluation() {
         assert!(differ.is_empty(), "{example}: patterns differ: {differ:?}");
     }
 }
+
+/// `Request::Transmitted` of a bushing: a block whose centre of mass is the bushing's
+/// marker I, hung on the ground (J) by a bushing stiffer in z than in x, under gravity
+/// at 45 deg in the x-z plane. At rest the ground takes the weight W, and since the
+/// deflection d = K^-1 W is not parallel to W the moment about J is d x W:
+/// m_y = (m g)^2 (1/k_x - 1/k_z) (the bushing's own torque is zero: W acts at I).
+#[test]
+fn a_bushing_passes_its_load_and_the_deflections_moment_into_body_j() {
+    use towride_mbs::model::desc::{Axes, Carrier, ElementHandle, Output, Request};
+    let (mass, g, kx, kz) = (10.0, 9.81, 1.0e4, 2.0e4);
+    let text = format!(
+        r#"[model]
+name = "block on a bushing"
+gravity_m_s2 = [{g}, 0.0, -{g}]
+[run]
+end_time_s = 1.0
+sample_rate_hz = 100.0
+[[body]]
+name = "block"
+mass_kg = {mass}
+inertia_kg_m2 = [0.1, 0.1, 0.1]
+cm_position_m = [0.0, 0.0, 1.0]
+[[bushing]]
+name = "mount"
+body_i = "block"
+body_j = "ground"
+position_m = [0.0, 0.0, 1.0]
+stiffness_n_m = [{kx}, {kx}, {kz}]
+damping_n_s_m = [10.0, 10.0, 10.0]
+stiffness_n_m_rad = [1000.0, 1000.0, 1000.0]
+damping_n_m_s_rad = [1.0, 1.0, 1.0]
+"#
+    );
+    let mut m = from_text("block.toml", &text).unwrap();
+    m.model.outputs = vec![Output::new(
+        "mount",
+        Request::Transmitted {
+            by: Carrier::Element(ElementHandle::new(0)),
+            axes: Axes::World,
+        },
+    )];
+    let sys = System::new(m.model.clone());
+    let st = statics::equilibrium(&sys, 0.0, &m.solver).unwrap();
+    let got = towride_mbs::model::output::evaluate(&sys, 0.0, &st.y, &st.yp);
+    let w = mass * g;
+    let want = [w, 0.0, -w, 0.0, w * w * (1.0 / kx - 1.0 / kz), 0.0];
+    println!("transmitted {got:?}, statics {want:?}");
+    for c in 0..6 {
+        assert!(
+            (got[c] - want[c]).abs() < 1e-6 * w,
+            "{c}: {got:?} vs {want:?}"
+        );
+    }
+}

@@ -299,3 +299,16 @@ fn a_log_axis_inside_one_decade_keeps_labelled_ticks() {
         assert_eq!(distinct.len(), l.len(), "{lo}..{hi}: {l:?}");
     }
 }
+
+#[test]
+fn a_linear_axis_never_labels_a_single_tick_when_two_fit() {
+    use towride_app::report::ticks::linear;
+    // 1.2e5..9e5 with room for three ticks: the step of 5e5 would put one tick (5e5)
+    // inside; the next finer round step, 2e5, puts four (2e5, 4e5, 6e5, 8e5).
+    let (t, step) = linear(1.2e5, 9.0e5, 3);
+    assert_eq!(step, 2.0e5);
+    assert_eq!(t, [2.0e5, 4.0e5, 6.0e5, 8.0e5]);
+    // Where the coarse step already gives two ticks it stays: 0..10, five ticks, step 2.
+    let (t, step) = linear(0.0, 10.0, 5);
+    assert_eq!((t.len(), step), (6, 2.0));
+}

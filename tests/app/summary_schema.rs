@@ -208,8 +208,8 @@ fn the_summary_reports_max_min_and_abs_peak_raw_and_band_limited() {
         let want = band_limit(&AcqFilter::THESIS, &run.channel(n).unwrap(), 1000.0).unwrap();
         assert_eq!(run.channel(&twin).unwrap(), want, "{twin}");
     }
-    // 12 accelerometer axes, trailer_ax, 3 forces, 3 deflections.
-    assert_eq!(pairs, 19);
+    // 12 accelerometer axes, trailer_ax, 3 ball forces, 12 bracket loads, 3 deflections.
+    assert_eq!(pairs, 31);
     assert!(run.is_raw("hitch_fx") && !run.is_raw("hitch_fx_lp100"));
     assert_eq!(
         run.summary.channels["acc_hitch_z_lp100"].signal,
@@ -316,19 +316,19 @@ fn merge_and_resume_refuse_the_previous_layout() {
     let csv = |s: usize| dir.join(format!("summary_shard{s}of2.csv"));
     let merged = dir.join("merged.csv");
     let m = merge(&[csv(0), csv(1)], &merged).unwrap();
-    assert_eq!((m.cases, m.schema_version), (6, 2));
-    // Shard 1 as version 4 wrote it.
+    assert_eq!((m.cases, m.schema_version), (6, 3));
+    // Shard 1 as version 5 wrote it.
     let twin = csv(1).with_extension("json");
     let text = std::fs::read_to_string(&twin).unwrap();
-    let old = text.replace("\"schema_version\": 5", "\"schema_version\": 4");
+    let old = text.replace("\"schema_version\": 6", "\"schema_version\": 5");
     assert_ne!(old, text);
     std::fs::write(&twin, &old).unwrap();
     std::fs::remove_file(&merged).unwrap();
     let e = merge(&[csv(0), csv(1)], &merged).unwrap_err().to_string();
     assert!(
         e.contains("summary_shard1of2.json")
-            && e.contains("schema version 4")
-            && e.contains("version 5"),
+            && e.contains("schema version 5")
+            && e.contains("version 6"),
         "{e}"
     );
     assert!(!merged.exists());
@@ -337,7 +337,7 @@ fn merge_and_resume_refuse_the_previous_layout() {
         .unwrap_err()
         .to_string();
     assert!(
-        e.contains("summary_shard1of2.json") && e.contains("schema version 4"),
+        e.contains("summary_shard1of2.json") && e.contains("schema version 5"),
         "{e}"
     );
     // A version 3 summary whose twin is gone: known by its signed-peak columns.

@@ -26,7 +26,15 @@ const SENSORS: [&str; 10] = [
 fn default_scene_has_the_fixed_channels() {
     let s = scene::load(Path::new(repo!("scenes/default.toml"))).unwrap();
     let names: Vec<&str> = s.channels.iter().map(|c| c.name.as_str()).collect();
-    let mut want = vec!["speed", "hitch_fx", "hitch_fy", "hitch_fz", "trailer_ax"];
+    let brackets: Vec<String> = ["left", "right"]
+        .iter()
+        .flat_map(|b| {
+            ["fx", "fy", "fz", "mx", "my", "mz"].map(|c| format!("hitch_bracket_{b}_{c}"))
+        })
+        .collect();
+    let mut want = vec!["speed", "hitch_fx", "hitch_fy", "hitch_fz"];
+    want.extend(brackets.iter().map(|s| s.as_str()));
+    want.push("trailer_ax");
     let mut acc = Vec::new();
     for (k, sensor) in SENSORS.iter().enumerate() {
         let axes: &[&str] = if k == 8 { &["x", "y", "z"] } else { &["z"] };

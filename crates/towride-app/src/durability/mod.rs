@@ -78,6 +78,8 @@ pub(crate) fn positive(name: &'static str, value: f64) -> Result<f64, Durability
 pub struct ChannelDurability {
     /// The channel (`hitch_fx`, ...).
     pub channel: String,
+    /// Its unit (`N`, `N m`, `Pa`): that of the ranges and DELs.
+    pub unit: String,
     /// Cycles counted (full plus half of the half cycles), gate 0.
     pub cycles: f64,
     /// Largest range counted (channel unit).
@@ -95,10 +97,11 @@ pub struct ChannelDurability {
 
 /// The durability figures of one channel of a run at the defaults; `None` when the
 /// channel cannot be counted (fewer than 3 samples, a non-finite sample).
-pub fn channel_block(channel: &str, values: &[f64]) -> Option<ChannelDurability> {
+pub fn channel_block(channel: &str, unit: &str, values: &[f64]) -> Option<ChannelDurability> {
     let cycles = count(&turning_points(values, 0.0).ok()?);
     Some(ChannelDurability {
         channel: channel.to_string(),
+        unit: unit.to_string(),
         cycles: rainflow::total_cycles(&cycles),
         largest_range: cycles.iter().map(|c| c.range).fold(0.0, f64::max),
         m: DEFAULT_M,

@@ -204,7 +204,7 @@ impl Acquisition {
             grid_rate_hz: m * rate,
             description: f.describe(),
             shown: format!(
-                "accelerometers (acc_*, trailer_ax) band-limited (<channel>{suffix}) as the instrument saw them, raw beside; forces and deflections (hitch_f*, hitch_deflection_*) raw, band-limited (<channel>{suffix}) beside"
+                "accelerometers (acc_*, trailer_ax) band-limited (<channel>{suffix}) as the instrument saw them, raw beside; forces and deflections (hitch_f*, hitch_bracket_*, hitch_deflection_*) raw, band-limited (<channel>{suffix}) beside"
             ),
             suffix,
         }
@@ -372,7 +372,8 @@ pub struct RunSummary {
     /// The acquisition chain of the band-limited channels (`None`: raw channels only).
     pub acquisition: Option<Acquisition>,
     /// Rainflow cycles and damage-equivalent loads (m = 3, N_ref = 2e6) of the hitch
-    /// ball forces present (`crate::durability`); empty without them.
+    /// ball forces, the brackets' load components and the crossbeam stress points'
+    /// equivalent stresses present ([`durability`]); empty without a hitch.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub durability: Vec<crate::durability::ChannelDurability>,
     /// Per channel, by name (raw and band-limited): unit, which it is, max, min and
@@ -477,10 +478,7 @@ impl RunSummary {
                 .acquisition()
                 .map(|f| Acquisition::of(&f, job.settings.sample_rate)),
             channels: channels(samples, job.acquisition().as_ref()),
-            durability: ["hitch_fx", "hitch_fy", "hitch_fz"]
-                .iter()
-                .filter_map(|c| crate::durability::channel_block(c, &samples.channel(c)?))
-                .collect(),
+            durability: durability(samples),
             produced_by: job.produced_by.clone(),
             outputs_csv: None,
             outputs_mf4: None,
@@ -638,4 +636,25 @@ fn skipped(sys: &System, st: &Stats) -> Skipped {
             why: "a step change rebuilds the iteration matrix from the kept dF/dy and dF/dy' (jacobian_recombine); one evaluation costs about 25 Newton iterations",
         },
     }
+}
+
+/// The durability block (`crate::durability`, docs/durability.md "In every run"): each
+/// hitch ball force component; each bracket load component on its own (a multiaxial
+/// load is counted per channel: the length of the force vector would hide a reversal
+/// through zero, the largest range); each crossbeam stress point's equivalent stress
+/// (Pa, with IIW's m = 3 of normal stress ranges).
+fn durability(samples: &Samples) -> Vec<crate::durability::ChannelDurability> {
+    samples
+        .channels
+        .iter()
+        .filter(|c| {
+            let n = c.name.as_str();
+            [channels::HITCH_FX, channels::HITCH_FY, channels::HITCH_FZ].contains(&n)
+                || (n.starts_with(channels::HITCH_BRACKET_PREFIX) && !channels::is_band_limited(n))
+                || (n.starts_with("hitch_stress_") && n.ends_with("_eq"))
+        })
+        .filter_map(|c| {
+            crate::durability::channel_block(&c.name, c.unit, &samples.channel(&c.name)?)
+        })
+        .collect()
 }

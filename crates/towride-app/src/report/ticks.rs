@@ -4,21 +4,26 @@
 //! "2×10⁻⁸, 4×10⁻⁸, ..." rather than "0.0, 0.0, ...". Never SI prefixes: on an axis of
 //! seconds "10m" reads as ten minutes, and the unit is in the axis label already.
 
-/// Ticks of a linear axis over `lo..hi`: the round step with at most `max_ticks` ticks
-/// (at least one tick whatever the range).
+/// Ticks of a linear axis over `lo..hi`: the round step with at most `max_ticks` ticks,
+/// or the next finer one when that step leaves fewer than two ticks inside the range
+/// (one labelled tick gives no scale: 1.2e5..9e5 at three ticks would label 5e5 alone);
+/// at least one tick whatever the range.
 pub fn linear(lo: f64, hi: f64, max_ticks: usize) -> (Vec<f64>, f64) {
     let span = (hi - lo).abs().max(f64::MIN_POSITIVE);
-    let mut step = 10f64.powf((span / max_ticks.max(1) as f64).log10().floor());
-    for m in [1.0, 2.0, 5.0, 10.0, 20.0, 50.0] {
-        let s = step * m;
-        if span / s <= max_ticks as f64 {
-            step = s;
-            break;
+    let base = 10f64.powf((span / max_ticks.max(1) as f64).log10().floor());
+    let steps = [1.0, 2.0, 5.0, 10.0, 20.0, 50.0].map(|m| base * m);
+    let k = steps
+        .iter()
+        .position(|s| span / s <= max_ticks as f64)
+        .unwrap_or(steps.len() - 1);
+    let mut step = steps[k];
+    let mut ticks = with_step(lo, hi, step);
+    if ticks.len() < 2 && k > 0 {
+        let finer = with_step(lo, hi, steps[k - 1]);
+        if finer.len() >= 2 {
+            (ticks, step) = (finer, steps[k - 1]);
         }
     }
-    let first = (lo / step).ceil() as i64;
-    let last = (hi / step).floor() as i64;
-    let ticks: Vec<f64> = (first..=last).map(|k| k as f64 * step).collect();
     if ticks.is_empty() {
         return (vec![0.5 * (lo + hi)], step);
     }

@@ -5,6 +5,7 @@
 //! |---|---|
 //! | `speed` [m/s] | car body centre of mass: velocity along the body's x |
 //! | `hitch_fx`, `hitch_fy`, `hitch_fz` [N] | the drawbar's force on the car at the ball, car body axes (x forward, z up): the ball joint's reaction on the hitch, or minus the ball bushing's force on the drawbar |
+//! | `hitch_bracket_<left,right>_<fx,fy,fz>` [N], `_<mx,my,mz>` [N m] | the load each hitch bracket passes into the car body, car body axes, moment about the bracket's bolt point (the bracket interface node's design position, the centre of its bolt pattern): minus the mount bushing's load on the hitch, moved from where it acts (the deflected node) to the bolt point, or minus the fixed joint's reaction |
 //! | `trailer_ax` [m/s^2] | trailer box centre of mass: acceleration along the box's x |
 //! | `acc_<sensor>_<axis>` [m/s^2] | sensor marker: acceleration along its measuring axes (kinematic, gravity not included) |
 //!
@@ -13,7 +14,7 @@
 //! | `hitch_strain_energy` [J] | crossbeam strain energy |
 //! | `hitch_deflection_<x,y,z>` [m] | elastic displacement of the ball relative to the brackets, hitch axes |
 //!
-//! Each accelerometer (`acc_*`, `trailer_ax`), force (`hitch_f*`) and deflection
+//! Each accelerometer (`acc_*`, `trailer_ax`), force (`hitch_f*`, `hitch_bracket_*`) and deflection
 //! (`hitch_deflection_*`) channel has a band-limited twin, the channel through the
 //! scene's acquisition chain (`[acquisition]`, default the thesis's fourth-order 100 Hz
 //! Butterworth, causal): its name plus the filter's suffix, `acc_hitch_z_lp100`
@@ -27,7 +28,7 @@ use towride_mbs::model::desc::{
     Axes, ElementQuantity, JointQuantity, MarkerQuantity, ModalQuantity, Output, Request,
     TyreQuantity,
 };
-use towride_mbs::model::output::{channels_of, component_count};
+use towride_mbs::model::output::{channels_of, component_count, TRANSMITTED_PARTS};
 
 // The fixed channels' names, defined once: the library and the command line read the
 // channels by these.
@@ -40,6 +41,17 @@ pub const HITCH_FX: &str = "hitch_fx";
 pub const HITCH_FY: &str = "hitch_fy";
 /// The drawbar's force on the car along the car body's z [N].
 pub const HITCH_FZ: &str = "hitch_fz";
+/// Start of the hitch brackets' load channels, `hitch_bracket_<side>_<component>`.
+pub const HITCH_BRACKET_PREFIX: &str = "hitch_bracket_";
+/// The hitch brackets, in the order of the hitch file's `bracket_nodes`.
+pub const HITCH_BRACKETS: [&str; 2] = ["left", "right"];
+
+/// A hitch bracket's load channel: `side` left or right, `component` one of
+/// [`towride_mbs::model::output::TRANSMITTED_PARTS`] (`hitch_bracket_left_fz`).
+pub fn hitch_bracket(side: &str, component: &str) -> String {
+    format!("{HITCH_BRACKET_PREFIX}{side}_{component}")
+}
+
 /// The trailer box's acceleration along its x [m/s^2].
 pub const TRAILER_AX: &str = "trailer_ax";
 /// The crossbeam's strain energy [J].
@@ -114,7 +126,10 @@ pub fn band(name: &str) -> Option<Band> {
         None
     } else if name.starts_with(ACC_PREFIX) || name == TRAILER_AX {
         Some(Band::Sensor)
-    } else if [HITCH_FX, HITCH_FY, HITCH_FZ].contains(&name) || HITCH_DEFLECTION.contains(&name) {
+    } else if [HITCH_FX, HITCH_FY, HITCH_FZ].contains(&name)
+        || name.starts_with(HITCH_BRACKET_PREFIX)
+        || HITCH_DEFLECTION.contains(&name)
+    {
         Some(Band::Load)
     } else {
         None
@@ -184,6 +199,22 @@ pub fn standard(v: &Vehicle) -> (Vec<Output>, Vec<Channel>) {
             -1.0,
         )),
         None => {}
+    }
+    // The brackets' loads into the body, beside the ball force.
+    if let Some(hh) = &h.hitch {
+        for (side, link) in HITCH_BRACKETS.iter().zip(hh.brackets) {
+            let names = TRANSMITTED_PARTS.map(|c| hitch_bracket(side, c));
+            let refs = names.each_ref().map(|s| s.as_str());
+            out.push(named(
+                &format!("{HITCH_BRACKET_PREFIX}{side}"),
+                Request::Transmitted {
+                    by: link.carrier(),
+                    axes: Axes::Marker(h.car_ref),
+                },
+                &refs,
+                1.0,
+            ));
+        }
     }
     if let Some(t) = h.trailer_ref {
         out.push(named(

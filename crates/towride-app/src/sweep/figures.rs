@@ -59,11 +59,29 @@ pub fn figures(r: &RunResult) -> Figures {
         }
         out.push((format!("{name} abs_peak [{}]", c.unit), c.extremes.abs_peak));
     }
-    // Fatigue: the ball force's damage-equivalent load (rainflow, m and N_ref of
-    // `durability`); and the crossbeam's largest nominal equivalent stress per point.
+    // Fatigue: the damage-equivalent loads (rainflow, m and N_ref of `durability`) of
+    // the ball force, of each bracket load component at the worse bracket (a design
+    // must hold on both sides; a symmetric scene loads them alike), and of the crossbeam
+    // points' equivalent stress; and the crossbeam's largest equivalent stress per
+    // point.
+    let mut brackets: Vec<(String, f64)> = Vec::new();
     for d in &s.durability {
-        out.push((format!("{} DEL [N]", d.channel), d.del_at_n_ref));
+        let side = channels::HITCH_BRACKETS.iter().find_map(|b| {
+            d.channel
+                .strip_prefix(&format!("{}{b}_", channels::HITCH_BRACKET_PREFIX))
+        });
+        match side {
+            Some(c) => {
+                let name = format!("{}{c} DEL [{}]", channels::HITCH_BRACKET_PREFIX, d.unit);
+                match brackets.iter_mut().find(|(n, _)| *n == name) {
+                    Some((_, v)) => *v = v.max(d.del_at_n_ref),
+                    None => brackets.push((name, d.del_at_n_ref)),
+                }
+            }
+            None => out.push((format!("{} DEL [{}]", d.channel, d.unit), d.del_at_n_ref)),
+        }
     }
+    out.extend(brackets);
     for (name, c) in &s.channels {
         if name.starts_with("hitch_stress_")
             && name.ends_with("_eq")

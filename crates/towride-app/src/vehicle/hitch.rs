@@ -180,6 +180,9 @@ pub struct HitchHandle {
     pub variant: u32,
     /// Number of selected modes.
     pub modes: usize,
+    /// The bracket mounts, left then right (I: the hitch, J: the car body, at the
+    /// bracket interface nodes' design positions, the bolt-pattern centres).
+    pub brackets: [Link; 2],
     /// Where to complain about `fe_origin_m`.
     pub origin_complaint: InputError,
 }
@@ -252,6 +255,7 @@ pub fn build(
     );
     let modes = data.modes.len();
     let hb = modal_body::add_body(b, "hitch", data, origin, coupling)?;
+    let mut mounts = Vec::with_capacity(2);
     for (k, &n) in brackets.iter().enumerate() {
         let p = modal_body::node_position(b, hb, origin, n);
         let name = format!("hitch_bracket_{}", ["left", "right"][k]);
@@ -270,6 +274,7 @@ pub fn build(
             b.bushing_link(&name, Some(hb), Some(body), p, &bushing.axes, &bushing)?
         };
         modal_body::pin(b, link, true, n);
+        mounts.push(link);
     }
     Ok(HitchHandle {
         body: hb,
@@ -281,6 +286,7 @@ pub fn build(
         fe_origin: origin,
         variant,
         modes,
+        brackets: [mounts[0], mounts[1]],
         origin_complaint: src.error(&path!["hitch", "fe_origin_m"], ""),
     })
 }

@@ -25,8 +25,8 @@
 use std::collections::HashSet;
 
 use super::desc::{
-    Body, Joint, JointKind, Marker, Model, Motion, MotionDof, Output, SpeedControl, TwoMarkers,
-    TyreElem,
+    Body, Carrier, Joint, JointKind, Marker, Model, Motion, MotionDof, Output, SpeedControl,
+    TwoMarkers, TyreElem,
 };
 pub use super::desc::{BodyHandle, ElementHandle, JointHandle, MarkerHandle, TyreHandle};
 use super::elements::law::{finite, positive};
@@ -56,6 +56,14 @@ pub enum Link {
 }
 
 impl Link {
+    /// The joint or the bushing, as an output names what carries a load.
+    pub fn carrier(self) -> Carrier {
+        match self {
+            Link::Joint(k) => Carrier::Joint(k),
+            Link::Bushing(e, _) => Carrier::Element(e),
+        }
+    }
+
     /// Markers I and J of the joint or bushing.
     pub fn markers(self, model: &Model) -> TwoMarkers {
         match self {

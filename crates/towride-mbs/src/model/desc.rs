@@ -414,6 +414,16 @@ pub enum ModalQuantity {
     },
 }
 
+/// What carries a load between two markers: an ideal joint (its reaction) or a force
+/// element.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Carrier {
+    /// An ideal joint.
+    Joint(JointHandle),
+    /// A force element (a bushing, spring, ...).
+    Element(ElementHandle),
+}
+
 /// What an output measures.
 #[derive(Clone, Debug)]
 pub enum Request {
@@ -477,6 +487,16 @@ pub enum Request {
         quantity: RelativeQuantity,
         /// Subtracted from the position [m] (its design value, say).
         offset: f64,
+    },
+    /// The load a joint or two-marker force element passes into the body of its marker
+    /// J: the force on J's body, then the moment on it about J's origin (six components,
+    /// N and N m), resolved in `axes`. An element acts at marker I's origin, so the
+    /// moment carries the offset of I from J (the element's deflection).
+    Transmitted {
+        /// The joint or force element.
+        by: Carrier,
+        /// Axes the force and moment are resolved in.
+        axes: Axes,
     },
     /// A body's heave, pitch or roll at its centre of mass.
     Body {

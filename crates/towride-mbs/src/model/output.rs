@@ -2,9 +2,9 @@
 //! from a solver state (y, y') and laid out as named channels with units.
 
 use super::desc::{
-    Accelerations, Axes, BodyQuantity, ElementQuantity, JointHandle, JointQuantity, LinePart,
-    MarkerHandle, MarkerQuantity, ModalQuantity, Model, MotionDof, Output, RelativeQuantity,
-    Request, TyreQuantity,
+    Accelerations, Axes, BodyQuantity, Carrier, ElementQuantity, JointHandle, JointQuantity,
+    LinePart, MarkerHandle, MarkerQuantity, ModalQuantity, Model, MotionDof, Output,
+    RelativeQuantity, Request, TyreQuantity,
 };
 use super::elements::Force;
 use super::joint::joint_coordinate;
@@ -36,6 +36,9 @@ fn vec_channels(base: &str, unit: &'static str) -> Vec<ChannelInfo> {
 
 /// Components of a stress-point output, in order (`flex::stress::NominalStress`).
 pub const STRESS_PARTS: [&str; 4] = ["sx_max", "sx_min", "tau", "eq"];
+
+/// Components of a transmitted-load output, in order: force, then moment.
+pub const TRANSMITTED_PARTS: [&str; 6] = ["fx", "fy", "fz", "mx", "my", "mz"];
 
 /// The channels of every requested output, in order.
 pub fn channels(sys: &System) -> Vec<ChannelInfo> {
@@ -80,6 +83,13 @@ fn raw_channels(m: &Model, o: &Output) -> Vec<ChannelInfo> {
             TyreQuantity::EffectiveRoadHeight => one("m"),
         }),
         Request::LinePart { .. } => out.push(one("N")),
+        Request::Transmitted { .. } => out.extend(TRANSMITTED_PARTS.iter().enumerate().map(
+            |(k, c)| ChannelInfo {
+                name: format!("{}.{c}", o.name),
+                unit: if k < 3 { "N" } else { "N m" },
+                angle: false,
+            },
+        )),
         Request::Relative { quantity, .. } => out.push(one(match quantity {
             RelativeQuantity::Position => "m",
             RelativeQuantity::Velocity => "m/s",
@@ -193,6 +203,9 @@ pub fn evaluate(sys: &System, t: f64, y: &[f64], yp: &[f64]) -> Vec<f64> {
                 } | Request::Joint {
                     quantity: JointQuantity::Force | JointQuantity::Torque,
                     ..
+                } | Request::Transmitted {
+                    by: Carrier::Joint(_),
+                    ..
                 }
             )
         });
@@ -273,6 +286,11 @@ pub fn evaluate(sys: &System, t: f64, y: &[f64], yp: &[f64]) -> Vec<f64> {
                     TyreQuantity::Contact => f64::from(c.normal_force > 0.0),
                     TyreQuantity::EffectiveRoadHeight => c.effective.height,
                 });
+            }
+            Request::Transmitted { by, axes } => {
+                let (f, tq) = transmitted(sys, *by, t, q, v, lam);
+                out.extend_from_slice(&resolve(*axes, f));
+                out.extend_from_slice(&resolve(*axes, tq));
             }
             Request::LinePart { element, part } => {
                 let (_, _, meas) = sys.force_eval(*element, t, q, v);
@@ -390,6 +408,35 @@ fn line_part(f: &Force, part: LinePart, x: f64, rate: f64) -> f64 {
             .as_ref()
             .map_or(0.0, |st| -st.force(x - st.clearance, rate)),
     }
+}
+
+/// The force (world) that joint or element `by` passes into the body of its marker J, and
+/// the moment about J's origin. Both act at marker I's origin (a joint's reaction, an
+/// element's load) with the opposite sign on J, so the moment about J adds the arm from J
+/// to I: m_J = -(t_I + (p_I - p_J) x f_I). An element without marker J reports the load
+/// it puts on the ground at I.
+fn transmitted(
+    sys: &System,
+    by: Carrier,
+    t: f64,
+    q: &[f64],
+    v: &[f64],
+    lam: &[f64],
+) -> ([f64; 3], [f64; 3]) {
+    let (f, tq, p_i, j) = match by {
+        Carrier::Joint(k) => {
+            let (f, tq) = reaction(sys, k, t, q, lam);
+            let jt = &sys.model.joints[k];
+            (f, tq, sys.marker_frame(q, jt.i).origin, Some(jt.j))
+        }
+        Carrier::Element(e) => {
+            let (f, tq, p) = sys.element_wrench(e, t, q, v);
+            (f, tq, p, sys.model.forces[e].markers().1)
+        }
+    };
+    let p_j = j.map_or(p_i, |j| sys.marker_frame(q, j).origin);
+    let m = add(&tq, &cross(&sub(&p_i, &p_j), &f));
+    (f.map(|x| -x), m.map(|x| -x))
 }
 
 /// Reaction force (world) on joint `jk`'s I body at marker I, and torque about marker I,

@@ -81,7 +81,7 @@
   app.append(el("p", { class: "hint" }, "Drag to zoom, double click to reset, mouse wheel zooms time, shift + wheel pans; click a legend entry to hide or show it. The time cursor is shared by all charts."));
   const A = S.acquisition;
   app.append(el("p", { id: "shown", class: "hint" }, A
-    ? `Shown: accelerometers (acc_*, trailer_ax) band-limited, as the instrument saw them: <channel>${A.suffix}, through the scene's acquisition chain (${A.description}, filtered on a ${fmt(A.grid_rate_hz)} Hz grid); their raw channels are in the legends, hidden (click to show). Forces and deflections (hitch_f*, hitch_deflection_*) are shown raw, their band-limited twins hidden in the legends.`
+    ? `Shown: accelerometers (acc_*, trailer_ax) band-limited, as the instrument saw them: <channel>${A.suffix}, through the scene's acquisition chain (${A.description}, filtered on a ${fmt(A.grid_rate_hz)} Hz grid); their raw channels are in the legends, hidden (click to show). Forces and deflections (hitch_f*, hitch_bracket_*, hitch_deflection_*) are shown raw, their band-limited twins hidden in the legends.`
     : "Shown: raw channels (the scene declares no acquisition chain)."));
   const t = D.t;
   for (const g of D.groups) {

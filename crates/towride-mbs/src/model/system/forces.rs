@@ -11,7 +11,7 @@ use super::flexmarker::FlexFrame;
 use super::System;
 use crate::model::desc::{ElementHandle, MarkerHandle};
 use crate::model::dual::{Dual, Scalar};
-use crate::model::elements::{generalised, Rate};
+use crate::model::elements::{generalised, ElementLoad, Rate};
 use crate::model::joint::MFrame;
 use crate::model::math::{cross, cst33, mvc, qdot, qmul, quat_from_matrix, rot, Q4, V3};
 
@@ -42,10 +42,77 @@ impl System {
         q: &[f64],
         v: &[f64],
     ) -> ElementForces<S> {
-        let element = &self.model.forces[fe];
-        let (mi, mj) = element.markers();
+        let (mi, mj) = self.model.forces[fe].markers();
         let bi = self.body_of(mi);
         let bj = mj.and_then(|m| self.body_of(m));
+        let (l, p, [ffi, ffj]) = self.element_load(fe, t, pose, q, v);
+        let (force, torque, measures) = (l.force, l.torque, l.measures);
+        let on = |ff: &Option<FlexFrame>, b: usize, side: usize, f: &V3<S>, tq: &V3<S>| -> Vec<S> {
+            if let Some(ff) = ff {
+                // J^T (f, tq) with the marker's velocity Jacobian; a two-marker element
+                // acts at marker i's origin, so marker j's side gets the moment of the
+                // offset as well (zero for coincident markers).
+                let arm: V3<S> = std::array::from_fn(|c| p[c] - S::cst(ff.origin[c]));
+                let m = cross(&arm, f);
+                ff.jt
+                    .iter()
+                    .zip(&ff.jw)
+                    .map(|(a, b)| {
+                        let mut s = S::cst(0.0);
+                        for c in 0..3 {
+                            s = s + f[c] * a[c] + (tq[c] + m[c]) * b[c];
+                        }
+                        s
+                    })
+                    .collect()
+            } else {
+                let (r, pq, _, _) = pose(b, side);
+                let mut out = generalised(&r, &rot(&pq), &p, f, tq).to_vec();
+                out.extend(std::iter::repeat_n(S::cst(0.0), self.nm[b]));
+                out
+            }
+        };
+        let mut out = [Vec::new(), Vec::new()];
+        if let Some(b) = bi {
+            out[0] = on(&ffi, b, 0, &force, &torque);
+        }
+        if let (Some(b), Some(_)) = (bj, mj) {
+            let nf = force.map(|x| -x);
+            let nt = torque.map(|x| -x);
+            out[1] = on(&ffj, b, 1, &nf, &nt);
+        }
+        ([bi, bj], out, measures)
+    }
+
+    /// The world force and torque element `fe` puts on marker I's body and the point it
+    /// acts at (I's origin); J's body takes the opposite force at the same point.
+    pub fn element_wrench(
+        &self,
+        fe: ElementHandle,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+    ) -> ([f64; 3], [f64; 3], [f64; 3]) {
+        let pose = |b: usize, _side: usize| {
+            let (r, p) = self.pose(q, b);
+            let (u, w) = self.twist(v, b);
+            (r, p, u, w)
+        };
+        let (l, p, _) = self.element_load::<f64>(fe, t, &pose, q, v);
+        (l.force, l.torque, p)
+    }
+
+    /// Element `fe`'s load (on I, world) at marker I's origin, and the deformed frames of
+    /// its markers on modal bodies (per side) for mapping the load back.
+    fn element_load<S: Scalar>(
+        &self,
+        fe: ElementHandle,
+        t: f64,
+        pose: &dyn Fn(usize, usize) -> BodyPose<S>,
+        q: &[f64],
+        v: &[f64],
+    ) -> (ElementLoad<S>, V3<S>, [Option<FlexFrame>; 2]) {
+        let element = &self.model.forces[fe];
         // The frame of a marker on a modal body comes with its velocity Jacobian, kept
         // (per side) for mapping the load back.
         let mut flex: [Option<FlexFrame>; 2] = [None, None];
@@ -87,45 +154,8 @@ impl System {
             }
         };
         let (l, frame_i) = element.load(t, rate_frame);
-        let [ffi, ffj] = flex;
-        let (force, torque, measures) = (l.force, l.torque, l.measures);
-        let fi = &frame_i.0;
-        let p: V3<S> = fi.origin.map(|x| x.v);
-        let on = |ff: &Option<FlexFrame>, b: usize, side: usize, f: &V3<S>, tq: &V3<S>| -> Vec<S> {
-            if let Some(ff) = ff {
-                // J^T (f, tq) with the marker's velocity Jacobian; a two-marker element
-                // acts at marker i's origin, so marker j's side gets the moment of the
-                // offset as well (zero for coincident markers).
-                let arm: V3<S> = std::array::from_fn(|c| p[c] - S::cst(ff.origin[c]));
-                let m = cross(&arm, f);
-                ff.jt
-                    .iter()
-                    .zip(&ff.jw)
-                    .map(|(a, b)| {
-                        let mut s = S::cst(0.0);
-                        for c in 0..3 {
-                            s = s + f[c] * a[c] + (tq[c] + m[c]) * b[c];
-                        }
-                        s
-                    })
-                    .collect()
-            } else {
-                let (r, pq, _, _) = pose(b, side);
-                let mut out = generalised(&r, &rot(&pq), &p, f, tq).to_vec();
-                out.extend(std::iter::repeat_n(S::cst(0.0), self.nm[b]));
-                out
-            }
-        };
-        let mut out = [Vec::new(), Vec::new()];
-        if let Some(b) = bi {
-            out[0] = on(&ffi, b, 0, &force, &torque);
-        }
-        if let (Some(b), Some(_)) = (bj, mj) {
-            let nf = force.map(|x| -x);
-            let nt = torque.map(|x| -x);
-            out[1] = on(&ffj, b, 1, &nf, &nt);
-        }
-        ([bi, bj], out, measures)
+        let p: V3<S> = frame_i.0.origin.map(|x| x.v);
+        (l, p, flex)
     }
 
     /// Element loads and measures at f64 (residual, outputs).
