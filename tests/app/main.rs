@@ -56,6 +56,7 @@ mod validate_recovery;
 mod validate_vehicle;
 mod vehicle_assembly;
 mod vehicle_braking;
+mod vehicle_driveline;
 mod vehicle_engine;
 mod vehicle_errors;
 mod vehicle_scene;

@@ -21,6 +21,7 @@ mod flex_hitch;
 mod flex_input;
 mod flex_stress;
 mod inputs_provenance;
+mod law_regularised;
 mod model_modal;
 mod model_modal_full;
 mod model_tyres;

@@ -22,6 +22,7 @@
 //! | `body_heave`, `trailer_heave` | m | centre of mass height above its design height |
 //! | `body_pitch`, `trailer_pitch` | rad | pitch (ISO 8855 yaw-pitch-roll; positive nose down) |
 //! | `body_roll`, `trailer_roll` | rad | roll (positive right side down) |
+//! | `drive_torque` | N m | the engine's total torque at the driven wheels (its share of the speed controller's demand) |
 //! | `hitch_ball_deflection` | m, rad | the ball coupling bushing's deflection (bushing couplings only) |
 //!
 //! Tyre Fz and contact, and the crossbeam's modal coordinates (`hitch_eta_<k>`), are
@@ -85,6 +86,8 @@ enum Kind {
         element: ElementHandle,
         quantity: ElementQuantity,
     },
+    /// A speed controller's engine torque (index into the model's controllers).
+    Drive { control: usize },
 }
 
 /// What a scene's outputs can address: the named quantities, the fixed channels, and
@@ -210,6 +213,22 @@ pub fn quantities(v: &Vehicle) -> Vec<Quantity> {
                 element: e,
                 quantity: ElementQuantity::Deflection,
             },
+        );
+    }
+    for (k, c) in m.controls.iter().enumerate() {
+        let name = if k == 0 {
+            "drive_torque".to_string()
+        } else {
+            format!("drive_torque_{k}")
+        };
+        add(
+            name,
+            "N m",
+            format!(
+                "{}: the engine's total torque at the driven wheels (its share of the controller's demand)",
+                c.name
+            ),
+            Kind::Drive { control: k },
         );
     }
     let bodies = [("body", Some(h.car_body)), ("trailer", h.trailer_body)];
@@ -355,6 +374,7 @@ fn output_for(v: &mut Vehicle, q: &Quantity, name: &str) -> Option<Output> {
         Kind::Line { element, part } => Request::LinePart { element, part },
         Kind::Tyre { tyre, quantity } => Request::Tyre { tyre, quantity },
         Kind::Element { element, quantity } => Request::Element { element, quantity },
+        Kind::Drive { control } => Request::DriveTorque { control },
         Kind::Body { body, quantity } => Request::Body {
             body,
             quantity,

@@ -283,10 +283,10 @@ fn finish(
 }
 
 /// Sets the speed controllers' target (a manoeuvre, or the held speed) and their
-/// feed-forward gain: the vehicle's `mass` plus its wheels' spin inertia over r^2, times
-/// the driven wheels' design radius r, so that a demanded acceleration asks the torque
-/// it needs without waiting for the PI loop (which corrects what this leaves out:
-/// rolling losses, the tyres' own belt spin, slip).
+/// feed-forward gain: the vehicle's `mass` plus its wheels' and its driveline's spin
+/// inertia over r^2, times the driven wheels' design radius r, so that a demanded
+/// acceleration asks the torque it needs without waiting for the PI loop (which corrects
+/// what this leaves out: rolling losses, the tyres' own belt spin, slip).
 ///
 /// A held speed is kept by the drive alone, as the thesis's engine did: the brakes are
 /// left out of the model then. Over the default scene's ramp the controller never asks
@@ -312,7 +312,8 @@ fn feed_forward(model: &mut Model, wheels: &[wheel::WheelHandle], mass: f64, opt
             .map(|w| model.bodies[w.body].inertia[1][1] / w.design_centre[2].powi(2))
             .sum();
         let c = &mut model.controls[k];
-        c.feedforward_kg_m = (mass + spin) * r;
+        let shaft = c.driveline.map_or(0.0, |d| d.inertia / (r * r));
+        c.feedforward_kg_m = (mass + spin + shaft) * r;
         match &opts.speed_target {
             Some(t) => c.target = t.clone(),
             None => c.brakes = None,

@@ -1,6 +1,10 @@
 //! A driveline that holds a set speed, like the thesis's engine: a PI controller on the
 //! car body's forward speed sets the drive torque, split equally over the driven wheels
-//! (an open differential) and reacted on their knuckles.
+//! (an open differential) and reacted on their knuckles. An optional
+//! `[driveline_inertia]` puts the engine's and gearbox's rotating inertia, reflected
+//! through the gear and final-drive ratios (J i^2), on the differential: a shaft whose
+//! spin follows the mean of the driven wheels' spins
+//! ([`towride_mbs::model::desc::DrivelineInertia`]; docs/manoeuvres.md).
 
 use std::path::Path;
 
@@ -9,7 +13,7 @@ use serde::Deserialize;
 use super::wheel::WheelHandle;
 use towride_mbs::input::InputError;
 use towride_mbs::model::builder::MarkerHandle;
-use towride_mbs::model::desc::{Brakes, SpeedControl};
+use towride_mbs::model::desc::{Brakes, DrivelineInertia, SpeedControl};
 use towride_mbs::model::function::TimeFunction;
 use towride_mbs::path;
 
@@ -18,6 +22,33 @@ use towride_mbs::path;
 struct File {
     speed_control: Control,
     brakes: Option<BrakesSec>,
+    driveline_inertia: Option<InertiaSec>,
+}
+
+/// Whether the driveline's rotating inertia is modelled.
+#[derive(Deserialize, Debug, Clone, Copy, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+enum InertiaKind {
+    /// Left out: the drive torque acts on the wheels directly.
+    None,
+    /// On the differential: a shaft geared to the driven wheels' mean spin.
+    Differential,
+}
+
+/// The engine's and gearbox's rotating inertia on the differential.
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+struct InertiaSec {
+    kind: InertiaKind,
+    /// Rotating inertia at the crank: flywheel, crank train, clutch, gearbox input [kg m^2].
+    crank_side_inertia_kg_m2: f64,
+    /// Ratio of the engaged gear [-].
+    gear_ratio: f64,
+    /// Final-drive ratio [-].
+    final_drive_ratio: f64,
+    /// Time constant of the coupling that gears the shaft to the wheels (a penalty
+    /// regularisation of that constraint) [s].
+    coupling_time_s: f64,
 }
 
 /// Friction brakes: what the speed controller asks beyond the engine's drag.
@@ -87,6 +118,7 @@ pub fn control(
             .collect(),
         feedforward_kg_m: 0.0,
         brakes: None,
+        driveline: None,
     }
 }
 
@@ -158,6 +190,22 @@ pub fn build(
             })
         }
     };
+    let driveline = match &f.driveline_inertia {
+        Some(d) if d.kind == InertiaKind::Differential => {
+            let p = |k: &str| path!["driveline_inertia", k];
+            let j = src.positive(&p("crank_side_inertia_kg_m2"), d.crank_side_inertia_kg_m2)?;
+            let gear = src.positive(&p("gear_ratio"), d.gear_ratio)?;
+            let final_drive = src.positive(&p("final_drive_ratio"), d.final_drive_ratio)?;
+            let tau = src.positive(&p("coupling_time_s"), d.coupling_time_s)?;
+            // Kinetic energy J w_crank^2 / 2 with w_crank = i w_wheels: J i^2 at the wheels.
+            let inertia = j * (gear * final_drive).powi(2);
+            Some(DrivelineInertia {
+                inertia,
+                coupling: inertia / tau,
+            })
+        }
+        _ => None,
+    };
     Ok(SpeedControl {
         name: "driveline".into(),
         sensor,
@@ -168,5 +216,6 @@ pub fn build(
         wheels: driven,
         feedforward_kg_m: 0.0,
         brakes,
+        driveline,
     })
 }

@@ -3,7 +3,9 @@
 //! the file's rule), held on the car body by bushings at its two bracket interface nodes
 //! (the thesis: bushings, not fixed joints, so the few kept modes do not over-constrain
 //! it), and the ball coupling to the trailer drawbar at the ball interface node:
-//! a spherical joint or a stiff bushing.
+//! a spherical joint, a stiff bushing, or a coupling head (a bushing whose translations
+//! have a smoothly regularised play and whose rotations a regularised friction torque:
+//! `LawSpec::DeadBand`, `LawSpec::Friction`; docs/hitch_mounts.md).
 
 use std::path::Path;
 
@@ -128,6 +130,8 @@ struct BallCouplingSec {
     /// The bushing used for kind = "bushing" (translations only: a ball passes no
     /// moments).
     bushing: Option<JointBushing>,
+    /// The bushing used for kind = "coupling_head" (axes in vehicle coordinates).
+    coupling_head: Option<BushingProps>,
 }
 
 /// How the drawbar is to be coupled to the ball: the hitch file's `ball_coupling.kind`,
@@ -139,6 +143,8 @@ pub enum BallCoupling {
     Spherical,
     /// The hitch file's stiff bushing.
     Bushing,
+    /// The hitch file's coupling head: play, compliance and friction torque.
+    CouplingHead,
 }
 
 impl std::fmt::Display for BallCoupling {
@@ -146,6 +152,7 @@ impl std::fmt::Display for BallCoupling {
         f.write_str(match self {
             BallCoupling::Spherical => "spherical",
             BallCoupling::Bushing => "bushing",
+            BallCoupling::CouplingHead => "coupling_head",
         })
     }
 }
@@ -157,6 +164,8 @@ pub enum BallKind {
     Spherical,
     /// A bushing with these properties (translations only).
     Bushing(JointBushing),
+    /// A coupling head: a bushing with these six laws.
+    Head(Box<BushingLaws>),
 }
 
 /// What the rest of the vehicle needs of the hitch.
@@ -245,6 +254,16 @@ pub fn build(
                     "the bushing coupling needs a bushing table",
                 )
             })?)
+        }
+        BallCoupling::CouplingHead => {
+            let p = path!["ball_coupling", "coupling_head"];
+            let head = f.ball_coupling.coupling_head.as_ref().ok_or_else(|| {
+                src.error(
+                    &path!["ball_coupling"],
+                    "the coupling_head coupling needs a coupling_head table",
+                )
+            })?;
+            BallKind::Head(Box::new(head.check(&src, &p, [0.0, 0.0, 1.0])?))
         }
     };
     let at = |p: &[f64; 3]| add(&origin, p);
@@ -335,6 +354,12 @@ pub fn couple(
                     Some(jb),
                 )
             })?;
+            modal_body::pin(b, link, false, h.ball_node);
+            link
+        }
+        BallKind::Head(laws) => {
+            let link =
+                b.bushing_link(name, Some(drawbar), Some(h.body), h.ball, &laws.axes, laws)?;
             modal_body::pin(b, link, false, h.ball_node);
             link
         }

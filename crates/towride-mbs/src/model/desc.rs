@@ -507,6 +507,12 @@ pub enum Request {
         /// Reference height of the centre of mass [m] (heave is measured from it).
         z_ref: f64,
     },
+    /// The engine's share of a speed controller's demand, the total drive torque at the
+    /// driven wheels before the drag's spin weighting [N m].
+    DriveTorque {
+        /// Index into `Model::controls`.
+        control: usize,
+    },
 }
 
 /// A named output request: one or more channels of the output table.
@@ -575,6 +581,25 @@ pub struct SpeedControl {
     /// Friction brakes taking what the controller asks beyond the drive's drag; without
     /// them the drive takes any torque, as an engine that brakes would.
     pub brakes: Option<Brakes>,
+    /// The engine's and gearbox's rotating inertia behind an open differential; without
+    /// it the drive torque acts on the wheels directly (no driveline inertia).
+    pub driveline: Option<DrivelineInertia>,
+}
+
+/// Rotating inertia of the driveline on the differential of a [`SpeedControl`]'s driven
+/// wheels. The engine turns a shaft of inertia `inertia` (the crank-side inertia times
+/// the squared overall ratio, reflected to the wheels) whose spin w_d follows the MEAN of
+/// the driven wheels' spins on their carriers (an open differential: the two wheels may
+/// turn at different rates, their mean is geared to the engine). The gearing is held by a
+/// stiff viscous coupling T_s = `coupling` (w_d - mean spin), a penalty regularisation of
+/// that constraint with time constant `inertia / coupling`; T_s is shared equally over the
+/// wheels (the open differential's equal torque split).
+#[derive(Clone, Copy, Debug)]
+pub struct DrivelineInertia {
+    /// Rotating inertia reflected to the wheels, J_crank (i_gear i_final)^2 [kg m^2].
+    pub inertia: f64,
+    /// Coupling rate between the shaft's spin and the wheels' mean spin [N m s/rad].
+    pub coupling: f64,
 }
 
 /// Friction brakes under a [`SpeedControl`]: the torque asked below `-engine_drag` goes

@@ -90,6 +90,7 @@ fn raw_channels(m: &Model, o: &Output) -> Vec<ChannelInfo> {
                 angle: false,
             },
         )),
+        Request::DriveTorque { .. } => out.push(one("N m")),
         Request::Relative { quantity, .. } => out.push(one(match quantity {
             RelativeQuantity::Position => "m",
             RelativeQuantity::Velocity => "m/s",
@@ -291,6 +292,16 @@ pub fn evaluate(sys: &System, t: f64, y: &[f64], yp: &[f64]) -> Vec<f64> {
                 let (f, tq) = transmitted(sys, *by, t, q, v, lam);
                 out.extend_from_slice(&resolve(*axes, f));
                 out.extend_from_slice(&resolve(*axes, tq));
+            }
+            Request::DriveTorque { control } => {
+                let e = sys
+                    .ext
+                    .iter()
+                    .find(|e| e.kind == super::system::ExtKind::Control(*control))
+                    .expect("every controller has its states");
+                let speed = sys.control_speed(*control, q, v);
+                let demand = sys.control_demand(*control, t, speed, x[e.off]);
+                out.push(sys.control_split(*control, demand).0);
             }
             Request::LinePart { element, part } => {
                 let (_, _, meas) = sys.force_eval(*element, t, q, v);

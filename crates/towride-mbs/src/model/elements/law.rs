@@ -15,6 +15,42 @@ pub enum Law {
     Linear(f64),
     /// Force = spline(x) (natural cubic through the table).
     Curve(Spline),
+    /// Linear beyond a play: F = k [sp(x - g) - sp(-x - g)] with the softplus
+    /// sp(u) = w ln(1 + e^(u/w)), a smooth dead band of half-width g (the play) whose
+    /// corners are rounded over about w; as w -> 0 it is 0 inside |x| < g and
+    /// k (|x| - g) sign(x) outside. F(0) = 0 and F is odd, C-infinity and monotone.
+    DeadBand {
+        /// Stiffness beyond the play [N/m].
+        k: f64,
+        /// Half-width of the dead band [m].
+        play: f64,
+        /// Rounding width of its corners [m].
+        width: f64,
+    },
+    /// Regularised Coulomb friction on a rate: F = T tanh(x / r), T the friction force or
+    /// torque and r the rate over which it changes sign.
+    Friction {
+        /// Friction force or torque [N or N m].
+        t: f64,
+        /// Release rate [m/s or rad/s].
+        r: f64,
+    },
+}
+
+/// Softplus w ln(1 + e^(u/w)) with its first and second derivatives, without overflow.
+fn softplus(u: f64, w: f64) -> (f64, f64, f64) {
+    let z = u / w;
+    let s = if z >= 0.0 {
+        1.0 / (1.0 + (-z).exp())
+    } else {
+        let e = z.exp();
+        e / (1.0 + e)
+    };
+    (
+        u.max(0.0) + w * (-z.abs()).exp().ln_1p(),
+        s,
+        s * (1.0 - s) / w,
+    )
 }
 
 impl Law {
@@ -23,6 +59,16 @@ impl Law {
         match self {
             Law::Linear(k) => (k * x, *k, 0.0),
             Law::Curve(s) => s.eval(x),
+            Law::DeadBand { k, play, width } => {
+                let (a, da, dda) = softplus(x - play, *width);
+                let (b, db, ddb) = softplus(-x - play, *width);
+                (k * (a - b), k * (da + db), k * (dda - ddb))
+            }
+            Law::Friction { t, r } => {
+                let th = (x / r).tanh();
+                let sech2 = 1.0 - th * th;
+                (t * th, t / r * sech2, -2.0 * t / (r * r) * th * sech2)
+            }
         }
     }
 
@@ -35,8 +81,8 @@ impl Law {
     pub fn at<S: Scalar>(&self, x: S) -> S {
         match self {
             Law::Linear(k) => x * *k,
-            Law::Curve(s) => {
-                let (f, df, d2f) = s.eval(x.re());
+            _ => {
+                let (f, df, d2f) = self.eval(x.re());
                 x.chain(f, df, d2f)
             }
         }
@@ -56,6 +102,22 @@ pub enum LawSpec {
         /// Force or torque.
         y: Vec<f64>,
     },
+    /// A stiffness beyond a play, corners rounded ([`Law::DeadBand`]).
+    DeadBand {
+        /// Stiffness beyond the play [N/m].
+        stiffness_n_m: f64,
+        /// Half-width of the dead band [m].
+        play_m: f64,
+        /// Rounding width of its corners [m].
+        smoothing_m: f64,
+    },
+    /// Regularised friction on a rotation rate ([`Law::Friction`]).
+    Friction {
+        /// Friction torque [N m].
+        friction_torque_n_m: f64,
+        /// Rate over which it changes sign [rad/s].
+        release_rad_s: f64,
+    },
 }
 
 impl LawSpec {
@@ -65,6 +127,23 @@ impl LawSpec {
         match self {
             LawSpec::Linear(k) => non_negative(*k).map(Law::Linear).map_err(FieldError::here),
             LawSpec::Table { x, y } => Spline::new(x, y).map(Law::Curve),
+            LawSpec::DeadBand {
+                stiffness_n_m,
+                play_m,
+                smoothing_m,
+            } => Ok(Law::DeadBand {
+                k: non_negative(*stiffness_n_m).map_err(|m| FieldError::at("stiffness_n_m", m))?,
+                play: non_negative(*play_m).map_err(|m| FieldError::at("play_m", m))?,
+                width: positive(*smoothing_m).map_err(|m| FieldError::at("smoothing_m", m))?,
+            }),
+            LawSpec::Friction {
+                friction_torque_n_m,
+                release_rad_s,
+            } => Ok(Law::Friction {
+                t: non_negative(*friction_torque_n_m)
+                    .map_err(|m| FieldError::at("friction_torque_n_m", m))?,
+                r: positive(*release_rad_s).map_err(|m| FieldError::at("release_rad_s", m))?,
+            }),
         }
     }
 }

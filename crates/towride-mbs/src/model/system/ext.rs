@@ -48,13 +48,15 @@ pub fn layout(model: &Model) -> (Vec<Ext>, usize) {
         });
         off += n;
     }
-    for k in 0..model.controls.len() {
+    for (k, c) in model.controls.iter().enumerate() {
+        // The speed error's integral, and the driveline shaft's spin if it has inertia.
+        let n = 1 + usize::from(c.driveline.is_some());
         out.push(Ext {
             kind: ExtKind::Control(k),
             off,
-            n: 1,
+            n,
         });
-        off += 1;
+        off += n;
     }
     (out, off)
 }
@@ -161,6 +163,18 @@ impl System {
         (0..3).map(|r| (w[r] - c[r]) * a[r][1]).sum()
     }
 
+    /// Mean spin of controller `k`'s driven wheels on their carriers: what an open
+    /// differential gears to the engine [rad/s].
+    pub fn driven_mean_spin(&self, k: usize, q: &[f64], v: &[f64]) -> f64 {
+        let c = &self.model.controls[k];
+        let n = c.wheels.len().max(1) as f64;
+        c.wheels
+            .iter()
+            .map(|&(wm, cm)| self.relative_spin(q, v, wm, cm))
+            .sum::<f64>()
+            / n
+    }
+
     /// Adds one extension element's loads to `f` and writes its residual `res` (its own
     /// states `x`, rates `xd`).
     #[allow(clippy::too_many_arguments)]
@@ -214,28 +228,45 @@ impl System {
                     add(cm, [0.0; 3], spin.map(|s| -s));
                 };
                 let n = c.wheels.len().max(1) as f64;
-                let Some(b) = &c.brakes else {
-                    for &(wm, cm) in &c.wheels {
-                        spin_torque(wm, cm, engine / n);
-                    }
-                    return;
-                };
                 // Friction (the engine's drag, the brakes) opposes each wheel's spin on its
                 // carrier, whichever way it turns, and vanishes with it (tanh over
                 // `release_rad_s`): a stopped car is not driven backwards by its brakes.
                 // The engine pushes; a pull beyond `blend` is drag (weight w: 1 -> 0).
-                let friction = |wm, cm| (self.relative_spin(q, v, wm, cm) / b.release_rad_s).tanh();
-                let w = smooth_step01((engine + b.blend) / b.blend);
-                for &(wm, cm) in &c.wheels {
-                    let slip = if w == 1.0 {
-                        1.0
-                    } else {
-                        w + (1.0 - w) * friction(wm, cm)
-                    };
-                    spin_torque(wm, cm, engine / n * slip);
+                let engine_share = |spin: &dyn Fn() -> f64| match &c.brakes {
+                    None => 1.0,
+                    Some(b) => {
+                        let w = smooth_step01((engine + b.blend) / b.blend);
+                        if w == 1.0 {
+                            1.0
+                        } else {
+                            w + (1.0 - w) * (spin() / b.release_rad_s).tanh()
+                        }
+                    }
+                };
+                match &c.driveline {
+                    None => {
+                        for &(wm, cm) in &c.wheels {
+                            let slip = engine_share(&|| self.relative_spin(q, v, wm, cm));
+                            spin_torque(wm, cm, engine / n * slip);
+                        }
+                    }
+                    Some(d) => {
+                        // The engine turns the shaft (spin x[1]); the stiff coupling gears
+                        // it to the wheels' mean spin and splits its torque equally.
+                        let shaft = x[1];
+                        let coupled = d.coupling * (shaft - self.driven_mean_spin(k, q, v));
+                        let drive = engine * engine_share(&|| shaft);
+                        res[1] = d.inertia * xd[1] - (drive - coupled);
+                        for &(wm, cm) in &c.wheels {
+                            spin_torque(wm, cm, coupled / n);
+                        }
+                    }
                 }
-                for &(wm, cm, share) in &b.wheels {
-                    spin_torque(wm, cm, brake * share * friction(wm, cm));
+                if let Some(b) = &c.brakes {
+                    for &(wm, cm, share) in &b.wheels {
+                        let slip = (self.relative_spin(q, v, wm, cm) / b.release_rad_s).tanh();
+                        spin_torque(wm, cm, brake * share * slip);
+                    }
                 }
             }
         }
@@ -264,14 +295,15 @@ impl System {
         for e in &self.ext {
             match e.kind {
                 ExtKind::Tyre(k) => out.extend(self.model.tyres[k].tyre.var_kinds()),
-                ExtKind::Control(_) => out.push(VarKind::Differential),
+                ExtKind::Control(_) => out.extend(std::iter::repeat_n(VarKind::Differential, e.n)),
             }
         }
         out
     }
 
     /// Initial extension states for a state (q, v): tyres in steady state for their
-    /// wheel's motion, controller integrators at `z0` [m].
+    /// wheel's motion, controller integrators at `z0` [m], driveline shafts turning with
+    /// their wheels.
     pub fn ext_initial(&self, q: &[f64], v: &[f64], z0: f64) -> Vec<f64> {
         let mut x = vec![0.0; self.ne];
         for e in &self.ext {
@@ -282,7 +314,12 @@ impl System {
                     let kin = self.wheel_kinematics(q, v, te.marker);
                     x[e.off..e.off + e.n].copy_from_slice(&te.tyre.initial_state(&kin, road));
                 }
-                ExtKind::Control(_) => x[e.off] = z0,
+                ExtKind::Control(k) => {
+                    x[e.off] = z0;
+                    if e.n > 1 {
+                        x[e.off + 1] = self.driven_mean_spin(k, q, v);
+                    }
+                }
             }
         }
         x
@@ -295,8 +332,12 @@ impl System {
                 let te = &self.model.tyres[k];
                 format!("tyre '{}' {}", te.name, te.tyre.state_names()[i])
             }
-            ExtKind::Control(k) => format!(
+            ExtKind::Control(k) if i == 0 => format!(
                 "speed control '{}' integral of the speed error [m]",
+                self.model.controls[k].name
+            ),
+            ExtKind::Control(k) => format!(
+                "speed control '{}' driveline spin at the wheels [rad/s]",
                 self.model.controls[k].name
             ),
         }
@@ -311,13 +352,14 @@ impl System {
     }
 
     /// Suggested absolute tolerances of the extension states (tyres' own hints, 1e-4 m
-    /// for controller integrators).
+    /// for controller integrators, 1e-4 rad/s for driveline spins as for the bodies'
+    /// velocities).
     pub fn ext_atol(&self, scale: f64) -> Vec<f64> {
         let mut out = Vec::with_capacity(self.ne);
         for e in &self.ext {
             match e.kind {
                 ExtKind::Tyre(k) => out.extend(self.model.tyres[k].tyre.atol(scale)),
-                ExtKind::Control(_) => out.push(1e-4 * scale),
+                ExtKind::Control(_) => out.extend(std::iter::repeat_n(1e-4 * scale, e.n)),
             }
         }
         out
