@@ -14,6 +14,7 @@ macro_rules! eprintln {
 mod analyse;
 mod bench;
 mod bounded;
+mod comfort;
 mod compare;
 mod inputs;
 mod interrupt;
@@ -87,6 +88,9 @@ enum Command {
     /// Rainflow count (ASTM E1049-85) of a CSV column, its damage-equivalent load and
     /// Miner damage.
     Rainflow(rainflow::RainflowArgs),
+    /// Ride comfort (ISO 2631-1) of acceleration columns of a CSV: weighted r.m.s.,
+    /// VDV, MTVV, crest factor and the vibration total value.
+    Comfort(comfort::ComfortArgs),
 }
 
 #[derive(clap::Args, Debug)]
@@ -157,6 +161,7 @@ fn run() -> i32 {
         Command::Validate(a) => validate::run(&a),
         Command::Compare(a) => compare::run(&a),
         Command::Rainflow(a) => rainflow::run(&a),
+        Command::Comfort(a) => comfort::run(&a),
     };
     match result {
         Ok(code) => code,

@@ -16,6 +16,7 @@ mod common;
 
 mod basics;
 mod check;
+mod comfort;
 mod doctor;
 mod fuzz_tools;
 mod inputs;
