@@ -223,7 +223,7 @@ pub fn write_summary(path: &Path, sweep: &Sweep, rows: &[CaseRow]) -> Result<()>
 }
 
 /// Version of a merged table's report (`sweep merge --json`). 2: the merged table's
-/// figures are those of sweep summary version 5 ([`SCHEMA_VERSION`]).
+/// figures are those of sweep summary version 6 ([`SCHEMA_VERSION`]).
 pub const MERGE_SCHEMA_VERSION: u32 = 2;
 
 /// What [`merge`] joined.
@@ -467,8 +467,9 @@ pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<Merged> {
 /// beside it and in the journal). 4: no signed peaks; the hitch force's max, min and
 /// |peak|, the sensors' |peak| band-limited and raw ([`figures`]). 5: the ball force
 /// components' damage-equivalent loads and the crossbeam points' largest equivalent
-/// stress.
-pub const SCHEMA_VERSION: u32 = 5;
+/// stress. 6: the driver's floor comfort (ISO 2631-1 a_w and VDV per axis, total
+/// value; [`super::figures`]).
+pub const SCHEMA_VERSION: u32 = 6;
 
 /// Refuses a sweep file (a shard's JSON twin, a summary or journal to resume) written
 /// with another layout version than [`SCHEMA_VERSION`]: an older one's figures (signed
