@@ -185,9 +185,11 @@ fn rate_of(file: &Path, lines: &[usize], name: &str, t: &[f64]) -> Result<f64, I
         ));
     }
     let mean = (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64;
+    // Also false for a NaN mean (cells are finite, so it cannot be).
+    let rising = mean > 0.0;
     for (i, w) in t.windows(2).enumerate() {
         let dt = w[1] - w[0];
-        if !(mean > 0.0) || (dt - mean).abs() > TIME_JITTER * mean {
+        if !rising || (dt - mean).abs() > TIME_JITTER * mean {
             return Err(err(
                 file,
                 Some(lines[i + 1]),
