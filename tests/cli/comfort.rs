@@ -158,3 +158,46 @@ fn comfort_errors_name_file_line_and_field() {
     );
     assert!(err.contains("--axes lists 2 values for 1 columns"), "{err}");
 }
+
+/// On a run's `outputs.csv`: the floor point's columns read back from the CSV give the
+/// summary's comfort block (the CSV's printed digits aside), and the band-limited twin
+/// needs `--axes` (its name ends in `_lp100`).
+#[test]
+fn comfort_of_a_runs_outputs_matches_its_summary() {
+    let d = dir("run");
+    let out = d.join("run");
+    crate::towride_ok(&["run", "scenes/default.toml", "--out", out.to_str().unwrap()]);
+    let csv = out.join("outputs.csv");
+    let v = towride_json(&[
+        "comfort",
+        csv.to_str().unwrap(),
+        "--columns",
+        "acc_driver_floor_x,acc_driver_floor_y,acc_driver_floor_z",
+        "--json",
+    ]);
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let c = &s["comfort"];
+    for k in 0..3 {
+        for m in ["rms_m_s2", "vdv_m_s1_75", "mtvv_m_s2"] {
+            let (a, b) = (
+                v["axes"][k][m].as_f64().unwrap(),
+                c["axes"][k][m].as_f64().unwrap(),
+            );
+            assert!(
+                (a - b).abs() <= 1e-6 * b.abs().max(1e-3),
+                "{k} {m}: {a} vs {b}"
+            );
+        }
+    }
+    let err = towride_err(
+        &[
+            "comfort",
+            csv.to_str().unwrap(),
+            "--columns",
+            "acc_driver_floor_z_lp100",
+        ],
+        2,
+    );
+    assert!(err.contains("give --axes"), "{err}");
+}
