@@ -15,6 +15,7 @@ mod analyse;
 mod bench;
 mod bounded;
 mod calibrate;
+mod comfort;
 mod compare;
 mod inputs;
 mod interrupt;
@@ -91,6 +92,9 @@ enum Command {
     /// Fit property values to recorded runs (Levenberg-Marquardt), with intervals, and
     /// rate held-out runs with them.
     Calibrate(calibrate::CalibrateArgs),
+    /// Ride comfort (ISO 2631-1) of acceleration columns of a CSV: weighted r.m.s.,
+    /// VDV, MTVV, crest factor and the vibration total value.
+    Comfort(comfort::ComfortArgs),
 }
 
 #[derive(clap::Args, Debug)]
@@ -162,6 +166,7 @@ fn run() -> i32 {
         Command::Compare(a) => compare::run(&a),
         Command::Rainflow(a) => rainflow::run(&a),
         Command::Calibrate(a) => calibrate::run(&a),
+        Command::Comfort(a) => comfort::run(&a),
     };
     match result {
         Ok(code) => code,

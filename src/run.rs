@@ -478,6 +478,30 @@ fn print_summary(r: &RunResult) {
             }
         }
     }
+    if let Some(c) = &s.comfort {
+        // One line: ISO 2631-1 at the driver's floor point (docs/comfort.md).
+        let axes: Vec<String> = c
+            .axes
+            .iter()
+            .map(|a| {
+                format!(
+                    "{} a_w {:.3} m/s^2, VDV {:.3} m/s^1.75, MTVV {:.3} m/s^2",
+                    a.channel, a.measures.rms_m_s2, a.measures.vdv_m_s1_75, a.measures.mtvv_m_s2
+                )
+            })
+            .collect();
+        println!(
+            "  comfort (ISO 2631-1, driver's floor{}): {}; a_v {}",
+            if c.transient {
+                ", transient: VDV and MTVV count"
+            } else {
+                ""
+            },
+            axes.join("; "),
+            c.total_value_m_s2
+                .map_or("-".into(), |v| format!("{v:.3} m/s^2"))
+        );
+    }
     for l in &s.lift_off {
         println!(
             "  wheel {} off the road from {:.3} s for {:.3} s",

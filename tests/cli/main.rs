@@ -17,6 +17,7 @@ mod common;
 mod basics;
 mod calibrate;
 mod check;
+mod comfort;
 mod doctor;
 mod fuzz_tools;
 mod inputs;

@@ -106,7 +106,8 @@ fn cli_folder_with_one_bad_descriptor() {
             }
         }
     }
-    // One summary table: a header, 3 runs x 12 sensor channels, one failure row.
+    // One summary table: a header, 3 runs x 15 sensor channels (the thesis's 12 and the
+    // driver's floor point, docs/comfort.md), one failure row.
     let csv = std::fs::read_to_string(o.join("summary.csv")).unwrap();
     let lines: Vec<&str> = csv.lines().collect();
     assert!(
@@ -116,16 +117,16 @@ fn cli_folder_with_one_bad_descriptor() {
         "{}",
         lines[0]
     );
-    assert_eq!(lines.len(), 1 + 3 * 12 + 1);
-    assert!(lines[37].contains("broken.toml") && lines[37].contains("cutoff_hz"));
+    assert_eq!(lines.len(), 1 + 3 * 15 + 1);
+    assert!(lines[46].contains("broken.toml") && lines[46].contains("cutoff_hz"));
     assert!(o.join("summary.json").exists() && o.join("index.html").exists());
     let page = o.join("bump_25mm_20kmh_empty").join("report.png");
     assert!(std::fs::metadata(&page).unwrap().len() > 10_000);
     // The interactive report: per sensor an overlay in each comparison and a spectrum
-    // (12 x 2 + 12 charts), the metrics table; linked from the index.
+    // (15 x 2 + 15 charts), the metrics table; linked from the index.
     let html = o.join("bump_25mm_20kmh_empty").join("report.html");
     let (dom, ready) = crate::browser_dom(&html);
-    assert_eq!(ready.as_deref(), Some("36"));
+    assert_eq!(ready.as_deref(), Some("45"));
     assert!(dom.contains("acc_trailer_drawbar_z") && dom.contains("gain ratio"));
     let index = std::fs::read_to_string(o.join("index.html")).unwrap();
     assert!(index.contains("bump_25mm_20kmh_empty/report.html"));

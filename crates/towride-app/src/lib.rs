@@ -73,8 +73,9 @@ pub mod error;
 
 pub mod signal;
 
-pub mod comfort;
 pub mod durability;
+
+pub mod comfort;
 
 pub mod vehicle;
 

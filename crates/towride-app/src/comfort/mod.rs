@@ -1,12 +1,17 @@
 //! Ride comfort after ISO 2631-1:1997: the frequency weightings as digital filters
-//! ([`weighting`]) and the measures of a weighted acceleration ([`metrics`]): r.m.s.,
-//! VDV, MTVV, crest factor and the combined vibration total value. `docs/comfort.md`
-//! gives the definitions and sources.
+//! ([`weighting`]), the measures of a weighted acceleration ([`metrics`]): r.m.s.,
+//! VDV, MTVV, crest factor and the combined vibration total value; acceleration
+//! columns of a CSV ([`record`]) and the evaluation of a measuring point
+//! ([`evaluate`]). `docs/comfort.md` gives the definitions and sources.
 
+pub mod evaluate;
 pub mod metrics;
+pub mod record;
 pub mod weighting;
 
+pub use evaluate::{evaluate, ComfortError, PointComfort, FLOOR_SENSOR};
 pub use metrics::{combined, measures, Assessment, Measures};
+pub use record::{Axis, ColumnSpec, TimeBase};
 pub use weighting::{Weighting, WeightingFilter};
 
 /// The measures of the acceleration `a` [m/s^2] sampled at `rate_hz`, weighted by `w`;

@@ -20,7 +20,7 @@ pub struct Column {
     pub values: Vec<f64>,
 }
 
-fn err(file: &Path, line: Option<usize>, field: &str, message: String) -> InputError {
+pub(crate) fn err(file: &Path, line: Option<usize>, field: &str, message: String) -> InputError {
     InputError {
         file: file.to_path_buf(),
         line,
@@ -43,8 +43,36 @@ pub fn split_unit(header: &str) -> (String, Option<String>) {
     }
 }
 
-/// Reads the column `name` of `file`.
+/// Reads the column `name` of `file` (at least 3 values, as rainflow counting needs).
 pub fn read_column(file: &Path, name: &str) -> Result<Column, InputError> {
+    let col = read_columns(file, &[name])?.columns.remove(0);
+    if col.values.len() < 3 {
+        return Err(err(
+            file,
+            None,
+            &col.name,
+            format!(
+                "{} values: rainflow counting needs at least 3",
+                col.values.len()
+            ),
+        ));
+    }
+    Ok(col)
+}
+
+/// Several columns read from a CSV file, and where their lines are.
+#[derive(Clone, Debug)]
+pub struct Table {
+    /// The header's line number (1-based).
+    pub header_line: usize,
+    /// Each data row's line number (1-based).
+    pub lines: Vec<usize>,
+    /// The columns, in the order asked for.
+    pub columns: Vec<Column>,
+}
+
+/// Reads the columns `names` of `file`, in that order.
+pub fn read_columns(file: &Path, names: &[&str]) -> Result<Table, InputError> {
     let text = std::fs::read_to_string(file)
         .map_err(|e| err(file, None, "", format!("cannot read: {e}")))?;
     let mut lines = text
@@ -67,72 +95,81 @@ pub fn read_column(file: &Path, name: &str) -> Result<Column, InputError> {
         .split(sep)
         .map(|h| h.trim().trim_matches('"'))
         .collect();
-    let idx = full
+    let mut idx = Vec::with_capacity(names.len());
+    for name in names {
+        let k = full
+            .iter()
+            .position(|h| h == name)
+            .or_else(|| heads.iter().position(|(n, _)| n == name))
+            .ok_or_else(|| {
+                let names: Vec<&str> = heads.iter().map(|(n, _)| n.as_str()).collect();
+                err(
+                    file,
+                    Some(header_line),
+                    name,
+                    format!(
+                        "no column `{name}` in the header (columns: {})",
+                        names.join(", ")
+                    ),
+                )
+            })?;
+        idx.push(k);
+    }
+    let mut cols: Vec<Column> = idx
         .iter()
-        .position(|h| *h == name)
-        .or_else(|| heads.iter().position(|(n, _)| n == name))
-        .ok_or_else(|| {
-            let names: Vec<&str> = heads.iter().map(|(n, _)| n.as_str()).collect();
-            err(
-                file,
-                Some(header_line),
-                name,
-                format!(
-                    "no column `{name}` in the header (columns: {})",
-                    names.join(", ")
-                ),
-            )
-        })?;
-    let (col_name, unit) = heads[idx].clone();
-    let mut values = Vec::new();
+        .map(|k| Column {
+            name: heads[*k].0.clone(),
+            unit: heads[*k].1.clone(),
+            values: Vec::new(),
+        })
+        .collect();
+    let mut rows = Vec::new();
     for (line, l) in lines {
         if l.trim().is_empty() || l.trim_start().starts_with('#') {
             continue;
         }
-        let cell = l
-            .split(sep)
-            .nth(idx)
-            .map(|c| c.trim().trim_matches('"').trim());
-        let cell = cell.ok_or_else(|| {
-            err(
-                file,
-                Some(line),
-                &col_name,
-                format!("the row has no column {}", idx + 1),
-            )
-        })?;
-        let v: f64 = cell.parse().map_err(|_| {
-            err(
-                file,
-                Some(line),
-                &col_name,
-                format!("`{cell}` is not a number"),
-            )
-        })?;
-        if !v.is_finite() {
-            return Err(err(
-                file,
-                Some(line),
-                &col_name,
-                format!("`{cell}` is not a finite number"),
-            ));
+        rows.push(line);
+        let cells: Vec<&str> = l.split(sep).collect();
+        for (col, k) in cols.iter_mut().zip(&idx) {
+            col.values
+                .push(cell(file, line, &col.name, *k, cells.get(*k))?);
         }
-        values.push(v);
     }
-    if values.len() < 3 {
+    Ok(Table {
+        header_line,
+        lines: rows,
+        columns: cols,
+    })
+}
+
+/// The finite number in the cell `k` (0-based) of a row, `c`.
+fn cell(
+    file: &Path,
+    line: usize,
+    name: &str,
+    k: usize,
+    c: Option<&&str>,
+) -> Result<f64, InputError> {
+    let c = c
+        .map(|c| c.trim().trim_matches('"').trim())
+        .ok_or_else(|| {
+            err(
+                file,
+                Some(line),
+                name,
+                format!("the row has no column {}", k + 1),
+            )
+        })?;
+    let v: f64 = c
+        .parse()
+        .map_err(|_| err(file, Some(line), name, format!("`{c}` is not a number")))?;
+    if !v.is_finite() {
         return Err(err(
             file,
-            None,
-            &col_name,
-            format!(
-                "{} values: rainflow counting needs at least 3",
-                values.len()
-            ),
+            Some(line),
+            name,
+            format!("`{c}` is not a finite number"),
         ));
     }
-    Ok(Column {
-        name: col_name,
-        unit,
-        values,
-    })
+    Ok(v)
 }

@@ -24,6 +24,9 @@ use towride_solver::{MatrixRebuilds, Stats};
 /// deflection channels, with `signal`, `twin` and the top-level `acquisition`.
 pub const SCHEMA_VERSION: u32 = 2;
 
+/// The comfort block's point in words: where it is and how it is weighted.
+const FLOOR_PLACE: &str = "car floor under the driver's seat, weighted as at the seat surface (Wd x, y; Wk z; k = 1), no seat transmissibility";
+
 /// How a run ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -376,6 +379,10 @@ pub struct RunSummary {
     /// equivalent stresses present ([`durability`]); empty without a hitch.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub durability: Vec<crate::durability::ChannelDurability>,
+    /// Ride comfort (ISO 2631-1) at the car floor under the driver's seat, from the raw
+    /// channels of the sensor [`crate::comfort::FLOOR_SENSOR`]; absent without them.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub comfort: Option<crate::comfort::PointComfort>,
     /// Per channel, by name (raw and band-limited): unit, which it is, max, min and
     /// |peak| with their times; written in natural order (`hitch_eta_2` before
     /// `hitch_eta_10`).
@@ -479,6 +486,12 @@ impl RunSummary {
                 .map(|f| Acquisition::of(&f, job.settings.sample_rate)),
             channels: channels(samples, job.acquisition().as_ref()),
             durability: durability(samples),
+            comfort: crate::comfort::evaluate::of_sensor(
+                crate::comfort::FLOOR_SENSOR,
+                FLOOR_PLACE,
+                job.settings.sample_rate,
+                |c| samples.channel(c),
+            ),
             produced_by: job.produced_by.clone(),
             outputs_csv: None,
             outputs_mf4: None,

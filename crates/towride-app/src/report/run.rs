@@ -106,6 +106,9 @@ pub fn run_panels(res: &Samples) -> Vec<Panel> {
     // The vehicles' sensors at the wheels and on the body: `acc_wheel_*`, `acc_body_*`.
     let wheel_sensors = format!("{}wheel_", channels::ACC_PREFIX);
     let body_sensors = format!("{}body_", channels::ACC_PREFIX);
+    // The floor point under the driver's seat is on the body too (docs/comfort.md).
+    let floor = format!("{}{}_", channels::ACC_PREFIX, crate::comfort::FLOOR_SENSOR);
+    let on_body = |n: &str| n.starts_with(&body_sensors) || n.starts_with(&floor);
     let panels = vec![
         panel(
             "hitch force on the car",
@@ -131,7 +134,7 @@ pub fn run_panels(res: &Samples) -> Vec<Panel> {
         panel(
             "vertical accelerations on the car body",
             acc,
-            series(&|n| n.starts_with(&body_sensors) && n.ends_with("_z")),
+            series(&|n| on_body(n) && n.ends_with("_z")),
         ),
         panel(
             "vertical accelerations at the hitch and drawbar",
@@ -140,7 +143,7 @@ pub fn run_panels(res: &Samples) -> Vec<Panel> {
                 n.starts_with(channels::ACC_PREFIX)
                     && n.ends_with("_z")
                     && !n.starts_with(&wheel_sensors)
-                    && !n.starts_with(&body_sensors)
+                    && !on_body(n)
             }),
         ),
         panel("speed", "speed [m/s]", series(&|n| n == channels::SPEED)),

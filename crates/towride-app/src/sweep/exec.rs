@@ -468,7 +468,9 @@ pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<Merged> {
 /// |peak|, the sensors' |peak| band-limited and raw ([`figures`]). 5: the ball force
 /// components' damage-equivalent loads and the crossbeam points' largest equivalent
 /// stress. 6: the DELs of the crossbeam points' equivalent stress and of the bracket
-/// loads (per component, the worse bracket), each DEL in its channel's unit.
+/// loads (per component, the worse bracket), each DEL in its channel's unit; and the
+/// driver's floor comfort (ISO 2631-1 a_w and VDV per axis, total value;
+/// [`super::figures`]).
 pub const SCHEMA_VERSION: u32 = 6;
 
 /// Refuses a sweep file (a shard's JSON twin, a summary or journal to resume) written

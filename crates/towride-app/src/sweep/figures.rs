@@ -22,7 +22,8 @@ pub const UNCONVERGED: &str = "unconverged channels [-]";
 /// min and the steps. A vehicle scene: the hitch force components' max, min and |peak|
 /// raw and the |peak| of their band-limited twins; each accelerometer's |peak|
 /// band-limited (as the instrument saw it) and raw; the crossbeam's largest deflection
-/// and strain energy; solver effort. No signed peak: a larger pull and a larger push
+/// and strain energy; the driver's floor comfort (a_w and VDV per axis, total value);
+/// solver effort. No signed peak: a larger pull and a larger push
 /// both read as a larger |peak|.
 pub fn figures(r: &RunResult) -> Figures {
     let s = &r.summary;
@@ -90,6 +91,20 @@ pub fn figures(r: &RunResult) -> Figures {
             out.push((format!("{name} max [Pa]"), c.extremes.max));
         }
     }
+    // Ride comfort at the driver's floor (ISO 2631-1): each axis's a_w and VDV (the
+    // measure that counts for a short passage, docs/comfort.md) and the total value.
+    if let Some(c) = &s.comfort {
+        for a in &c.axes {
+            out.push((format!("{} a_w [m/s^2]", a.channel), a.measures.rms_m_s2));
+            out.push((
+                format!("{} VDV [m/s^1.75]", a.channel),
+                a.measures.vdv_m_s1_75,
+            ));
+        }
+        if let Some(v) = c.total_value_m_s2 {
+            out.push((COMFORT_TOTAL.into(), v));
+        }
+    }
     let [dx, dy, dz] = channels::HITCH_DEFLECTION;
     if let (Some(x), Some(y), Some(z)) = (r.channel(dx), r.channel(dy), r.channel(dz)) {
         let d = (0..x.len()).fold(0.0f64, |m, k| {
@@ -124,5 +139,7 @@ fn verdict_figures(r: &RunResult, out: &mut Figures) {
 /// The figure of the crossbeam's largest deflection: the length of the ball's
 /// displacement vector, at its largest.
 pub const CROSSBEAM_DEFLECTION: &str = "crossbeam |deflection| max [m]";
+/// The figure of the driver's floor point's vibration total value (ISO 2631-1 eq. 9).
+pub const COMFORT_TOTAL: &str = "comfort a_v [m/s^2]";
 /// The figure of the crossbeam's largest strain energy.
 pub const CROSSBEAM_ENERGY: &str = "crossbeam strain energy max [J]";

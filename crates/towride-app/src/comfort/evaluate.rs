@@ -1,0 +1,157 @@
+//! The comfort evaluation of one measuring point: each axis weighted (Wd for x and y,
+//! Wk for z, ISO 2631-1 Table 1) and measured (a_w, VDV, MTVV, crest factor), and the
+//! vibration total value a_v of the three axes (eq. 9). Used by `towride comfort` on a
+//! CSV and by the run summary on the floor point under the driver's seat.
+
+use serde::Serialize;
+
+use super::record::{Axis, Channel};
+use super::{combined, Assessment, Measures, Weighting, WeightingFilter};
+
+/// Why a point cannot be evaluated.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ComfortError {
+    /// The rate is too low for the weighting's 100 Hz band limit.
+    #[error("{rate_hz} Hz is too low for {weighting:?}: its band-limiting corners (up to 100 Hz) must lie below the Nyquist frequency, so record above 200 Hz")]
+    RateTooLow {
+        /// Sample rate [Hz].
+        rate_hz: f64,
+        /// The weighting.
+        weighting: Weighting,
+    },
+    /// A channel without samples.
+    #[error("channel `{0}` has no samples")]
+    Empty(String),
+}
+
+/// One axis's result.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct AxisComfort {
+    /// The channel (column) evaluated.
+    pub channel: String,
+    /// Its unit as read (`m/s^2`, `g`); the measures are in SI.
+    pub unit: String,
+    /// The axis.
+    pub axis: Axis,
+    /// The weighting applied.
+    pub weighting: Weighting,
+    /// The axis's multiplying factor in the total value [-].
+    pub k: f64,
+    /// a_w, VDV, MTVV, peak, crest factor, duration.
+    #[serde(flatten)]
+    pub measures: Measures,
+    /// Whether the r.m.s. method may underestimate ([`Measures::transient`]).
+    pub transient: bool,
+}
+
+/// The evaluation of one point.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PointComfort {
+    /// Where the point is.
+    pub point: String,
+    /// Sample rate [Hz].
+    pub sample_rate_hz: f64,
+    /// Which k factors the total value uses.
+    pub assessment: Assessment,
+    /// Per axis.
+    pub axes: Vec<AxisComfort>,
+    /// The vibration total value a_v (ISO 2631-1 eq. 9) [m/s^2], when x, y and z are
+    /// each present once.
+    pub total_value_m_s2: Option<f64>,
+    /// True when any axis is transient: then VDV and MTVV are the measures that count.
+    pub transient: bool,
+    /// What to read for a short passage.
+    pub note: &'static str,
+}
+
+/// The sentence the summary, the command and the report carry.
+pub const NOTE: &str = "for a short transient passage (an obstacle crossing) VDV and MTVV are the measures that count: the r.m.s. a_w averages the shock over the record and underestimates it (ISO 2631-1 6.2.1, 6.3.3)";
+
+/// Evaluates `channels` (sampled at `rate_hz`) for `assessment` at `point`.
+pub fn evaluate(
+    point: &str,
+    rate_hz: f64,
+    channels: &[Channel],
+    assessment: Assessment,
+) -> Result<PointComfort, ComfortError> {
+    let k = assessment.k();
+    let mut axes = Vec::with_capacity(channels.len());
+    for c in channels {
+        let w = c.spec.weighting;
+        let f = WeightingFilter::new(w, rate_hz).ok_or(ComfortError::RateTooLow {
+            rate_hz,
+            weighting: w,
+        })?;
+        let m = super::measures(&f.apply(&c.values_m_s2), 1.0 / rate_hz)
+            .ok_or_else(|| ComfortError::Empty(c.name.clone()))?;
+        axes.push(AxisComfort {
+            channel: c.name.clone(),
+            unit: c.unit.clone(),
+            axis: c.spec.axis,
+            weighting: w,
+            k: k[c.spec.axis.index()],
+            transient: m.transient(),
+            measures: m,
+        });
+    }
+    // Eq. 9 needs each axis once.
+    let mut rms = [None; 3];
+    let mut once = true;
+    for a in &axes {
+        let slot = &mut rms[a.axis.index()];
+        once &= slot.is_none();
+        *slot = Some(a.measures.rms_m_s2);
+    }
+    let total = match (once, rms) {
+        (true, [Some(x), Some(y), Some(z)]) => Some(combined([x, y, z], assessment)),
+        _ => None,
+    };
+    Ok(PointComfort {
+        point: point.to_string(),
+        sample_rate_hz: rate_hz,
+        assessment,
+        transient: axes.iter().any(|a| a.transient),
+        axes,
+        total_value_m_s2: total,
+        note: NOTE,
+    })
+}
+
+/// The sensor on the car floor under the driver's seat (`[[sensor]] name` in the
+/// vehicle files): its channels `acc_driver_floor_x`, `_y`, `_z` feed the run summary's
+/// comfort block.
+pub const FLOOR_SENSOR: &str = "driver_floor";
+
+/// The run summary's comfort block: the raw channels `acc_<sensor>_<x,y,z>` from
+/// `channel` (name to samples), those present, at `rate_hz`, the point described as
+/// `place`; `None` when the run has none of them or its rate is too low for the
+/// weightings.
+pub fn of_sensor(
+    sensor: &str,
+    place: &str,
+    rate_hz: f64,
+    channel: impl Fn(&str) -> Option<Vec<f64>>,
+) -> Option<PointComfort> {
+    let chans: Vec<Channel> = [Axis::X, Axis::Y, Axis::Z]
+        .into_iter()
+        .filter_map(|axis| {
+            let name = format!("acc_{sensor}_{}", ["x", "y", "z"][axis.index()]);
+            let values_m_s2 = channel(&name)?;
+            Some(Channel {
+                spec: super::record::ColumnSpec {
+                    column: name.clone(),
+                    axis,
+                    weighting: axis.weighting(),
+                },
+                name,
+                unit: "m/s^2".into(),
+                values_m_s2,
+            })
+        })
+        .collect();
+    if chans.is_empty() {
+        return None;
+    }
+    let point = format!("sensor `{sensor}`: {place}");
+    evaluate(&point, rate_hz, &chans, Assessment::Comfort).ok()
+}

@@ -1,0 +1,172 @@
+//! `towride comfort FILE.csv --columns X,Y,Z`: ride comfort after ISO 2631-1:1997 of
+//! acceleration columns of any CSV with units in its header (a run's `outputs.csv`, a
+//! logger export): per column the weighted r.m.s. a_w, VDV, MTVV, peak and crest factor,
+//! and the vibration total value of x, y and z (`docs/comfort.md`).
+
+use crate::CliResult;
+use std::path::PathBuf;
+
+use clap::{Args, ValueEnum};
+use towride_app::comfort::{self, Assessment, Axis, ColumnSpec, TimeBase, Weighting};
+
+/// Layout version of `--json`.
+const SCHEMA_VERSION: u32 = 1;
+
+#[derive(Args, Debug)]
+pub struct ComfortArgs {
+    /// CSV file with a header row (units as `name [unit]`: accelerations in [m/s^2] or
+    /// [g]).
+    file: PathBuf,
+    /// Acceleration columns, comma-separated, one per axis (names with or without the
+    /// ` [unit]`).
+    #[arg(long, value_delimiter = ',', required = true)]
+    columns: Vec<String>,
+    /// Each column's axis (x fore-aft, y lateral, z vertical), comma-separated; default:
+    /// the name's last `_x`, `_y`, `_z`. The axis picks the weighting (Wd for x and y,
+    /// Wk for z) and the k factor of the total value.
+    #[arg(long, value_delimiter = ',')]
+    axes: Vec<String>,
+    /// Each column's weighting instead of its axis's (wk, wd, wf, wc, we),
+    /// comma-separated; e.g. `wc` for a seat-back x column.
+    #[arg(long, value_delimiter = ',')]
+    weighting: Vec<String>,
+    /// The time column [s] giving the sample rate.
+    #[arg(long, default_value = "time", conflicts_with = "rate_hz")]
+    time: String,
+    /// Sample rate [Hz] of a file without a time column.
+    #[arg(long)]
+    rate_hz: Option<f64>,
+    /// The k factors of the total value: comfort (1, 1, 1; ISO 2631-1 8.2.3) or
+    /// health (1.4, 1.4, 1; 7.2.3), both for the seat surface.
+    #[arg(long, value_enum, default_value_t = Use::Comfort)]
+    assessment: Use,
+    /// Print one JSON document instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum Use {
+    Comfort,
+    Health,
+}
+
+#[derive(serde::Serialize)]
+struct Report<'a> {
+    schema_version: u32,
+    file: String,
+    #[serde(flatten)]
+    point: &'a comfort::PointComfort,
+}
+
+/// The per-column axis and weighting from the options.
+fn specs(a: &ComfortArgs) -> Result<Vec<ColumnSpec>, String> {
+    let per_column = |what: &str, n: usize| {
+        if n != 0 && n != a.columns.len() {
+            Err(format!(
+                "--{what} lists {n} values for {} columns: give one per column",
+                a.columns.len()
+            ))
+        } else {
+            Ok(())
+        }
+    };
+    per_column("axes", a.axes.len())?;
+    per_column("weighting", a.weighting.len())?;
+    let mut out = Vec::with_capacity(a.columns.len());
+    for (i, column) in a.columns.iter().enumerate() {
+        let axis = match a.axes.get(i) {
+            Some(s) => Axis::parse(s)
+                .ok_or_else(|| format!("--axes: `{s}` for column `{column}`: use x, y or z"))?,
+            None => {
+                Axis::of_name(column.split(" [").next().unwrap_or(column)).ok_or_else(|| {
+                    format!("column `{column}`: its name does not end in _x, _y or _z; give --axes")
+                })?
+            }
+        };
+        let weighting = match a.weighting.get(i) {
+            Some(s) => Weighting::parse(s).ok_or_else(|| {
+                format!("--weighting: `{s}` for column `{column}`: use wk, wd, wf, wc or we")
+            })?,
+            None => axis.weighting(),
+        };
+        out.push(ColumnSpec {
+            column: column.clone(),
+            axis,
+            weighting,
+        });
+    }
+    Ok(out)
+}
+
+pub fn run(a: &ComfortArgs) -> CliResult {
+    let specs = specs(a).map_err(|e| format!("{}: {e}", a.file.display()))?;
+    let time = match a.rate_hz {
+        Some(r) => TimeBase::RateHz(r),
+        None => TimeBase::Column(a.time.clone()),
+    };
+    let (rate, chans) = comfort::record::read(&a.file, &time, &specs)?;
+    let assessment = match a.assessment {
+        Use::Comfort => Assessment::Comfort,
+        Use::Health => Assessment::Health,
+    };
+    let p = comfort::evaluate(&a.file.display().to_string(), rate, &chans, assessment)
+        .map_err(|e| format!("{}: {e}", a.file.display()))?;
+    if a.json {
+        let r = Report {
+            schema_version: SCHEMA_VERSION,
+            file: a.file.display().to_string(),
+            point: &p,
+        };
+        println!("{}", serde_json::to_string_pretty(&r)?);
+        return Ok(0);
+    }
+    let dur = p.axes.first().map_or(0.0, |x| x.measures.duration_s);
+    println!(
+        "{}: {} samples at {} Hz ({:.3} s), ISO 2631-1:1997",
+        p.point,
+        chans.first().map_or(0, |c| c.values_m_s2.len()),
+        rate,
+        dur
+    );
+    println!(
+        "  {:<28} {:>4} {:>4} {:>4} {:>11} {:>13} {:>11} {:>11} {:>6}",
+        "column",
+        "unit",
+        "axis",
+        "W",
+        "a_w [m/s^2]",
+        "VDV [m/s^1.75]",
+        "MTVV [m/s^2]",
+        "peak [m/s^2]",
+        "crest"
+    );
+    for x in &p.axes {
+        let m = &x.measures;
+        println!(
+            "  {:<28} {:>4} {:>4} {:>4} {:>11.4e} {:>13.4e} {:>11.4e} {:>11.4e} {:>6.2}{}",
+            x.channel,
+            x.unit,
+            format!("{:?}", x.axis).to_lowercase(),
+            x.weighting.name(),
+            m.rms_m_s2,
+            m.vdv_m_s1_75,
+            m.mtvv_m_s2,
+            m.peak_m_s2,
+            m.crest_factor,
+            if x.transient { "  transient" } else { "" }
+        );
+    }
+    match p.total_value_m_s2 {
+        Some(v) => println!(
+            "  vibration total value a_v ({:?}, k = {:?}): {v:.4e} m/s^2",
+            assessment,
+            assessment.k()
+        ),
+        None => println!("  no vibration total value: it needs one x, one y and one z column"),
+    }
+    if p.transient {
+        println!("  transient: {}", p.note);
+    }
+    Ok(0)
+}
