@@ -216,6 +216,11 @@ pub fn run(a: &ValidateArgs) -> CliResult {
                     quiet.join(", ")
                 );
             }
+            if let Some(g) = &r.obstacle_geometry {
+                for l in g.lines() {
+                    println!("  {l}");
+                }
+            }
             let low = |x: &dyn std::fmt::Debug| format!("{x:?}").to_lowercase();
             let mut more = format!(
                 "  speed from the {}, {} Hz ({} time base)",
