@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 
 use towride_mbs::input::provenance::{read_provenance, SourceClass};
-use towride_mbs::input::Loader;
+use towride_mbs::input::{normalized, Loader};
 use towride_mbs::road::Road;
 
 /// The keys of an `[[obstacle]]` that make its shape (not where it lies).
@@ -58,7 +58,9 @@ pub fn road_file(scene: &Path) -> Option<PathBuf> {
         return t.contains_key("road").then(|| scene.to_path_buf());
     }
     let f = t.get("road")?.get("file")?.as_str()?;
-    Some(scene.parent().unwrap_or(Path::new(".")).join(f))
+    Some(normalized(
+        &scene.parent().unwrap_or(Path::new(".")).join(f),
+    ))
 }
 
 /// `obstacle.0.height_m` and `obstacle[0].height_m` alike.
@@ -167,5 +169,43 @@ impl ObstacleGeometry {
             ));
         }
         out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use towride_mbs::input::Override;
+
+    const SCENE: &str = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../scenes/van_air/bump_50mm.toml"
+    );
+
+    #[test]
+    fn the_bump_s_chord_is_flagged_assumed_until_set() {
+        let g = of_scene(Path::new(SCENE), &Loader::new()).unwrap();
+        assert!(g.road_file.ends_with("roads/bump_50mm.toml"));
+        let keys: Vec<(&str, f64, Option<SourceClass>)> = g
+            .values
+            .iter()
+            .map(|v| (v.key.as_str(), v.value, v.class))
+            .collect();
+        assert_eq!(
+            keys,
+            [
+                ("obstacle[0].height_m", 0.05, Some(SourceClass::Published)),
+                ("obstacle[0].chord_m", 0.5, Some(SourceClass::Assumed)),
+            ]
+        );
+        assert_eq!(g.assumed, ["obstacle[0].chord_m"]);
+        assert!(g.header_lines().last().unwrap().contains("ASSUMED"));
+        // A chord set on the command line is the caller's, not the file's assumption.
+        let set = Override::from_argument("bump_50mm.toml:obstacle[0].chord_m=0.6").unwrap();
+        let g = of_scene(Path::new(SCENE), &Loader::with_overrides(vec![set])).unwrap();
+        assert!(g.assumed.is_empty(), "{:?}", g.assumed);
+        assert_eq!(g.values[1].value, 0.6);
+        assert!(g.values[1].set);
+        assert!(g.description.contains("1.000..1.600"), "{}", g.description);
     }
 }
