@@ -249,6 +249,11 @@ pub fn run(a: &ValidateArgs) -> CliResult {
                 more.push_str(&format!("; {clipped} clipped samples left out"));
             }
             println!("{more}");
+            if let Some(g) = &r.obstacle_geometry {
+                for l in g.lines() {
+                    println!("  {l}");
+                }
+            }
             for d in &r.speed.channel_dropouts_s {
                 eprintln!(
                     "warning: {}: the speed channel drops out from {:.3} to {:.3} s (a step no car makes); left out of the speed",

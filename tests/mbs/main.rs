@@ -26,6 +26,7 @@ mod model_modal;
 mod model_modal_full;
 mod model_tyres;
 mod road_crg;
+mod road_hump;
 mod road_obstacles;
 mod road_one_sided;
 mod road_profile_mesh;

@@ -132,14 +132,14 @@ fn bad_inputs_are_located() {
     println!("{e}");
     assert!(e.message.contains("no plateau"), "{e}");
     let text =
-        "[road]\nkind = \"flat\"\nheight_m = 0.0\n\n[[obstacle]]\nkind = \"hump\"\nstart_m = 1.0\n";
+        "[road]\nkind = \"flat\"\nheight_m = 0.0\n\n[[obstacle]]\nkind = \"chicane\"\nstart_m = 1.0\n";
     let e = Road::from_file(
         &write("kind.toml", text),
         &towride_mbs::input::Loader::new(),
     )
     .unwrap_err();
     println!("{e}");
-    assert!(e.line.is_some() && e.message.contains("hump"), "{e}");
+    assert!(e.line.is_some() && e.message.contains("chicane"), "{e}");
     let text = "[road]\nkind = \"flat\"\nheight_m = 0.0\n\n[[obstacle]]\nkind = \"step\"\nstart_m = 1.0\nheight_m = 0.05\n\n[[obstacle]]\nkind = \"bump\"\nstart_m = 3.0\nheight_m = 0.02\nchord_m = 0.3\n";
     let e = Road::from_file(
         &write("overlap.toml", text),

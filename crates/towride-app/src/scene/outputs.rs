@@ -17,6 +17,7 @@
 //! | `susp_<w>_travel` | m | wheel centre relative to the body above it, along the body's z, from the design position; positive in bump |
 //! | `susp_<w>_velocity` | m/s | its rate |
 //! | `spring_<w>_force`, `damper_<w>_force`, `bump_stop_<w>_force`, `rebound_stop_<w>_force` | N | one law of the corner's spring or strut, positive pushing its ends apart |
+//! | `air_spring_<w>_pressure` | Pa | gauge pressure of a levelled air spring (`simple` template): its force over its effective area |
 //! | `tyre_<w>_fx` | N | longitudinal contact force |
 //! | `tyre_<w>_road_height` | m | height of the effective road plane (the enveloped obstacle) |
 //! | `body_heave`, `trailer_heave` | m | centre of mass height above its design height |
@@ -88,6 +89,10 @@ enum Kind {
     },
     /// A speed controller's engine torque (index into the model's controllers).
     Drive { control: usize },
+    Pressure {
+        element: ElementHandle,
+        area_m2: f64,
+    },
 }
 
 /// What a scene's outputs can address: the named quantities, the fixed channels, and
@@ -178,6 +183,18 @@ pub fn quantities(v: &Vehicle) -> Vec<Quantity> {
                     Kind::Line { element, part },
                 );
             }
+        }
+        let air = h.air_springs.iter().find(|(w, _)| w == n);
+        if let (Some((_, a)), Some((element, el))) = (air, line_with(m, n, LinePart::Spring)) {
+            add(
+                format!("air_spring_{n}_pressure"),
+                "Pa",
+                format!("wheel {n}: gauge pressure of the air spring '{el}' (force over its {} m^2 effective area)", a.area_m2),
+                Kind::Pressure {
+                    element,
+                    area_m2: a.area_m2,
+                },
+            );
         }
         for (q, key, unit, what) in [
             (
@@ -372,6 +389,7 @@ fn output_for(v: &mut Vehicle, q: &Quantity, name: &str) -> Option<Output> {
             }
         }
         Kind::Line { element, part } => Request::LinePart { element, part },
+        Kind::Pressure { element, area_m2 } => Request::LinePressure { element, area_m2 },
         Kind::Tyre { tyre, quantity } => Request::Tyre { tyre, quantity },
         Kind::Element { element, quantity } => Request::Element { element, quantity },
         Kind::Drive { control } => Request::DriveTorque { control },

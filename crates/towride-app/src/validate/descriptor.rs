@@ -37,6 +37,9 @@ pub struct ChannelSpec {
     /// The sensor's range [g]: recorded samples at it are clipped and left out of the
     /// rating; the simulation is flagged where such a sensor would clip.
     pub range_g: Option<f64>,
+    /// A fixed offset [g] subtracted after gain, sign and gravity: the sensor's own bias,
+    /// as `validate init` measures it before the passage.
+    pub offset_g: f64,
 }
 
 /// The acquisition low-pass (Butterworth, see [`super::filter`]): the same type a scene
@@ -233,6 +236,8 @@ struct ChannelToml {
     #[serde(default)]
     remove_gravity: bool,
     range_g: Option<f64>,
+    #[serde(default)]
+    offset_g: f64,
 }
 
 fn one() -> i64 {
@@ -512,6 +517,7 @@ fn channels(src: &Source, list: &[ChannelToml]) -> Result<Vec<ChannelSpec>, Inpu
             zero_before_obstacle: c.zero_before_obstacle,
             remove_gravity: c.remove_gravity,
             range_g,
+            offset_g: src.finite(&at("offset_g"), c.offset_g)?,
         });
     }
     Ok(channels)

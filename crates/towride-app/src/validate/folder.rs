@@ -115,8 +115,9 @@ fn figures(c: &Comparison, f: &ChannelFigures) -> Value {
 }
 
 /// Layout version of the `validate --json` document and `summary.json`. 2: `status`
-/// and `not_run` (a batch stopped by Ctrl-C).
-pub const SCHEMA_VERSION: u32 = 2;
+/// and `not_run` (a batch stopped by Ctrl-C). 3: each run's `obstacle_geometry` (the
+/// road file's obstacle values, their source classes and which are assumed).
+pub const SCHEMA_VERSION: u32 = 3;
 
 /// One run as JSON: the run's speed, time base, passage and per channel the clipping,
 /// the dominant frequencies and the corrected and uncorrected figures.
@@ -146,6 +147,7 @@ pub fn run_json(r: &RunValidation) -> Value {
         "descriptor": r.descriptor,
         "synthetic": r.synthetic,
         "obstacle": r.obstacle,
+        "obstacle_geometry": r.obstacle_geometry,
         "load_case": r.load_case,
         "nominal_speed_mps": r.nominal_speed_mps,
         "speed_mps": r.speed.speed_mps,

@@ -5,7 +5,9 @@
 //! longitudinal/lateral/vertical, vertical by default); unmapped columns are listed as
 //! comments; gravity is set to be removed where a vertical channel's median over the
 //! record (its level in steady driving, which is most of a bump run; a mean would follow
-//! the events and a short rest part) is within 0.1 g of 1 g.
+//! the events and a short rest part) is within 0.1 g of 1 g; each channel's fixed offset
+//! over the quiet part before the passage is measured and removed, and a range proposed
+//! from the file's clipping level or a stated default ([`super::offsets`]).
 
 use std::fmt::Write as _;
 use std::path::{Component, Path, PathBuf};
@@ -18,7 +20,7 @@ use super::csv_reader::{
     cells, err, first_content, lines_of, no_content, parse_number, read_table_with, split_unit,
     TimeSpec,
 };
-use super::measurement::flat_top_range;
+use super::offsets::{clip_level, default_range, median_in, quiet_window, DEFAULT_RANGE_G};
 use super::timebase::TimeBase;
 use super::units::{time_factor, SpeedUnit, Unit};
 use super::G_MPS2;
@@ -50,8 +52,12 @@ pub struct Column {
     pub kind: Kind,
     /// Median over the record, in the column's unit.
     pub median: f64,
-    /// A flat top at a standard accelerometer range [g] (a clipped sensor), if seen.
+    /// The file's clipping level [g] (a clipped sensor, [`clip_level`]), if seen.
     pub flat_top_g: Option<f64>,
+    /// Largest |reading| [g] of an acceleration.
+    pub peak_g: Option<f64>,
+    /// Median over the quiet window before the passage, in the column's unit.
+    pub quiet_median: Option<f64>,
     /// The scene's channel it is mapped onto, if any.
     pub simulated: Option<String>,
     /// Mapped as the vehicle-speed channel (the draft's `[speed] column`).
@@ -81,6 +87,8 @@ pub struct Sniff {
     pub time_base: TimeBase,
     /// The columns other than time.
     pub columns: Vec<Column>,
+    /// The quiet part before the passage [s] (recording's clock), if found.
+    pub quiet_window_s: Option<[f64; 2]>,
     /// Repairs and inferences made while reading.
     pub notes: Vec<String>,
 }
@@ -316,6 +324,22 @@ fn sniff_mdf(file: &Path, rate_hz: Option<f64>) -> Result<Sniff, InputError> {
 fn finish(file: &Path, spec: TimeSpec, others: &[&str]) -> Result<Sniff, InputError> {
     let table = read_table_with(file, &spec, others)?;
     let rows = table.time_s.len();
+    let in_g = |values: &Vec<f64>, unit: &Option<String>| {
+        unit.as_deref().and_then(Unit::parse).map(|un| {
+            values
+                .iter()
+                .map(|v| v * un.to_si() / G_MPS2)
+                .collect::<Vec<f64>>()
+        })
+    };
+    let acc: Vec<Vec<f64>> = table
+        .columns
+        .iter()
+        .zip(&table.units)
+        .filter_map(|(v, u)| in_g(v, u))
+        .collect();
+    let acc_refs: Vec<&[f64]> = acc.iter().map(|v| v.as_slice()).collect();
+    let quiet = quiet_window(&table.time_s, &acc_refs);
     let columns = others
         .iter()
         .zip(&table.columns)
@@ -331,19 +355,19 @@ fn finish(file: &Path, spec: TimeSpec, others: &[&str]) -> Result<Sniff, InputEr
                 v.sort_by(f64::total_cmp);
                 v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
             };
-            let flat_top_g = match unit.as_deref().and_then(Unit::parse) {
-                Some(un) => {
-                    let g: Vec<f64> = values.iter().map(|v| v * un.to_si() / G_MPS2).collect();
-                    flat_top_range(&g)
-                }
-                None => None,
-            };
+            let g = in_g(values, unit);
+            let flat_top_g = g.as_deref().and_then(clip_level);
+            let peak_g = g
+                .as_deref()
+                .map(|g| g.iter().fold(0.0_f64, |m, v| m.max(v.abs())));
             Column {
                 name: name.to_string(),
                 unit: unit.clone(),
                 kind,
                 median,
                 flat_top_g,
+                peak_g,
+                quiet_median: quiet.and_then(|w| median_in(&table.time_s, values, w)),
                 simulated: None,
                 speed_channel: false,
                 unmapped: None,
@@ -360,6 +384,7 @@ fn finish(file: &Path, spec: TimeSpec, others: &[&str]) -> Result<Sniff, InputEr
         rows,
         time_base: table.time_base,
         columns,
+        quiet_window_s: quiet,
         notes: table.notes,
     })
 }
@@ -616,30 +641,7 @@ pub fn draft(s: &Sniff, scene: &Path, out: &Path) -> String {
             quoted(sim)
         );
         let _ = writeln!(t, "axis = \"{}\"", sim.chars().last().unwrap_or('z'));
-        let unit = c.unit.as_deref().and_then(Unit::parse);
-        let mean_g = unit.map_or(f64::NAN, |u| c.median * u.to_si() / G_MPS2);
-        if sim.ends_with("_z") && (mean_g - 1.0).abs() < GRAVITY_TOL_G {
-            let _ = writeln!(
-                t,
-                "remove_gravity = true  # reads {mean_g:.3} g in steady driving (median)"
-            );
-        } else if mean_g.is_finite() {
-            let _ = writeln!(t, "# median {mean_g:.3} g: no gravity removed");
-        }
-        match c.flat_top_g {
-            Some(r) => {
-                let _ = writeln!(
-                    t,
-                    "range_g = {r:.1}  # CHECK: a flat top at {r} g looks like this sensor's range"
-                );
-            }
-            None => {
-                let _ = writeln!(
-                    t,
-                    "# range_g = 50.0  # the sensor's range: clipped samples are left out"
-                );
-            }
-        }
+        channel_lines(&mut t, s, c, sim);
     }
     let unmapped: Vec<&super::init::Column> = s
         .columns
@@ -659,6 +661,58 @@ pub fn draft(s: &Sniff, scene: &Path, out: &Path) -> String {
         }
     }
     t
+}
+
+/// A mapped channel's gravity, offset and range lines.
+fn channel_lines(t: &mut String, s: &Sniff, c: &Column, sim: &str) {
+    let unit = c.unit.as_deref().and_then(Unit::parse);
+    let to_g = |v: f64| unit.map_or(f64::NAN, |u| v * u.to_si() / G_MPS2);
+    let mean_g = to_g(c.median);
+    let gravity = sim.ends_with("_z") && (mean_g - 1.0).abs() < GRAVITY_TOL_G;
+    if gravity {
+        let _ = writeln!(
+            t,
+            "remove_gravity = true  # reads {mean_g:.3} g in steady driving (median)"
+        );
+    } else if mean_g.is_finite() {
+        let _ = writeln!(t, "# median {mean_g:.3} g: no gravity removed");
+    }
+    match (s.quiet_window_s, c.quiet_median.map(to_g)) {
+        (Some([a, b]), Some(q)) if q.is_finite() => {
+            let offset = q - if gravity { 1.0 } else { 0.0 };
+            let less = if gravity {
+                " less the 1 g of gravity"
+            } else {
+                ""
+            };
+            let _ = writeln!(
+                t,
+                "offset_g = {offset:.6}  # CHECK: median {q:.6} g over {a:.3}..{b:.3} s, quiet before the passage,{less}: the sensor's fixed offset, removed"
+            );
+        }
+        _ => {
+            let _ = writeln!(
+                t,
+                "# offset_g = 0.0  # no quiet part before the passage found: no offset removed"
+            );
+        }
+    }
+    match c.flat_top_g {
+        Some(r) => {
+            let _ = writeln!(
+                t,
+                "range_g = {r:.6}  # CHECK: the file holds |{r:.6}| g in plateaus: this sensor's clipping level"
+            );
+        }
+        None => {
+            let peak = c.peak_g.unwrap_or(0.0);
+            let r = default_range(peak);
+            let _ = writeln!(
+                t,
+                "range_g = {r}  # CHECK: no clipping in the file (largest |reading| {peak:.3} g): the default {DEFAULT_RANGE_G} g, or the next standard range above the largest reading"
+            );
+        }
+    }
 }
 
 #[cfg(test)]

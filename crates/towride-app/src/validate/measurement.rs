@@ -151,7 +151,7 @@ pub fn read_measurement(desc: &Descriptor) -> Result<Measurement, InputError> {
             }
         }
         let f = unit.to_si() * spec.gain * spec.sign;
-        let g = if spec.remove_gravity { G_MPS2 } else { 0.0 };
+        let g = if spec.remove_gravity { G_MPS2 } else { 0.0 } + spec.offset_g * G_MPS2;
         channels.insert(
             spec.simulated.clone(),
             table.columns[k].iter().map(|x| x * f - g).collect(),

@@ -38,6 +38,8 @@ pub mod report;
 pub mod scene_info;
 mod text;
 
+pub mod geometry;
+pub mod offsets;
 pub mod spectra;
 pub mod speed;
 pub mod synth;
@@ -91,6 +93,11 @@ pub trait Simulator {
     /// there).
     fn axles(&self, _scene: &Path) -> (Option<f64>, Option<f64>) {
         (None, None)
+    }
+
+    /// The obstacle geometry `scene` assumes, as this simulator reads it.
+    fn obstacle_geometry(&self, scene: &Path) -> Option<geometry::ObstacleGeometry> {
+        geometry::of_scene(scene, &towride_mbs::input::Loader::new())
     }
 }
 

@@ -77,6 +77,8 @@ pub struct RunValidation {
     pub synthetic: bool,
     /// Name of the obstacle driven over.
     pub obstacle: String,
+    /// The obstacle geometry the scene assumes and where its values come from.
+    pub obstacle_geometry: Option<super::geometry::ObstacleGeometry>,
     /// Trailer load case (empty: the scene's).
     pub load_case: String,
     /// Nominal (speedometer) speed [m/s]: the descriptor's, else the measured one.
@@ -370,6 +372,7 @@ pub fn validate_run(
         descriptor: desc.path.display().to_string(),
         synthetic: desc.synthetic,
         obstacle: desc.obstacle.clone(),
+        obstacle_geometry: sim.obstacle_geometry(&desc.scene),
         load_case: load.clone(),
         nominal_speed_mps: nominal,
         sample_rate_hz: meas.time_base.rate_hz,

@@ -109,6 +109,13 @@ pub(crate) fn header(run: &RunValidation) -> Vec<(String, Rgb)> {
         )
     };
     lines.push((title, BLACK));
+    if let Some(g) = &run.obstacle_geometry {
+        let n = g.header_lines().len();
+        for (k, l) in g.header_lines().into_iter().enumerate() {
+            let assumed = k + 1 == n && !g.assumed.is_empty();
+            lines.push((l, if assumed { RED } else { BLACK }));
+        }
+    }
     if run.synthetic {
         lines.push((
             "SYNTHETIC DATA: a simulation passed through a sensor model, not a measurement".into(),

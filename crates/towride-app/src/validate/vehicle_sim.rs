@@ -27,6 +27,10 @@ pub struct VehicleSimulator {
 }
 
 impl Simulator for VehicleSimulator {
+    fn obstacle_geometry(&self, scene: &Path) -> Option<super::geometry::ObstacleGeometry> {
+        super::geometry::of_scene(scene, &self.loader.fresh())
+    }
+
     fn simulate(
         &self,
         scene: &Path,

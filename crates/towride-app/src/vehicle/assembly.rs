@@ -109,6 +109,7 @@ pub fn assemble(d: Description, opts: &Options, loader: &Loader) -> Result<Vehic
     b.mb.speed_control(control);
 
     let mut handles = Handles::car(car_body, car_ref, ride, car_place, modal_hitch.clone());
+    handles.air_springs = statics.air.clone();
     let mut trailer_design = None;
     if let Some(t) = d.trailer {
         let ball = match (&d.hitch, &modal_hitch) {
@@ -240,6 +241,7 @@ impl Handles {
             car_place,
             trailer_place: None,
             body_place: Vec::new(),
+            air_springs: Vec::new(),
         }
     }
 

@@ -188,6 +188,9 @@ pub struct Handles {
     /// The placement of each body's subsystem (indexed like `Model::bodies`): sensor
     /// positions are given in these coordinates.
     pub body_place: Vec<Placement>,
+    /// The car's levelled air springs by wheel (element `spring_<w>`): their effective
+    /// areas turn the spring force into a pressure.
+    pub air_springs: Vec<(String, air::AirSpring)>,
 }
 
 impl Handles {

@@ -80,6 +80,42 @@ struct DamperFile {
     wheel_damping_n_s_m: f64,
 }
 
+/// A corner's damping at the wheel: compression (bump) and rebound rates [N s/m], joined
+/// smoothly over `transition_m_s` of wheel velocity ([`Law::TwoSlopes`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WheelDamping {
+    pub compression_n_s_m: f64,
+    pub rebound_n_s_m: f64,
+    pub transition_m_s: f64,
+}
+
+impl WheelDamping {
+    /// One rate both ways.
+    pub fn linear(c: f64) -> WheelDamping {
+        WheelDamping {
+            compression_n_s_m: c,
+            rebound_n_s_m: c,
+            transition_m_s: 0.0,
+        }
+    }
+
+    /// The law of an element whose length changes `mr` times as fast as the wheel
+    /// moves: rates over mr^2, the transition (a velocity) times |mr|. The element
+    /// shortens in bump whatever the sign of mr, so its negative rates are compression.
+    pub fn law(&self, mr: f64) -> Law {
+        let k = 1.0 / (mr * mr);
+        if self.compression_n_s_m == self.rebound_n_s_m {
+            Law::Linear(self.rebound_n_s_m * k)
+        } else {
+            Law::TwoSlopes {
+                below: self.compression_n_s_m * k,
+                above: self.rebound_n_s_m * k,
+                width: self.transition_m_s * mr.abs(),
+            }
+        }
+    }
+}
+
 /// A corner's spring, its rate at the wheel.
 #[derive(Clone, Debug)]
 pub enum Spring {
@@ -116,8 +152,8 @@ pub struct Props {
     /// The wheel with the tyre's share that turns with it ([`wheel::rim_mass`]).
     pub rim: Mass,
     pub spring: Spring,
-    /// Linear damping at the wheel [N s/m].
-    pub wheel_damping_n_s_m: f64,
+    /// Damping at the wheel.
+    pub wheel_damping: WheelDamping,
     pub bump: Option<Stop>,
     pub rebound: Option<Stop>,
     pub bushing: BushingLaws,
@@ -141,10 +177,10 @@ fn read(src: &Source, slot: &AxleSlot) -> Result<Props, InputError> {
             points.wheel_centre,
         )?,
         spring: spring(src, &f.spring)?,
-        wheel_damping_n_s_m: src.non_negative(
+        wheel_damping: WheelDamping::linear(src.non_negative(
             &path!["damper", "wheel_damping_n_s_m"],
             f.damper.wheel_damping_n_s_m,
-        )?,
+        )?),
         bump: stop(src, &path!["bump_stop"], &f.bump_stop)?,
         rebound: stop(src, &path!["rebound_stop"], &f.rebound_stop)?,
         bushing: f
@@ -272,7 +308,7 @@ fn build(b: &mut Builder, a: Props, slot: &AxleSlot) -> Result<Axle, InputError>
             Some(slot.carrier),
             p.damper_upper,
         );
-        damper.damper = Law::Linear(a.wheel_damping_n_s_m / (mr_damper * mr_damper));
+        damper.damper = a.wheel_damping.law(mr_damper);
         damper.bump_stop = a.bump.clone();
         damper.rebound_stop = a.rebound.clone();
         b.add(|mb| mb.spring(damper))?;

@@ -474,6 +474,15 @@ pub enum Request {
         /// Which law.
         part: LinePart,
     },
+    /// The force of a spring-damper line's spring law (preload included, positive
+    /// pushing the ends apart) over an area: the gauge pressure of a gas spring whose
+    /// force is p A [Pa].
+    LinePressure {
+        /// The spring-damper element.
+        element: ElementHandle,
+        /// Effective area [m^2].
+        area_m2: f64,
+    },
     /// One component of marker I's origin relative to marker J's, in J's axes, less
     /// `offset` (or its rate).
     Relative {

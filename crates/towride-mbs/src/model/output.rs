@@ -91,6 +91,7 @@ fn raw_channels(m: &Model, o: &Output) -> Vec<ChannelInfo> {
             },
         )),
         Request::DriveTorque { .. } => out.push(one("N m")),
+        Request::LinePressure { .. } => out.push(one("Pa")),
         Request::Relative { quantity, .. } => out.push(one(match quantity {
             RelativeQuantity::Position => "m",
             RelativeQuantity::Velocity => "m/s",
@@ -307,6 +308,11 @@ pub fn evaluate(sys: &System, t: f64, y: &[f64], yp: &[f64]) -> Vec<f64> {
                 let (_, _, meas) = sys.force_eval(*element, t, q, v);
                 let (_, x, rate) = meas[0];
                 out.push(line_part(&m.forces[*element], *part, x, rate));
+            }
+            Request::LinePressure { element, area_m2 } => {
+                let (_, _, meas) = sys.force_eval(*element, t, q, v);
+                let (_, x, rate) = meas[0];
+                out.push(line_part(&m.forces[*element], LinePart::Spring, x, rate) / area_m2);
             }
             Request::Relative {
                 i,

@@ -4,8 +4,8 @@
 //! the front wheels touch the road at the start of a scene. A [`Road`] is one of
 //!
 //! - a flat road at a given height, optionally carrying obstacles: trapezoidal ramps,
-//!   circular-segment bumps and steps (`[[obstacle]]` in the TOML file, see
-//!   [`obstacle`]);
+//!   circular-segment bumps, speed humps whose shape blends round-top into flat-top
+//!   ([`hump`]) and steps (`[[obstacle]]` in the TOML file, see [`obstacle`]);
 //! - a longitudinal profile per track (left and right) read from CSV (see [`profile`]);
 //! - a 3D road: a height field on a regular grid, triangulated and queried through
 //!   `parry3d-f64` (see [`mesh`]);
@@ -24,6 +24,7 @@
 //! are documented in `docs/road_tyre.md`.
 
 pub mod crg;
+pub mod hump;
 pub(crate) mod mesh;
 pub(crate) mod obstacle;
 pub(crate) mod profile;
@@ -36,6 +37,7 @@ use serde::Deserialize;
 use crate::input::{InputError, Source};
 use crate::path;
 
+pub use hump::Hump;
 pub use mesh::HeightField;
 pub use obstacle::Obstacle;
 pub use profile::TrackProfile;

@@ -1,4 +1,5 @@
-//! Obstacles on a flat road: trapezoidal ramps, circular-segment bumps and steps.
+//! Obstacles on a flat road: trapezoidal ramps, circular-segment bumps, speed humps of a
+//! continuous shape ([`super::hump`]) and steps.
 //!
 //! Every obstacle spans the lateral range [y_min, y_max] (the whole road width unless
 //! given) and starts at `start_m`, the x of its first edge (the foot of a ramp's rising
@@ -17,6 +18,7 @@ use serde::Deserialize;
 use crate::input::{InputError, Source};
 use crate::path;
 
+use super::hump::Hump;
 use super::push_x_crossing;
 use super::push_y_crossing;
 
@@ -57,6 +59,8 @@ pub enum Shape {
     },
     /// A step of height `h` (either sign) at x0, continuing to +infinity.
     Step { x0: f64, h: f64 },
+    /// A round-top to flat-top speed hump ([`Hump`]).
+    Hump(Hump),
 }
 
 impl Obstacle {
@@ -159,6 +163,7 @@ impl Obstacle {
             Shape::Ramp { x, .. } => (x[0], x[3]),
             Shape::Bump { x0, chord, .. } => (x0, x0 + chord),
             Shape::Step { x0, .. } => (x0, f64::INFINITY),
+            Shape::Hump(ref m) => (m.x0, m.x0 + m.length),
         }
     }
 
@@ -166,6 +171,7 @@ impl Obstacle {
     pub fn rise(&self) -> f64 {
         match self.shape {
             Shape::Ramp { h, .. } | Shape::Bump { h, .. } | Shape::Step { h, .. } => h,
+            Shape::Hump(ref m) => m.h,
         }
     }
 
@@ -199,6 +205,7 @@ impl Obstacle {
                 (radius * radius - u * u).max(0.0).sqrt() - (radius - h)
             }
             Shape::Step { h, .. } => h,
+            Shape::Hump(ref m) => m.at(x).0,
         };
         Some(self.base + dz)
     }
@@ -225,6 +232,7 @@ impl Obstacle {
                 -u / (radius * radius - u * u).max(1e-300).sqrt()
             }
             Shape::Step { .. } => 0.0,
+            Shape::Hump(ref m) => m.at(x).1,
         };
         (dzdx, 0.0)
     }
@@ -249,6 +257,11 @@ impl Obstacle {
                 push_x_crossing(p, d, x0 + chord, s0, s1, out);
             }
             Shape::Step { x0, .. } => push_x_crossing(p, d, x0, s0, s1, out),
+            Shape::Hump(ref m) => {
+                for xk in m.kinks() {
+                    push_x_crossing(p, d, xk, s0, s1, out);
+                }
+            }
         }
         for yk in [self.y_min, self.y_max] {
             if yk.is_finite() {
@@ -310,6 +323,7 @@ impl Obstacle {
                 x0 + chord
             ),
             Shape::Step { x0, h } => format!("step of {:+.0} mm at {x0:.3} m", h * 1e3),
+            Shape::Hump(ref m) => format!("{}{}", m.describe(), self.side()),
         }
     }
 }
@@ -345,6 +359,19 @@ pub(crate) enum ObstacleToml {
         start_m: f64,
         height_m: f64,
         chord_m: f64,
+        #[serde(default)]
+        y_min_m: Option<f64>,
+        #[serde(default)]
+        y_max_m: Option<f64>,
+        #[serde(default)]
+        track: Option<Track>,
+    },
+    Hump {
+        start_m: f64,
+        height_m: f64,
+        length_m: f64,
+        shape: f64,
+        flank_angle_deg: f64,
         #[serde(default)]
         y_min_m: Option<f64>,
         #[serde(default)]
@@ -430,6 +457,36 @@ impl ObstacleToml {
                 src.positive(&at("chord_m"), *chord_m)?;
                 let o = Obstacle::bump(*start_m, *height_m, *chord_m, base)
                     .map_err(|m| src.error(&at("height_m"), m.to_string()))?;
+                (o, y_min_m, y_max_m, track)
+            }
+            ObstacleToml::Hump {
+                start_m,
+                height_m,
+                length_m,
+                shape,
+                flank_angle_deg,
+                y_min_m,
+                y_max_m,
+                track,
+            } => {
+                src.finite(&at("start_m"), *start_m)?;
+                src.positive(&at("height_m"), *height_m)?;
+                src.positive(&at("length_m"), *length_m)?;
+                flank(*flank_angle_deg)?;
+                if !(0.0..=1.0).contains(shape) {
+                    return Err(src.error(
+                        &at("shape"),
+                        format!("must be in [0, 1] (0 round-top, 1 flat-top), got {shape}"),
+                    ));
+                }
+                let m = Hump::new(*start_m, *height_m, *length_m, *shape, *flank_angle_deg)
+                    .map_err(|m| src.error(&at("height_m"), m.to_string()))?;
+                let o = Obstacle {
+                    shape: Shape::Hump(m),
+                    base,
+                    y_min: f64::NEG_INFINITY,
+                    y_max: f64::INFINITY,
+                };
                 (o, y_min_m, y_max_m, track)
             }
             ObstacleToml::Step {

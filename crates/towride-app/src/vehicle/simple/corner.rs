@@ -11,7 +11,7 @@ use super::{at, Ctx, Kind};
 use crate::vehicle::geom::V;
 use crate::vehicle::props::{Mass, WheelProps};
 use crate::vehicle::swing::ArmPoints;
-use crate::vehicle::trailing_arm_axle::{Props, Spring, SpringKind};
+use crate::vehicle::trailing_arm_axle::{Props, Spring, SpringKind, WheelDamping};
 use crate::vehicle::wheel;
 use towride_mbs::input::{InputError, Seg};
 use towride_mbs::model::desc::Law;
@@ -30,6 +30,11 @@ pub(super) struct AxleSec {
     pub damping_n_s_m: Option<f64>,
     /// Fraction of critical on the corner's ride rate.
     pub damping_ratio: Option<f64>,
+    /// Damping at the wheel in compression (bump) [N s/m], with `damping_rebound_n_s_m`
+    /// in place of `damping_n_s_m` / `damping_ratio`.
+    pub damping_compression_n_s_m: Option<f64>,
+    /// Damping at the wheel in rebound [N s/m].
+    pub damping_rebound_n_s_m: Option<f64>,
     /// Roll stiffness an anti-roll bar adds at the axle [N m/rad].
     pub anti_roll_n_m_rad: Option<f64>,
     /// Wheel without tyre (rim, brake, hub) [kg].
@@ -83,8 +88,8 @@ pub(super) struct CornerParts {
     pub rim: Mass,
     pub arm: Mass,
     pub spring: Spring,
-    /// Damping at the wheel [N s/m].
-    pub damping: f64,
+    /// Damping at the wheel.
+    pub damping: WheelDamping,
     /// Static load of a corner [N] (the bump stop's scale).
     pub corner_load: f64,
     /// Where the spring is given in the compact file (errors of the design statics).
@@ -126,7 +131,7 @@ pub(super) fn axle(ctx: &Ctx, c: CornerParts, anti_roll: f64) -> Result<Props, I
         arm: c.arm,
         rim: c.rim,
         spring: c.spring,
-        wheel_damping_n_s_m: c.damping,
+        wheel_damping: c.damping,
         bump: Some(bump),
         rebound: Some(rebound),
         bushing,

@@ -49,6 +49,10 @@ pub(super) struct CornerDefaults {
     pub wheel_spin_inertia_per_m_rrim2: f64,
     pub wheel_tilt_per_spin: f64,
     pub damping_ratio: f64,
+    /// Wheel velocity over which compression and rebound rates blend [m/s]; needed only
+    /// by a file giving the two.
+    #[serde(default)]
+    pub damper_transition_m_s: Option<f64>,
     pub anti_roll_n_m_rad: f64,
     pub bump_clearance_m: f64,
     pub bump_stop_load_factor: f64,

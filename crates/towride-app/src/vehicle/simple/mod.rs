@@ -23,6 +23,7 @@
 //! unsprung_kg = 55.0
 //! spring = { kind = "coil", ride_frequency_hz = 1.25 }   # or wheel_rate_n_m
 //! damping_ratio = 0.25                                   # or damping_n_s_m
+//! # or damping_compression_n_s_m = 1500.0 and damping_rebound_n_s_m = 4500.0
 //!
 //! [rear]
 //! unsprung_kg = 75.0

@@ -5,7 +5,7 @@
 use super::corner::AxleSec;
 use super::{at, Ctx, Kind};
 use crate::vehicle::air::AirSpec;
-use crate::vehicle::trailing_arm_axle::{Spring, SpringKind};
+use crate::vehicle::trailing_arm_axle::{Spring, SpringKind, WheelDamping};
 use towride_mbs::input::{InputError, Seg};
 use towride_mbs::path;
 
@@ -18,7 +18,7 @@ pub(super) fn suspension(
     load: f64,
     mu: f64,
     cz: f64,
-) -> Result<(Spring, f64), InputError> {
+) -> Result<(Spring, WheelDamping), InputError> {
     let name = towride_mbs::input::path_string(p);
     let sp = at(p, "spring");
     let s = &a.spring;
@@ -130,6 +130,9 @@ pub(super) fn suspension(
             })
         }
     };
+    if let Some(d) = two_rates(ctx, a, p, &name)? {
+        return Ok((choice, d));
+    }
     // Damping at the wheel: given, or a fraction of critical on the ride rate.
     let ride_rate = |k: f64| k * cz / (k + cz);
     let damping = match (a.damping_n_s_m, a.damping_ratio) {
@@ -171,5 +174,66 @@ pub(super) fn suspension(
             c
         }
     };
-    Ok((choice, damping))
+    Ok((choice, WheelDamping::linear(damping)))
+}
+
+/// Separate compression and rebound rates, when the axle gives them (both, and neither
+/// `damping_n_s_m` nor `damping_ratio`); the transition from the defaults.
+fn two_rates(
+    ctx: &Ctx,
+    a: &AxleSec,
+    p: &[Seg],
+    name: &str,
+) -> Result<Option<WheelDamping>, InputError> {
+    let (c, r) = match (a.damping_compression_n_s_m, a.damping_rebound_n_s_m) {
+        (None, None) => return Ok(None),
+        (Some(c), Some(r)) => (c, r),
+        (Some(_), None) => {
+            return Err(ctx.src.error(
+                &at(p, "damping_compression_n_s_m"),
+                "give damping_rebound_n_s_m with it",
+            ))
+        }
+        (None, Some(_)) => {
+            return Err(ctx.src.error(
+                &at(p, "damping_rebound_n_s_m"),
+                "give damping_compression_n_s_m with it",
+            ))
+        }
+    };
+    for (k, v) in [
+        ("damping_n_s_m", a.damping_n_s_m),
+        ("damping_ratio", a.damping_ratio),
+    ] {
+        if v.is_some() {
+            return Err(ctx.src.error(
+                &at(p, k),
+                "give damping_n_s_m, damping_ratio or the compression and rebound rates, not two of them",
+            ));
+        }
+    }
+    let c = ctx
+        .src
+        .non_negative(&at(p, "damping_compression_n_s_m"), c)?;
+    let r = ctx.src.non_negative(&at(p, "damping_rebound_n_s_m"), r)?;
+    let dsrc = &ctx.defaults.src;
+    let key = path!["corner", "damper_transition_m_s"];
+    let w = ctx.defaults.d.corner.damper_transition_m_s.ok_or_else(|| {
+        dsrc.error(
+            &key,
+            "a file giving compression and rebound rates needs this: the wheel velocity over which they blend",
+        )
+    })?;
+    let w = dsrc.positive(&key, w)?;
+    ctx.default(
+        &format!("{name}.damper_transition_m_s"),
+        w,
+        "m/s",
+        "corner.damper_transition_m_s",
+    );
+    Ok(Some(WheelDamping {
+        compression_n_s_m: c,
+        rebound_n_s_m: r,
+        transition_m_s: w,
+    }))
 }

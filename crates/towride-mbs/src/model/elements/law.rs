@@ -8,7 +8,7 @@ use super::FieldError;
 use crate::model::dual::Scalar;
 use crate::model::function::Spline;
 
-/// Force law of one direction: linear, or a tabulated (spline) curve.
+/// Force law of one direction: linear, a tabulated (spline) curve, or two slopes.
 #[derive(Clone, Debug)]
 pub enum Law {
     /// Force = k x.
@@ -35,6 +35,16 @@ pub enum Law {
         /// Release rate [m/s or rad/s].
         r: f64,
     },
+    /// Slope `above` for x > 0, `below` for x < 0, joined smoothly over `width`
+    /// ([`two_slopes`]): a damper's rebound and compression rates.
+    TwoSlopes {
+        /// Slope for x < 0 (a damper's compression rate) [N s/m].
+        below: f64,
+        /// Slope for x > 0 (rebound) [N s/m].
+        above: f64,
+        /// Width of the transition [m/s].
+        width: f64,
+    },
 }
 
 /// Softplus w ln(1 + e^(u/w)) with its first and second derivatives, without overflow.
@@ -50,6 +60,25 @@ fn softplus(u: f64, w: f64) -> (f64, f64, f64) {
         u.max(0.0) + w * (-z.abs()).exp().ln_1p(),
         s,
         s * (1.0 - s) / w,
+    )
+}
+
+/// (value, slope, curvature) of f(x) = x (m + d tanh(x / w)), m and d the mean and half
+/// the difference of the slopes: f'(x) tends to `above` for x >> w and to `below` for
+/// x << -w (the gap falls as exp(-2|x|/w)), f(0) = 0, and f is smooth at 0 (slope m
+/// there), so an implicit solver meets no kink when a damper changes direction. The tanh
+/// regularisation of a sign switch is the usual one for piecewise dampers (e.g. the
+/// smooth Coulomb friction models compared by Pennestri et al., "Review and comparison of
+/// dry friction force models", Nonlinear Dynamics 83, 2016).
+pub fn two_slopes(below: f64, above: f64, width: f64, x: f64) -> (f64, f64, f64) {
+    let (m, d) = (0.5 * (above + below), 0.5 * (above - below));
+    let u = x / width;
+    let t = u.tanh();
+    let sech2 = 1.0 - t * t;
+    (
+        x * (m + d * t),
+        m + d * (t + u * sech2),
+        2.0 * d / width * sech2 * (1.0 - u * t),
     )
 }
 
@@ -69,6 +98,11 @@ impl Law {
                 let sech2 = 1.0 - th * th;
                 (t * th, t / r * sech2, -2.0 * t / (r * r) * th * sech2)
             }
+            Law::TwoSlopes {
+                below,
+                above,
+                width,
+            } => two_slopes(*below, *above, *width, x),
         }
     }
 
