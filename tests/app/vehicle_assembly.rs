@@ -186,7 +186,15 @@ fn right_side_mirrors_the_left_and_hardpoints_are_where_the_files_say() {
     for (k, mk) in m.each_marker() {
         let Some((l, r)) = [("_fl", "_fr"), ("_rl", "_rr"), ("_tl", "_tr")]
             .into_iter()
-            .find(|(l, _)| mk.name.contains(l))
+            // A side tag not followed by a letter (`knuckle_fl`, not `driver_floor`).
+            .find(|(l, _)| {
+                mk.name.match_indices(l).any(|(i, _)| {
+                    !mk.name[i + l.len()..]
+                        .chars()
+                        .next()
+                        .is_some_and(|c| c.is_ascii_lowercase())
+                })
+            })
         else {
             continue;
         };

@@ -9,7 +9,7 @@ use towride_mbs::model::run::simulate;
 use towride_mbs::model::start::at_speed;
 use towride_mbs::model::System;
 
-const SENSORS: [&str; 10] = [
+const SENSORS: [&str; 11] = [
     "wheel_front_left",
     "wheel_front_right",
     "wheel_rear_left",
@@ -18,6 +18,7 @@ const SENSORS: [&str; 10] = [
     "body_front_right",
     "body_rear_left",
     "body_rear_right",
+    "driver_floor",
     "hitch",
     "trailer_drawbar",
 ];
@@ -37,7 +38,12 @@ fn default_scene_has_the_fixed_channels() {
     want.push("trailer_ax");
     let mut acc = Vec::new();
     for (k, sensor) in SENSORS.iter().enumerate() {
-        let axes: &[&str] = if k == 8 { &["x", "y", "z"] } else { &["z"] };
+        // The driver's floor point and the hitch carry three axes.
+        let axes: &[&str] = if k == 8 || k == 9 {
+            &["x", "y", "z"]
+        } else {
+            &["z"]
+        };
         acc.extend(axes.iter().map(|a| format!("acc_{sensor}_{a}")));
     }
     want.extend(acc.iter().map(|s| s.as_str()));

@@ -89,9 +89,9 @@ pub mod sweep;
 
 pub mod validate;
 
-pub mod calibrate;
-
 pub mod study;
+
+pub mod calibrate;
 
 pub use error::{Error, Result};
 

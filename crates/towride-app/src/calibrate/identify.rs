@@ -214,7 +214,7 @@ pub fn select(
 mod tests {
     use super::*;
 
-    /// Two identical columns are refused with their correlation; an orthogonal one is
+    /// A nearly collinear column is refused with its correlation; an orthogonal one is
     /// kept; the covariance of a linear model equals (J^T J)^-1 in closed form.
     #[test]
     fn collinear_columns_are_left_and_the_covariance_is_the_textbook_one() {
@@ -222,9 +222,9 @@ mod tests {
         let a: Vec<f64> = (0..m).map(|k| (k as f64 * 0.1).sin()).collect();
         let b: Vec<f64> = (0..m).map(|k| (k as f64 * 0.37).cos()).collect();
         let jac = DMatrix::from_fn(m, 3, |r, c| match c {
-            0 => 3.0 * a[r],
-            1 => 2.0 * b[r],
-            _ => 1.5 * a[r] + 0.05 * b[r],
+            0 => 30.0 * a[r],
+            1 => 20.0 * b[r],
+            _ => 15.0 * a[r] + 0.5 * b[r],
         });
         let names: Vec<String> = ["a", "b", "a2"].iter().map(|s| s.to_string()).collect();
         let s = select(&jac, &names, &[true; 3], &[1.0; 3], 1.0, 10);
@@ -235,10 +235,10 @@ mod tests {
             "{}",
             s.left[0].reason
         );
-        // Var(s_a) for column 3a alone: 1 / (9 |a|^2) (b is almost orthogonal to a).
+        // Var(s_a) for column 30a alone: 1 / (900 |a|^2).
         let st = statistics(&jac, &[0], 1.0, 1.0).unwrap();
         let aa: f64 = a.iter().map(|v| v * v).sum();
-        assert!((st.sd_scale[0] - (1.0 / (9.0 * aa)).sqrt()).abs() < 1e-12);
+        assert!((st.sd_scale[0] - (1.0 / (900.0 * aa)).sqrt()).abs() < 1e-12);
         // L samples per independent value widen the interval by sqrt(L).
         let st4 = statistics(&jac, &[0], 1.0, 4.0).unwrap();
         assert!((st4.sd_scale[0] / st.sd_scale[0] - 2.0).abs() < 1e-12);

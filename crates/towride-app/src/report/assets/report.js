@@ -29,15 +29,6 @@
       [[h.max_n, h.t_max_s, h.min_n, h.t_min_s, h.abs_peak_n, h.t_abs_peak_s, h.rms_n, opt(h.dominant_hz, fmt), opt(h.damping_ratio, (z) => `${fmt(100 * z)} %`),
         opt(h.decay, (d) => `${fmt(d.from_s)}-${fmt(d.to_s)} (${d.half_cycles} half cycles)`)]]));
   }
-  // --- ride comfort (ISO 2631-1) at the floor point under the driver's seat
-  if (S.comfort) {
-    const C = S.comfort;
-    app.append(el("h3", { id: "comfort" }, "Ride comfort (ISO 2631-1)"));
-    app.append(el("p", {}, `${C.point}. Vibration total value a_v = ${C.total_value_m_s2 == null ? "-" : fmt(C.total_value_m_s2) + " m/s²"} (k = 1, 1, 1).`));
-    app.append(table(["channel", "axis", "weighting", "a_w [m/s²]", "VDV [m/s^1.75]", "MTVV [m/s²]", "peak [m/s²]", "crest factor", "transient"],
-      C.axes.map((a) => [a.channel, a.axis, a.weighting.replace("w", "W"), a.rms_m_s2, a.vdv_m_s1_75, a.mtvv_m_s2, a.peak_m_s2, a.crest_factor, a.transient ? "yes" : "no"])));
-    app.append(el("p", { class: "hint" }, `Over the whole record (${fmt(C.axes[0].duration_s)} s); ${C.note}.`));
-  }
   // --- what produced the run: version, commit, command line, overrides in effect
   const P = S.produced_by;
   if (P) {
@@ -164,6 +155,15 @@
     app.append(el("p", {}, "no steps recorded"));
   }
   app.append(el("h2", { id: "details" }, "Run summary: details"));
+  // --- ride comfort (ISO 2631-1) at the floor point under the driver's seat
+  if (S.comfort) {
+    const C = S.comfort;
+    app.append(el("h3", { id: "comfort" }, "Ride comfort (ISO 2631-1)"));
+    app.append(el("p", {}, `${C.point}. Vibration total value a_v = ${C.total_value_m_s2 == null ? "-" : fmt(C.total_value_m_s2) + " m/s²"} (k = 1, 1, 1).`));
+    app.append(table(["channel", "axis", "weighting", "a_w [m/s²]", "VDV [m/s^1.75]", "MTVV [m/s²]", "peak [m/s²]", "crest factor", "transient"],
+      C.axes.map((a) => [a.channel, a.axis, a.weighting.replace("w", "W"), a.rms_m_s2, a.vdv_m_s1_75, a.mtvv_m_s2, a.peak_m_s2, a.crest_factor, a.transient ? "yes" : "no"])));
+    app.append(el("p", { class: "hint" }, `Over the whole record (${fmt(C.axes[0].duration_s)} s); ${C.note}.`));
+  }
   if ((S.lift_off || []).length) {
     app.append(el("h3", {}, "Wheels off the road"));
     app.append(table(["wheel", "from [s]", "to [s]", "for [s]"],

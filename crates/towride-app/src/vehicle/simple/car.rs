@@ -173,6 +173,25 @@ pub(super) fn translate(ctx: &Ctx, f: &File, kind: TyreKind) -> Result<Car, Inpu
                 "m",
                 "body.yaw_gyration_per_pitch_gyration",
             );
+            // Each principal moment at most the sum of the other two (a rigid body's
+            // triangle inequality): blamed on the default that set the offending radius.
+            let k2 = [kx * kx, ky * ky, kz * kz];
+            let keys = [
+                "roll_gyration_per_track",
+                "dynamic_index",
+                "yaw_gyration_per_pitch_gyration",
+            ];
+            for i in 0..3 {
+                let others = k2[(i + 1) % 3] + k2[(i + 2) % 3];
+                if k2[i] > others {
+                    return Err(ctx.defaults.src.error(
+                        &path!["body", keys[i]],
+                        format!(
+                            "gives radii of gyration {kx:.3}, {ky:.3}, {kz:.3} m: no rigid body has a principal moment larger than the other two together"
+                        ),
+                    ));
+                }
+            }
             [kx, ky, kz]
         }
     };
