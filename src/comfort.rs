@@ -154,7 +154,11 @@ pub fn run(a: &ComfortArgs) -> CliResult {
             m.mtvv_m_s2,
             m.peak_m_s2,
             m.crest_factor,
-            if x.transient { "  transient" } else { "" }
+            match (x.below_resolution, x.transient) {
+                (true, _) => "  round-off (peak below 0.05 m/s^2)",
+                (false, true) => "  transient",
+                (false, false) => "",
+            }
         );
     }
     match p.total_value_m_s2 {

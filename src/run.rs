@@ -483,11 +483,12 @@ fn print_summary(r: &RunResult) {
         let axes: Vec<String> = c
             .axes
             .iter()
-            .map(|a| {
-                format!(
+            .map(|a| match a.below_resolution {
+                true => format!("{} round-off (peak below 0.05 m/s^2)", a.channel),
+                false => format!(
                     "{} a_w {:.3} m/s^2, VDV {:.3} m/s^1.75, MTVV {:.3} m/s^2",
                     a.channel, a.measures.rms_m_s2, a.measures.vdv_m_s1_75, a.measures.mtvv_m_s2
-                )
+                ),
             })
             .collect();
         println!(

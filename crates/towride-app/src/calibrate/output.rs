@@ -74,15 +74,8 @@ pub fn auto_candidates(scene: &Path) -> Result<(Vec<ParamSpec>, Vec<Named>), cra
 /// `count` strata, one point per stratum, strata paired at random; McKay, Beckman and
 /// Conover 1979), deterministic for a seed.
 pub fn hypercube(specs: &[ParamSpec], count: usize, seed: u64) -> Vec<Vec<f64>> {
-    let mut state = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
-    let mut next = move || {
-        // SplitMix64.
-        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut noise = crate::validate::synth::Noise::new(seed);
+    let mut next = move || noise.uniform();
     let mut points = vec![vec![0.0; specs.len()]; count];
     for (j, s) in specs.iter().enumerate() {
         let mut strata: Vec<usize> = (0..count).collect();

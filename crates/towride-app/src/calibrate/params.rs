@@ -11,7 +11,7 @@ use std::path::Path;
 
 use serde::Serialize;
 
-use crate::study::sensitivity::params::{every_value, Base, Param};
+use crate::study::sensitivity::params::{ends_with_file, every_value, Base, Param};
 use towride_mbs::input::provenance::read_provenance;
 use towride_mbs::input::{InputError, Override};
 
@@ -246,14 +246,10 @@ pub fn find<'a>(all: &'a [Param], addr: &str) -> Result<&'a Param, String> {
         .rsplit_once(':')
         .filter(|(f, p)| !f.trim().is_empty() && !p.trim().is_empty())
         .ok_or("write FILE:PATH, e.g. van.toml:rear.damping_ratio")?;
-    let ends = |p: &str, tail: &str| {
-        p.strip_suffix(tail)
-            .is_some_and(|h| h.is_empty() || h.ends_with('/'))
-    };
     let hits: Vec<&Param> = all
         .iter()
         .filter(|c| c.path == path.trim() && c.component.is_none())
-        .filter(|c| ends(&c.file, file.trim()) || ends(file.trim(), &c.file))
+        .filter(|c| ends_with_file(&c.file, file.trim()) || ends_with_file(file.trim(), &c.file))
         .collect();
     match hits.as_slice() {
         [one] => Ok(one),

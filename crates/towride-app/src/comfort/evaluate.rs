@@ -42,7 +42,15 @@ pub struct AxisComfort {
     pub measures: Measures,
     /// Whether the r.m.s. method may underestimate ([`Measures::transient`]).
     pub transient: bool,
+    /// The weighted peak is below [`RESOLUTION_M_S2`]: the axis carries round-off (the
+    /// lateral axis of a straight, symmetric run), not vibration; its figures are no
+    /// result and its crest factor and transient flag mean nothing.
+    pub below_resolution: bool,
 }
+
+/// Smallest weighted peak an axis must reach to be a result [m/s^2]: an accelerometer's
+/// noise floor class, the same floor `job::convergence` judges acceleration channels by.
+pub const RESOLUTION_M_S2: f64 = 0.05;
 
 /// The evaluation of one point.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -90,7 +98,8 @@ pub fn evaluate(
             axis: c.spec.axis,
             weighting: w,
             k: k[c.spec.axis.index()],
-            transient: m.transient(),
+            below_resolution: m.peak_m_s2 < RESOLUTION_M_S2,
+            transient: m.transient() && m.peak_m_s2 >= RESOLUTION_M_S2,
             measures: m,
         });
     }

@@ -34,7 +34,7 @@ pub fn floor(unit: &str) -> f64 {
     match unit {
         "N" => 5.0,
         "N*m" | "N m" => 1.0,
-        "m/s^2" => 0.05,
+        "m/s^2" => crate::comfort::evaluate::RESOLUTION_M_S2,
         "m" => 1e-5,
         "m/s" => 1e-3,
         "rad" => 1e-4,

@@ -161,7 +161,7 @@
     app.append(el("h3", { id: "comfort" }, "Ride comfort (ISO 2631-1)"));
     app.append(el("p", {}, `${C.point}. Vibration total value a_v = ${C.total_value_m_s2 == null ? "-" : fmt(C.total_value_m_s2) + " m/s²"} (k = 1, 1, 1).`));
     app.append(table(["channel", "axis", "weighting", "a_w [m/s²]", "VDV [m/s^1.75]", "MTVV [m/s²]", "peak [m/s²]", "crest factor", "transient"],
-      C.axes.map((a) => [a.channel, a.axis, a.weighting.replace("w", "W"), a.rms_m_s2, a.vdv_m_s1_75, a.mtvv_m_s2, a.peak_m_s2, a.crest_factor, a.transient ? "yes" : "no"])));
+      C.axes.map((a) => [a.channel, a.axis, a.weighting.replace("w", "W"), a.rms_m_s2, a.vdv_m_s1_75, a.mtvv_m_s2, a.peak_m_s2, a.crest_factor, a.below_resolution ? "round-off (peak < 0.05 m/s²)" : a.transient ? "yes" : "no"])));
     app.append(el("p", { class: "hint" }, `Over the whole record (${fmt(C.axes[0].duration_s)} s); ${C.note}.`));
   }
   if ((S.lift_off || []).length) {

@@ -542,7 +542,7 @@ pub fn named(all: &[Param], names: &[String]) -> Result<Vec<Param>, InputError> 
 
 /// `path` ends with the file name(s) `tail` at a `/` boundary (`fabia/hitch.toml`
 /// matches `hitch.toml`, not `ch.toml`).
-fn ends_with_file(path: &str, tail: &str) -> bool {
+pub(crate) fn ends_with_file(path: &str, tail: &str) -> bool {
     path.strip_suffix(tail)
         .is_some_and(|head| head.is_empty() || head.ends_with('/'))
 }
