@@ -6,7 +6,11 @@ use crate::CliResult;
 use std::path::PathBuf;
 
 use clap::Args;
-use towride_app::calibrate::{self, target::Band, Choice, Settings};
+use towride_app::calibrate::{
+    self,
+    target::{Band, Residual},
+    Choice, Settings,
+};
 
 #[derive(Args, Debug)]
 pub struct CalibrateArgs {
@@ -28,6 +32,11 @@ pub struct CalibrateArgs {
     /// Band [Hz] both curves are limited to before the residual: LO,HI (zero-phase).
     #[arg(long, value_delimiter = ',', num_args = 2)]
     band: Option<Vec<f64>>,
+    /// What the residual is made of: `history` (the band-limited curves), `features`
+    /// (each channel's largest maximum, minimum and next extremum with their times) or
+    /// `both`.
+    #[arg(long, value_enum, default_value = "history")]
+    residual: ResidualArg,
     /// Runs rated with the fitted values but not fitted on (prediction).
     #[arg(long, num_args = 1..)]
     holdout: Vec<PathBuf>,
@@ -53,6 +62,13 @@ pub struct CalibrateArgs {
     inputs: crate::inputs::InputArgs,
 }
 
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+enum ResidualArg {
+    History,
+    Features,
+    Both,
+}
+
 pub fn run(a: &CalibrateArgs) -> CliResult {
     let band = match a.band.as_deref() {
         Some([lo, hi]) if *lo >= 0.0 && hi > lo && hi.is_finite() => Some(Band {
@@ -75,6 +91,11 @@ pub fn run(a: &CalibrateArgs) -> CliResult {
         },
         channels: a.channels.clone(),
         band,
+        residual: match a.residual {
+            ResidualArg::History => Residual::History,
+            ResidualArg::Features => Residual::Features,
+            ResidualArg::Both => Residual::Both,
+        },
         starts: a.starts as usize,
         local_fits: a.local_fits as usize,
         seed: a.seed,

@@ -103,7 +103,7 @@ impl<'a> Evaluator<'a> {
         let r = t
             .simulate(&self.loader(x), shift)
             .ok()
-            .map(|s| t.residual(&s));
+            .map(|s| t.residual(s));
         let n = self.simulations.fetch_add(1, Ordering::Relaxed) + 1;
         if r.is_none() {
             self.failures.fetch_add(1, Ordering::Relaxed);

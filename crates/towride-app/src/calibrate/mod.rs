@@ -17,6 +17,7 @@
 //!
 //! Nothing here prints or draws; [`output`] writes the override file and the report.
 
+pub mod features;
 pub mod fit;
 pub mod identify;
 pub mod output;
@@ -33,7 +34,7 @@ use crate::validate::{simulator_with, validate_run, Options};
 use fit::{local_fit, Evaluator, LocalFit};
 use identify::{select, statistics, Z95};
 use params::ParamSpec;
-use target::{Band, Target};
+use target::{Band, Residual, Target};
 use towride_mbs::input::{Loader, Override};
 
 /// Version of the result document.
@@ -57,6 +58,8 @@ pub struct Settings {
     pub channels: Vec<String>,
     /// Band applied to measured and simulated curves.
     pub band: Option<Band>,
+    /// What the residual is made of.
+    pub residual: Residual,
     /// Latin-hypercube points of the global stage.
     pub starts: usize,
     /// Local fits from the best points.
@@ -75,6 +78,7 @@ impl Default for Settings {
             choice: Choice::Auto(6),
             channels: Vec::new(),
             band: None,
+            residual: Residual::History,
             starts: 8,
             local_fits: 2,
             max_evaluations: 40,
@@ -213,6 +217,7 @@ pub fn calibrate(
                 &loader,
                 &settings.channels,
                 settings.band,
+                settings.residual,
                 &settings.validate,
             )
         })
@@ -277,12 +282,14 @@ pub fn calibrate(
     // The kept values, then each run's time shift.
     let n = sel.kept.len();
     let mut specs: Vec<ParamSpec> = sel.kept.iter().map(|&i| candidates[i].clone()).collect();
-    specs.extend(
-        targets
-            .iter()
-            .enumerate()
-            .map(|(k, t)| ParamSpec::time_shift(k, &t.name, settings.validate.max_shift_s)),
-    );
+    if settings.residual != Residual::Features {
+        specs.extend(
+            targets
+                .iter()
+                .enumerate()
+                .map(|(k, t)| ParamSpec::time_shift(k, &t.name, settings.validate.max_shift_s)),
+        );
+    }
     let start: Vec<f64> = specs.iter().map(|s| s.file_value).collect();
 
     // Global stage: the file values and a Latin hypercube; local fits from the best.

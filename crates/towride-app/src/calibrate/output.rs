@@ -123,9 +123,15 @@ pub fn rated(before: &RunValidation, after: &RunValidation) -> Rated {
 pub fn overlays(targets: &[Target], loaders: &[Loader; 2], shifts: &[f64]) -> Vec<Overlay> {
     targets
         .iter()
-        .zip(shifts)
-        .map(|(t, &dt)| {
-            let sim = |l: &Loader| t.simulate(l, dt).unwrap_or_default();
+        .enumerate()
+        .map(|(k, t)| {
+            // Features alone fit no shift: the curves are aligned as the residual aligns them.
+            let dt = shifts.get(k).copied().unwrap_or(0.0);
+            let sim = |l: &Loader| {
+                t.simulate(l, dt)
+                    .map(|y| t.thinned(&t.aligned(y)))
+                    .unwrap_or_default()
+            };
             Overlay {
                 run: t.name.clone(),
                 channels: t.channels.iter().map(|c| c.name.clone()).collect(),

@@ -12,11 +12,21 @@
 //! quiet road before the obstacle (`validate`'s signal-to-noise figure): a channel then
 //! counts by how far its misfit stands above what the sensor and road can resolve, not
 //! by its units or its amplitude.
+//!
+//! The residual is the thinned time histories, the curves' features ([`super::features`]:
+//! the largest maximum and minimum and the next extremum, value and time), or both.
+//! With features alone the run's time shift is not a fitted value: each simulation is
+//! aligned to the recording by the cross-correlation first (`validate`'s, refined
+//! between samples), so a feature's time misfit is its timing relative to the others.
+//! Samples a clipped sensor recorded are left out (their residual is zero): the
+//! recording's clipped stretches as `validate` marks them, widened by the band filter's
+//! settling time (2 / its corner) on each side when a band is applied.
 
 use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
+use super::features::{self, Feature};
 use crate::signal::acquisition::AcqFilter;
 use crate::signal::butterworth::Butterworth;
 use crate::validate::descriptor::Descriptor;
@@ -38,6 +48,28 @@ const SAMPLES_PER_TOP_PERIOD: f64 = 4.0;
 /// Order of each pass of the zero-phase band filter (forward and backward: twice it).
 const BAND_ORDER: usize = 2;
 
+/// What the residual is made of.
+#[derive(Clone, Copy, Debug, Default, Serialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum Residual {
+    /// The thinned, band-limited time histories.
+    #[default]
+    History,
+    /// Each channel's extrema and their times.
+    Features,
+    /// Both.
+    Both,
+}
+
+impl Residual {
+    fn history(self) -> bool {
+        self != Residual::Features
+    }
+    fn features(self) -> bool {
+        self != Residual::History
+    }
+}
+
 /// A frequency band [Hz] applied to measured and simulated curves alike.
 #[derive(Clone, Copy, Debug, Serialize, PartialEq)]
 pub struct Band {
@@ -56,6 +88,10 @@ pub struct TargetChannel {
     pub noise_mps2: f64,
     /// Where the noise figure comes from.
     pub noise_from: &'static str,
+    /// Samples of the evaluation window left out as clipped (filter settling included).
+    pub clipped_samples: usize,
+    /// The measured curve's features (with `--residual features` or `both`).
+    pub features: Vec<Feature>,
     /// Subtract the mean before the obstacle (the descriptor's `zero_before_obstacle`).
     #[serde(skip)]
     zero: bool,
@@ -78,6 +114,8 @@ pub struct Target {
     pub obstacle_time_s: f64,
     /// The cross-correlation's shift at preparation [s].
     pub shift_s: f64,
+    /// What the residual is made of.
+    pub residual: Residual,
     /// Channels fitted.
     pub channels: Vec<TargetChannel>,
     /// Thinned sample times (recording's clock) [s].
@@ -86,6 +124,18 @@ pub struct Target {
     /// Measured curves on `time_s`, band-limited [m/s^2].
     #[serde(skip)]
     pub measured: Vec<Vec<f64>>,
+    /// Per channel, on `time_s`: the sample counts (not clipped).
+    #[serde(skip)]
+    keep: Vec<Vec<bool>>,
+    /// Measured curves on the evaluation window, band-limited (features only).
+    #[serde(skip)]
+    full: Vec<Vec<f64>>,
+    /// Per channel, on the evaluation window: the sample counts (not clipped).
+    #[serde(skip)]
+    keep_window: Vec<Vec<bool>>,
+    /// Largest time shift the alignment searches [s].
+    #[serde(skip)]
+    max_shift_s: f64,
     /// Sample times of the evaluation window before thinning.
     #[serde(skip)]
     window_s: Vec<f64>,
@@ -110,6 +160,7 @@ impl Target {
         loader: &Loader,
         channels: &[String],
         band: Option<Band>,
+        residual: Residual,
         opts: &Options,
     ) -> Result<(Target, RunValidation), crate::Error> {
         let sim = simulator_with(loader.clone());
@@ -155,9 +206,14 @@ impl Target {
             speed_mps: c.speed_mps,
             obstacle_time_s: c.obstacle_time_s,
             shift_s: c.shift_s,
+            residual,
             channels: Vec::new(),
             time_s: c.time_s.iter().step_by(step).copied().collect(),
             measured: Vec::new(),
+            keep: Vec::new(),
+            full: Vec::new(),
+            keep_window: Vec::new(),
+            max_shift_s: opts.max_shift_s,
             window_s: c.time_s.clone(),
             step,
             rate_hz: rate / step as f64,
@@ -194,20 +250,62 @@ impl Target {
                 .channels
                 .iter()
                 .any(|d| &d.simulated == n && d.zero_before_obstacle);
-            out.measured.push(out.thin(&out.band_limit(m)?));
+            let keep = out.unclipped(c.clipped.get(n), rate);
+            let full = out.band_limit(m)?;
+            // A clipped channel's largest extrema are unknown, so "the largest maximum"
+            // and its rank are undefined: it has no features.
+            let feats = if residual.features() && keep.iter().all(|k| *k) {
+                features::extract(&out.window_s, &full, &keep, top, noise, 1.0 / rate)
+            } else {
+                Vec::new()
+            };
+            out.measured.push(out.thin(&full));
+            if residual == Residual::Features {
+                out.full.push(full);
+            }
+            out.keep.push(out.thin(&keep));
+            out.keep_window.push(keep.clone());
             out.channels.push(TargetChannel {
                 name: n.clone(),
                 noise_mps2: noise.max(f64::MIN_POSITIVE),
                 noise_from: from,
+                clipped_samples: keep.iter().filter(|k| !**k).count(),
+                features: feats,
                 zero,
             });
+        }
+        if residual == Residual::Features && out.channels.iter().all(|c| c.features.is_empty()) {
+            return Err(crate::validate::ValidateError::Signal(format!(
+                "{}: no channel has an extremum {} times its noise: no features to fit",
+                descriptor.display(),
+                features::MIN_HEIGHT_NOISE
+            ))
+            .into());
         }
         Ok((out, v))
     }
 
+    /// Which window samples count: not clipped, nor within the band filter's settling
+    /// time of a clipped one.
+    fn unclipped(&self, clipped: Option<&Vec<bool>>, rate: f64) -> Vec<bool> {
+        let n = self.window_s.len();
+        let Some(c) = clipped else {
+            return vec![true; n];
+        };
+        let reach = self.band.map_or(0, |b| {
+            (2.0 / b.hi_hz.min(self.top_hz) * rate).ceil() as usize
+        });
+        let mut keep = vec![true; n];
+        for (k, _) in c.iter().enumerate().filter(|(_, x)| **x) {
+            let (a, b) = (k.saturating_sub(reach), (k + reach + 1).min(n));
+            keep[a..b].iter_mut().for_each(|x| *x = false);
+        }
+        keep
+    }
+
     /// The simulated curves of this run by the model `loader` reads, processed as the
-    /// measured ones (acquisition chain, alignment moved by `shift_s`, zeroing, band,
-    /// thinning).
+    /// measured ones (acquisition chain, alignment moved by `shift_s`, zeroing, band) on
+    /// the evaluation window's samples; [`Target::thinned`] thins them.
     pub fn simulate(&self, loader: &Loader, shift_s: f64) -> Result<Vec<Vec<f64>>, crate::Error> {
         let sim = crate::validate::vehicle_sim::VehicleSimulator {
             loader: loader.clone(),
@@ -237,23 +335,96 @@ impl Target {
                 .iter()
                 .map(|&t| acq.at(&ch.name, t - offset))
                 .collect();
-            out.push(self.thin(&self.band_limit(&y)?));
+            out.push(self.band_limit(&y)?);
         }
         Ok(out)
     }
 
-    /// (simulated - measured) / noise, channel after channel.
-    pub fn residual(&self, simulated: &[Vec<f64>]) -> Vec<f64> {
+    /// With features alone: curves from [`Target::simulate`] moved by the shift that best
+    /// aligns them with the recording (mean correlation over the channels); else as they
+    /// are.
+    pub fn aligned(&self, simulated: Vec<Vec<f64>>) -> Vec<Vec<f64>> {
+        if self.residual != Residual::Features || self.window_s.len() < 2 {
+            return simulated;
+        }
+        let t = &self.window_s;
+        let dt = t[1] - t[0];
+        let at = |y: &[f64], x: f64| {
+            let u = ((x - t[0]) / dt).clamp(0.0, (y.len() - 1) as f64);
+            let k = (u.floor() as usize).min(y.len().saturating_sub(2));
+            let f = u - k as f64;
+            y[k] * (1.0 - f) + y[(k + 1).min(y.len() - 1)] * f
+        };
+        // On the thinned samples over the whole search range, then on every sample
+        // within one thinned step of that.
+        let thin_m: Vec<&[f64]> = self.measured.iter().map(Vec::as_slice).collect();
+        let coarse = crate::validate::align::best_shift(
+            &self.time_s,
+            &thin_m,
+            &|c, ti, sh| at(&simulated[c], ti + sh),
+            dt * self.step as f64,
+            self.max_shift_s,
+        );
+        let m: Vec<&[f64]> = self.full.iter().map(Vec::as_slice).collect();
+        let fine = crate::validate::align::best_shift(
+            t,
+            &m,
+            &|c, ti, sh| at(&simulated[c], ti + coarse.shift_s + sh),
+            dt,
+            dt * self.step as f64,
+        );
+        let shift = coarse.shift_s + fine.shift_s;
+        simulated
+            .iter()
+            .map(|y| t.iter().map(|&ti| at(y, ti + shift)).collect())
+            .collect()
+    }
+
+    /// Curves from [`Target::simulate`] on the thinned samples `time_s`.
+    pub fn thinned(&self, simulated: &[Vec<f64>]) -> Vec<Vec<f64>> {
+        simulated.iter().map(|y| self.thin(y)).collect()
+    }
+
+    /// Channel after channel: the history's (simulated - measured) / noise on the
+    /// thinned samples (0 where clipped), then each feature's value misfit / noise and
+    /// time misfit / its time weight.
+    pub fn residual(&self, simulated: Vec<Vec<f64>>) -> Vec<f64> {
+        let simulated = self.aligned(simulated);
         let mut r = Vec::with_capacity(self.len());
-        for ((m, s), ch) in self.measured.iter().zip(simulated).zip(&self.channels) {
-            r.extend(m.iter().zip(s).map(|(m, s)| (s - m) / ch.noise_mps2));
+        for (c, ch) in self.channels.iter().enumerate() {
+            let s = &simulated[c];
+            if self.residual.history() {
+                let thin = s.iter().step_by(self.step);
+                r.extend(
+                    self.measured[c]
+                        .iter()
+                        .zip(thin)
+                        .zip(&self.keep[c])
+                        .map(|((m, s), k)| if *k { (s - m) / ch.noise_mps2 } else { 0.0 }),
+                );
+            }
+            for f in &ch.features {
+                let (t, y) = features::locate(&self.window_s, s, &self.keep_window[c], f);
+                r.push((y - f.value) / ch.noise_mps2);
+                r.push((t - f.time_s) / f.sigma_t_s);
+            }
         }
         r
     }
 
     /// Number of residuals.
     pub fn len(&self) -> usize {
-        self.measured.iter().map(Vec::len).sum()
+        let history = if self.residual.history() {
+            self.measured.iter().map(Vec::len).sum()
+        } else {
+            0
+        };
+        history
+            + 2 * self
+                .channels
+                .iter()
+                .map(|c| c.features.len())
+                .sum::<usize>()
     }
 
     /// No residuals.
@@ -264,10 +435,13 @@ impl Target {
     /// Residuals per statistically independent sample: a curve limited to `top_hz` and
     /// kept at `rate_hz` has about 2 `top_hz` independent values per second.
     pub fn samples_per_independent(&self) -> f64 {
+        if !self.residual.history() {
+            return 1.0;
+        }
         (self.rate_hz / (2.0 * self.top_hz)).max(1.0)
     }
 
-    fn thin(&self, y: &[f64]) -> Vec<f64> {
+    fn thin<T: Copy>(&self, y: &[T]) -> Vec<T> {
         y.iter().step_by(self.step).copied().collect()
     }
 

@@ -95,6 +95,9 @@ pub struct Comparison {
     /// Simulated curves on the same samples [m/s^2].
     #[serde(skip)]
     pub simulated: BTreeMap<String, Vec<f64>>,
+    /// Per channel with a range: the recording's clipped samples on the same samples.
+    #[serde(skip)]
+    pub clipped: BTreeMap<String, Vec<bool>>,
 }
 
 /// A channel's sensor: its axis and range [g], for the clipping flags.
@@ -233,6 +236,13 @@ pub(super) fn compare(
         time_s: t,
         measured,
         simulated,
+        clipped: sensors
+            .iter()
+            .filter_map(|s| {
+                let c = s.clipped?;
+                Some((s.name.to_string(), idx.iter().map(|&k| c[k]).collect()))
+            })
+            .collect(),
     }
 }
 

@@ -114,9 +114,11 @@
   const drawPsd = () => {
     const k = +pick.value;
     const c = D.channels[k];
-    // Log axes: the zero-frequency bin and zero densities are left out.
+    // Log axes: the zero-frequency bin and densities 12 decades below the top (round-off,
+    // which breaks uPlot's log ticks) are left out.
     const f = D.psd.f.slice(1);
-    const p = D.psd.density[k].slice(1).map((v) => (v > 0 ? v : null));
+    const top = Math.max(0, ...D.psd.density[k].slice(1).filter((v) => v > 0));
+    const p = D.psd.density[k].slice(1).map((v) => (v > 1e-12 * top ? v : null));
     if (psdChart) psdChart.destroy();
     psdChart = new uPlot({
       width: width(), height: 320,

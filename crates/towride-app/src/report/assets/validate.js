@@ -88,9 +88,12 @@
   app.append(grid);
   const f = P.f.slice(1);
   P.channels.forEach((s, k) => {
-    if (!s.measured && !s.simulated) return;
+    // A log axis over 12 decades at most: a symmetric run's lateral channel is round-off
+    // (PSD ~1e-24), which carries no information and breaks uPlot's log ticks.
+    const top = Math.max(0, ...[s.measured, s.simulated].filter(Boolean).flatMap((a) => a.slice(1)).filter((v) => v > 0));
+    if (!(top > 0)) return;
+    const pos = (a) => (a ? a.slice(1).map((v) => (v > 1e-12 * top ? v : null)) : f.map(() => null));
     const name = primary.channels[k].figures.channel;
-    const pos = (a) => (a ? a.slice(1).map((v) => (v > 0 ? v : null)) : f.map(() => null));
     const box = el("div", { class: "chart" });
     grid.append(el("div", {}, el("h3", {}, name), box));
     charts.push(new uPlot({
