@@ -10,7 +10,7 @@ use nalgebra::{DMatrix, DVector, Matrix3, Matrix6, Vector3, Vector6};
 use towride_mbs::flex::modes::{constrained_eigen, frequency_hz, static_solution};
 use towride_mbs::flex::{FlexBody, ModalData, Options};
 
-use super::flex_hitch::{modal_body_matrices, null_space, rows};
+use super::flex_hitch::{modal_body_matrices, rows};
 
 const FILE: &str = repo!("flex/drawbar.toml");
 
@@ -46,10 +46,6 @@ fn node(t: &toml::Table, name: &str) -> Vector3<f64> {
         .map(num)
         .collect();
     Vector3::new(p[0], p[1], p[2])
-}
-
-fn skew(v: &Vector3<f64>) -> Matrix3<f64> {
-    Matrix3::new(0.0, -v[2], v[1], v[2], 0.0, -v[0], -v[1], v[0], 0.0)
 }
 
 /// A straight prismatic member's cross-section constants.

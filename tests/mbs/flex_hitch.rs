@@ -106,7 +106,7 @@ pub(super) fn modal_body_matrices(md: &ModalData) -> (DMatrix<f64>, DMatrix<f64>
 }
 
 /// Basis of the null space of c (rows = constraints).
-pub(super) fn null_space(c: &DMatrix<f64>) -> DMatrix<f64> {
+fn null_space(c: &DMatrix<f64>) -> DMatrix<f64> {
     let n = c.ncols();
     let svd = c.clone().svd(false, true);
     let vt = svd.v_t.unwrap();
