@@ -58,6 +58,7 @@ mod validate_recovery;
 mod validate_vehicle;
 mod vehicle_assembly;
 mod vehicle_braking;
+mod vehicle_drawbar;
 mod vehicle_driveline;
 mod vehicle_engine;
 mod vehicle_errors;

@@ -17,6 +17,7 @@ macro_rules! repo {
 mod common;
 
 mod flex_beam;
+mod flex_drawbar;
 mod flex_hitch;
 mod flex_input;
 mod flex_stress;

@@ -127,8 +127,14 @@ pub fn assemble(d: Description, opts: &Options, loader: &Loader) -> Result<Vehic
         b.set_place(car_place);
         let jb = opts.joints_as_bushings.as_ref();
         handles.ball = Some(match &modal_hitch {
-            Some(h) => hitch::couple(&mut b, h, built.body, jb)?,
-            None => hitch::couple_on_body(&mut b, car_body, ball, built.body, jb)?,
+            Some(h) => hitch::couple(&mut b, h, (built.coupling_body, built.coupling_node), jb)?,
+            None => hitch::couple_on_body(
+                &mut b,
+                car_body,
+                ball,
+                (built.coupling_body, built.coupling_node),
+                jb,
+            )?,
         });
         handles.trailer_body = Some(built.body);
         handles.trailer_ref = b.mb.marker_by_name("trailer_box.cm");

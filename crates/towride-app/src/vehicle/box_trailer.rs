@@ -1,6 +1,7 @@
 //! The box trailer template (`box_trailer`): box, chassis and drawbar as one rigid body
 //! (plus the payload of the load case, merged into it), a rubber torsion axle of two
-//! swinging halves, wheels and tyres.
+//! swinging halves, wheels and tyres; optionally the drawbar as a flexible body fixed to
+//! the box ([`super::drawbar`]).
 //!
 //! The axle follows the thesis (5.5.3.1): two rigid halves joined on the centreline by a
 //! torsion element (the inner bar) and carried by two bushings (the rubber packs), whose
@@ -14,6 +15,7 @@ use std::path::Path;
 use serde::Deserialize;
 
 use super::build::Builder;
+use super::drawbar::{self, DrawbarProps, Flexible};
 use super::design::{self, centre_of_mass, Corner, Preloaded};
 use super::geom::{mirror, Placement, V};
 use super::props::{
@@ -23,7 +25,7 @@ use super::props::{
 use super::swing::{self, Spec};
 use super::trailer::{self, Trailer, TrailerData, TrailerSlot, TrailerTemplate};
 use super::wheel;
-use towride_mbs::input::{InputError, Loader, Source};
+use towride_mbs::input::{InputError, Source};
 use towride_mbs::model::desc::Law;
 use towride_mbs::model::elements::JointBushing;
 use towride_mbs::path;
@@ -41,6 +43,8 @@ struct File {
     torsion: TorsionProps,
     joints: JointsProps,
     load_case: Vec<LoadCase>,
+    /// The drawbar: rigid (in `[body]`) when absent.
+    drawbar: Option<DrawbarProps>,
 }
 
 #[derive(Deserialize, Debug)]
@@ -80,7 +84,7 @@ impl TrailerTemplate for BoxTrailer {
         file: &Path,
         load_case: Option<&str>,
     ) -> Result<Box<dyn TrailerData>, InputError> {
-        Ok(Box::new(read(file, load_case, &b.loader)?))
+        Ok(Box::new(read(file, load_case, b)?))
     }
 }
 
@@ -100,12 +104,14 @@ struct Props {
     bushing: BushingLaws,
     torsion: (Law, Law),
     joints_as_bushings: Option<JointBushing>,
+    /// The flexible drawbar, and the box without it.
+    drawbar: Option<(Flexible, Mass)>,
     src: Source,
 }
 
 /// Reads `file`, choosing the load case `case` (the first one when `None`).
-fn read(file: &Path, case: Option<&str>, loader: &Loader) -> Result<Props, InputError> {
-    let src = loader.toml(file)?;
+fn read(file: &Path, case: Option<&str>, b: &Builder) -> Result<Props, InputError> {
+    let src = b.loader.toml(file)?;
     let f: File = src.parse()?;
     let coupling = point(&src, &path!["trailer", "coupling_m"], &f.trailer.coupling_m)?;
     let pivot = point(&src, &path!["hardpoints", "pivot_m"], &f.hardpoints.pivot_m)?;
@@ -153,12 +159,26 @@ fn read(file: &Path, case: Option<&str>, loader: &Loader) -> Result<Props, Input
             payload = m;
         }
     }
+    let box_mass = f.body.check(&src, &path!["body"])?;
+    let drawbar = match &f.drawbar {
+        Some(d) => drawbar::read(&src, &path!["drawbar"], file, d, coupling, b)?,
+        None => None,
+    };
+    let drawbar = match drawbar {
+        Some(d) => {
+            let rest = drawbar::remove(&box_mass, &d.mass())
+                .map_err(|m| src.error(&path!["body", "mass_kg"], m))?;
+            Some((d, rest))
+        }
+        None => None,
+    };
     Ok(Props {
         coupling,
+        drawbar,
         wheel_centre: wc,
         payload,
         load_case: f.load_case[k].name.clone(),
-        box_mass: f.body.check(&src, &path!["body"])?,
+        box_mass,
         half: f.half.check(&src, &path!["half"])?,
         pivot,
         bushing: f
@@ -183,17 +203,22 @@ impl TrailerData for Props {
         b: &mut Builder,
         slot: &TrailerSlot,
     ) -> Result<Trailer, InputError> {
-        build(b, &self, slot.tyre)
+        build(b, *self, slot.tyre)
     }
 }
 
 /// Adds the trailer (the builder placed in trailer coordinates).
-fn build(b: &mut Builder, t: &Props, tyre: &Tyre) -> Result<Trailer, InputError> {
+fn build(b: &mut Builder, t: Props, tyre: &Tyre) -> Result<Trailer, InputError> {
     let src = &t.src;
     let rim = wheel::rim_mass(src, &path!["wheel"], &t.wheel, tyre, t.wheel_centre)?;
-    let loaded = match &t.payload {
-        Some(p) => merge(&t.box_mass, p),
+    // With a flexible drawbar the box is the body less the drawbar's FE mass.
+    let rigid = match &t.drawbar {
+        Some((_, rest)) => rest.clone(),
         None => t.box_mass.clone(),
+    };
+    let loaded = match &t.payload {
+        Some(p) => merge(&rigid, p),
+        None => rigid.clone(),
     };
     let body = b.body("trailer_box", &loaded)?;
     let spec = Spec {
@@ -212,7 +237,11 @@ fn build(b: &mut Builder, t: &Props, tyre: &Tyre) -> Result<Trailer, InputError>
     swing::join(b, &spec, built.halves)?;
     // Design statics of the empty trailer: ball and axle share its weight.
     let belt = wheel::tyre_own_mass(tyre);
-    let mut parts = vec![(t.box_mass.mass, t.box_mass.cm)];
+    let mut parts = vec![(rigid.mass, rigid.cm)];
+    if let Some((d, _)) = &t.drawbar {
+        let m = d.mass();
+        parts.push((m.mass, m.cm));
+    }
     for side in [false, true] {
         let m = |p: V| if side { mirror(p) } else { p };
         parts.push((t.half.mass, m(t.half.cm)));
@@ -246,8 +275,17 @@ fn build(b: &mut Builder, t: &Props, tyre: &Tyre) -> Result<Trailer, InputError>
         all.push((p.mass, p.cm));
     }
     let (mass, cm) = centre_of_mass(&all);
+    let (coupling_body, coupling_node) = match t.drawbar {
+        Some((d, _)) => {
+            let j = drawbar::join(b, d, body, t.joints_as_bushings.as_ref())?;
+            (j.body, Some(j.ball_node))
+        }
+        None => (body, None),
+    };
     Ok(Trailer {
         body,
+        coupling_body,
+        coupling_node,
         wheels: built.wheels,
         corners,
         design_ball_load_n: ball,

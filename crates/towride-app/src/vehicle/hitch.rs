@@ -310,15 +310,15 @@ pub fn build(
     })
 }
 
-/// The ball coupling between the hitch ball node and the trailer body `drawbar` (the
-/// builder placed in the car's coordinates). Joint: I = hitch ball, so its reaction is
+/// The ball coupling between the hitch ball node and the trailer's drawbar (its body and,
+/// for a flexible drawbar, its ball node; the builder placed in the car's coordinates). Joint: I = hitch ball, so its reaction is
 /// the drawbar's force on the car. Bushing: I = drawbar, J = hitch ball, so its force in
 /// J's axes is minus the force on the car in (nearly) car axes.
 /// A model-wide switch of joints to bushings turns the ball joint into that bushing.
 pub fn couple(
     b: &mut Builder,
     h: &HitchHandle,
-    drawbar: BodyHandle,
+    (drawbar, node): (BodyHandle, Option<usize>),
     joints_as_bushings: Option<&JointBushing>,
 ) -> Result<(Link, BallKind), InputError> {
     let name = "ball_coupling";
@@ -340,6 +340,7 @@ pub fn couple(
                 )
             })?;
             modal_body::pin(b, link, true, h.ball_node);
+            pin_drawbar(b, link, false, node);
             link
         }
         BallKind::Bushing(jb) => {
@@ -355,12 +356,14 @@ pub fn couple(
                 )
             })?;
             modal_body::pin(b, link, false, h.ball_node);
+            pin_drawbar(b, link, true, node);
             link
         }
         BallKind::Head(laws) => {
             let link =
                 b.bushing_link(name, Some(drawbar), Some(h.body), h.ball, &laws.axes, laws)?;
             modal_body::pin(b, link, false, h.ball_node);
+            pin_drawbar(b, link, true, node);
             link
         }
     };
@@ -375,7 +378,7 @@ pub fn couple_on_body(
     b: &mut Builder,
     car_body: BodyHandle,
     ball: V,
-    drawbar: BodyHandle,
+    (drawbar, node): (BodyHandle, Option<usize>),
     joints_as_bushings: Option<&JointBushing>,
 ) -> Result<(Link, BallKind), InputError> {
     let (i, j) = match joints_as_bushings {
@@ -393,9 +396,17 @@ pub fn couple_on_body(
             None,
         )
     })?;
+    pin_drawbar(b, link, joints_as_bushings.is_some(), node);
     let kind = match joints_as_bushings {
         None => BallKind::Spherical,
         Some(jb) => BallKind::Bushing(jb.clone()),
     };
     Ok((link, kind))
+}
+
+/// Pins the coupling's drawbar marker (I when `on_i`) to the flexible drawbar's ball node.
+fn pin_drawbar(b: &mut Builder, link: Link, on_i: bool, node: Option<usize>) {
+    if let Some(n) = node {
+        modal_body::pin(b, link, on_i, n);
+    }
 }

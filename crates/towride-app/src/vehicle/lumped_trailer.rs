@@ -212,6 +212,8 @@ impl TrailerData for Props {
         let (mass, cm) = centre_of_mass(&parts);
         Ok(Trailer {
             body,
+            coupling_body: body,
+            coupling_node: None,
             wheels: axle.wheels,
             corners,
             design_ball_load_n: ball,

@@ -33,6 +33,7 @@ pub(crate) mod body;
 pub(crate) mod build;
 pub(crate) mod description;
 pub(crate) mod design;
+pub(crate) mod drawbar;
 pub(crate) mod driveline;
 pub(crate) mod engine;
 pub(crate) mod geom;

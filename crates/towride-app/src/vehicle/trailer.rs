@@ -28,8 +28,12 @@ pub struct TrailerSlot<'a> {
 
 /// A built trailer.
 pub struct Trailer {
-    /// The body the coupling holds (box, chassis and drawbar).
+    /// The trailer's main body (box, chassis and, unless flexible, the drawbar).
     pub body: BodyHandle,
+    /// The body the ball coupling holds: the main body, or a flexible drawbar.
+    pub coupling_body: BodyHandle,
+    /// The modal node the coupling acts at, when `coupling_body` is a modal body.
+    pub coupling_node: Option<usize>,
     /// Wheels, left then right (`tl`, `tr`).
     pub wheels: Vec<WheelHandle>,
     /// Design statics of the empty trailer (the springs' preloads).
