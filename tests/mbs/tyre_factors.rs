@@ -128,11 +128,37 @@ fn factors_reach_tyres_the_raw_values_cannot_and_match_the_closed_forms() {
     // the tread's compliance is s_t of the overall longitudinal one.
     assert!((p.d.c_rz / (cz * c_b / (c_b - cz)) - 1.0).abs() < 1e-9);
     assert!((p.cx / p.d.c_rx - s_t).abs() < 1e-12);
-    // The raw equivalent of that ring (FREQ_LONG lowered alone) is refused.
+    let f_soft = p.freq_long;
+    // A raw FREQ_WINDUP 30 % down beside a factor keeps the file's tread share: C_x
+    // follows the softer ring (alone, the file's C_x would exceed the ring's and be
+    // refused).
+    let fw = 59.0 * 0.7;
+    let t = TirFile::read(
+        Path::new(CAR),
+        &set(
+            CAR,
+            &[
+                ("factor.total_mass_kg", 7.0),
+                ("STRUCTURAL.FREQ_WINDUP", fw),
+            ],
+        ),
+    )
+    .unwrap();
+    let p = TyreParams::from_tir(&t).unwrap();
+    let (c_b, r_l) = (5.45 * (2.0 * PI * 77.0f64).powi(2), 0.2888 - 3500.0 / 2e5);
+    let ring_file = 1.0 / c_b + r_l * r_l / (0.364 * (2.0 * PI * 59.0f64).powi(2));
+    let ring_new = 1.0 / c_b + r_l * r_l / (0.364 * (2.0 * PI * fw).powi(2));
+    let s_file = 1.0 - 3.0e5 * ring_file;
+    assert!((p.cx * ring_new - (1.0 - s_file)).abs() < 1e-12, "{}", p.cx);
+    assert!(
+        3.0e5 * ring_new > 1.0,
+        "the file's C_x alone would be refused"
+    );
+    // The raw equivalent of the trailer's soft ring (FREQ_LONG lowered alone) is refused.
     let e = TyreParams::from_tir(
         &TirFile::read(
             Path::new(TRAILER),
-            &set(TRAILER, &[("STRUCTURAL.FREQ_LONG", p.freq_long)]),
+            &set(TRAILER, &[("STRUCTURAL.FREQ_LONG", f_soft)]),
         )
         .unwrap(),
     )

@@ -57,6 +57,8 @@ impl TirFile {
         let (factors, entries): (Vec<_>, Vec<_>) = entries
             .into_iter()
             .partition(|e| e.ov.path.trim().starts_with(crate::tyre::factors::PREFIX));
+        // The factors not set keep the file's own values, whatever raw values change.
+        let original = (!factors.is_empty()).then(|| t.clone());
         for e in entries.iter() {
             let o = &e.ov;
             let (sec, key) = o.path.trim().split_once('.').ok_or_else(|| {
@@ -87,8 +89,8 @@ impl TirFile {
             v.value = o.value.trim().to_string();
             e.placed(path);
         }
-        if !factors.is_empty() {
-            crate::tyre::factors::apply(&mut t, path, &factors, &entries)?;
+        if let Some(original) = original {
+            crate::tyre::factors::apply(&mut t, &original, path, &factors, &entries)?;
         }
         Ok(t)
     }

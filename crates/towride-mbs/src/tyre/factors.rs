@@ -30,8 +30,9 @@
 //!
 //! Setting any factor of a file recomputes the seven driven values (MASS, BELT_MASS, IYY,
 //! BELT_IYY, VERTICAL_STIFFNESS, FREQ_LONG, LONGITUDINAL_STIFFNESS) from the factors, the
-//! unset ones at their file values (after the raw overrides of that file), so a factor
-//! set to its file value reproduces the file to round-off. A raw override of a driven
+//! unset ones at their values in the file as written, and the raw values that are not
+//! driven (FREQ_WINDUP, ...) as overridden; so a factor set to its file value reproduces
+//! the file to round-off, and a raw FREQ_WINDUP beside a factor keeps the tread share. A raw override of a driven
 //! value together with a factor of the same file is refused, naming both.
 
 use std::f64::consts::PI;
@@ -224,16 +225,17 @@ pub fn provenance(entries: &[ProvenanceEntry]) -> Vec<ProvenanceEntry> {
         .collect()
 }
 
-/// Sets the factor overrides `factors` and the values they drive
-/// ([`crate::tyre::factors`]); `raw` are the file's raw overrides, none of which may
-/// set a driven value.
+/// Sets the factor overrides `factors` and the values they drive in `t` (the file with
+/// its raw overrides `raw` applied, none of which may set a driven value); the factors
+/// not set take their values in `original`, the file as written.
 pub(crate) fn apply(
     t: &mut TirFile,
+    original: &TirFile,
     path: &Path,
     factors: &[&crate::input::loader::Entry],
     raw: &[&crate::input::loader::Entry],
 ) -> Result<(), InputError> {
-    let mut x = values(t)?;
+    let mut x = values(original)?;
     for e in factors {
         let o = &e.ov;
         let name = o.path.trim().strip_prefix(PREFIX).unwrap_or_default();

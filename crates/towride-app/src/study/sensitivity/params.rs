@@ -243,7 +243,7 @@ fn collect(scene: &Path, groups: &[String], every: bool) -> Result<Vec<Param>, c
                     p.base = Base::Scalar(x);
                 }
             }
-            tyre_factors(f, &rel, g, &effective, &mut out);
+            tyre_factors(f, &rel, g, &mut out);
         } else if let Ok(t) = effective.toml_text(f)?.parse::<toml_edit::DocumentMut>() {
             let mut found = Vec::new();
             walk(t.as_item(), "", &mut found);
@@ -381,10 +381,10 @@ fn tir_values(text: &str, rel: &str, group: &str, every: bool, out: &mut Vec<Par
 }
 
 /// The independent factors of a ring tyre's `.tir` file ([`factors`]), base values from
-/// the file as the run reads it (a scene's `[[override]]` tables applied); nothing for a
-/// file without the ring's values.
-fn tyre_factors(f: &Path, rel: &str, group: &str, effective: &Loader, out: &mut Vec<Param>) {
-    let Ok(t) = towride_mbs::input::tir::TirFile::read(f, effective) else {
+/// the file as written (the reader keeps unset factors there, whatever raw values a
+/// scene changes); nothing for a file without the ring's values.
+fn tyre_factors(f: &Path, rel: &str, group: &str, out: &mut Vec<Param>) {
+    let Ok(t) = towride_mbs::input::tir::TirFile::read(f, &Loader::new()) else {
         return;
     };
     let Ok(x) = factors::values(&t) else {
