@@ -54,9 +54,11 @@ impl TirFile {
         let entries =
             crate::input::loader::in_force(path, loader.matching(path)?, |p| p.trim().to_string())?;
         // Independent tyre factors (`factor.NAME`) are applied after the raw values.
-        let (factors, entries): (Vec<_>, Vec<_>) = entries
-            .into_iter()
-            .partition(|e| e.ov.path.trim().starts_with(crate::tyre::factors::PREFIX));
+        let (factors, entries): (Vec<_>, Vec<_>) = entries.into_iter().partition(|e| {
+            e.ov.path
+                .trim()
+                .starts_with(crate::input::tyre_factors::PREFIX)
+        });
         // The factors not set keep the file's own values, whatever raw values change.
         let original = (!factors.is_empty()).then(|| t.clone());
         for e in entries.iter() {
@@ -90,7 +92,7 @@ impl TirFile {
             e.placed(path);
         }
         if let Some(original) = original {
-            crate::tyre::factors::apply(&mut t, &original, path, &factors, &entries)?;
+            crate::input::tyre_factors::apply(&mut t, &original, path, &factors, &entries)?;
         }
         Ok(t)
     }

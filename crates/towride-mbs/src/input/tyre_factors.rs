@@ -1,6 +1,6 @@
 //! Independent factors of the rigid-ring tyre: the coupled `.tir` values re-parameterised
 //! so that every combination of factor values, each inside its open range, is a tyre the
-//! checks of [`super::params`] accept (issue 33).
+//! checks of [`crate::tyre::params`] accept (issue 33).
 //!
 //! The `.tir` values are coupled by the rigid-ring model (Pacejka 2012, sec. 9.2, after
 //! Zegelaar 1998): the belt must be lighter than the tyre (BELT_MASS < MASS, BELT_IYY <
@@ -259,6 +259,16 @@ pub(crate) fn apply(
         }
         // A driven value set raw as well: two answers for one number.
         if let Some(r) = raw.iter().find(|r| DRIVEN.contains(&r.ov.path.trim())) {
+            // A value towride derives (a `simple` vehicle's tyre): the factor is the one
+            // that cannot be set.
+            if matches!(r.ov.origin, crate::input::Origin::Derived(_)) {
+                return Err(o.origin.at_path(format!(
+                    "`factor.{name}` cannot be set: `{}` of {} is derived by {}",
+                    r.ov.path.trim(),
+                    path.display(),
+                    r.ov.origin.describe()
+                )));
+            }
             return Err(r.ov.origin.at_path(format!(
                 "`{}` of {} is derived from the tyre factors once one is set, and `factor.{name}` is set by {}: set one of the two",
                 r.ov.path.trim(),
