@@ -41,6 +41,7 @@ mod scene_outputs;
 mod study_sensitivity;
 mod study_sensitivity_page;
 mod study_sensitivity_runs;
+mod study_tyre_factors;
 mod summary_schema;
 mod sweep_rank;
 mod sweep_report;

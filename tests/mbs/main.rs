@@ -32,6 +32,7 @@ mod road_obstacles;
 mod road_one_sided;
 mod road_profile_mesh;
 mod road_random;
+mod tyre_factors;
 mod tyre_lateral;
 mod tyre_lift_off;
 mod tyre_rolling;

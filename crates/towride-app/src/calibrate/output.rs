@@ -9,7 +9,7 @@ use super::params::{number, ParamSpec};
 use super::target::Target;
 use super::{Calibration, Overlay, Rated};
 use crate::report::lineplot::{line_panels, Line, LinePanel};
-use crate::study::sensitivity::params::{every_value, Base};
+use crate::study::sensitivity::params::{driven_by_factors, every_value, factor_limits, Base};
 use crate::validate::RunValidation;
 use towride_mbs::input::Loader;
 
@@ -31,9 +31,11 @@ pub type Named = (String, String);
 /// vehicle's tyre data), with the reason.
 pub fn auto_candidates(scene: &Path) -> Result<(Vec<ParamSpec>, Vec<Named>), crate::Error> {
     let mut out = Vec::new();
-    for p in every_value(scene)? {
+    let all = every_value(scene)?;
+    for p in &all {
         let Base::Scalar(x) = p.base else { continue };
-        if x <= 0.0 {
+        // A ring tyre's coupled values are fitted through its independent factors.
+        if x <= 0.0 || driven_by_factors(p, &all) {
             continue;
         }
         let key = p.path.rsplit('.').next().unwrap_or(&p.path);
@@ -41,7 +43,13 @@ pub fn auto_candidates(scene: &Path) -> Result<(Vec<ParamSpec>, Vec<Named>), cra
         if p.kind == "value" && !obstacle && !RATE_KEYS.contains(&key) {
             continue;
         }
-        let Ok(spec) = ParamSpec::new(&p, x / AUTO_FACTOR, x * AUTO_FACTOR) else {
+        // A factor's bounds keep inside its open range: the margin to each end halves at
+        // most, as the ratio AUTO_FACTOR allows for an unbounded value.
+        let [lo, hi] = factor_limits(p, 1.0 / AUTO_FACTOR)
+            .map_or([1.0 / AUTO_FACTOR, AUTO_FACTOR], |[l, h]| {
+                [l.max(1.0 / AUTO_FACTOR), h.min(AUTO_FACTOR)]
+            });
+        let Ok(spec) = ParamSpec::new(p, x * lo, x * hi) else {
             continue;
         };
         if obstacle || matches!(spec.class.as_str(), "assumed" | "untagged") {

@@ -164,7 +164,9 @@ pub fn number(v: f64) -> String {
 }
 
 fn provenance(p: &Param) -> (String, String) {
-    let entries = read_provenance(&p.disk_path).unwrap_or_default();
+    let mut entries = read_provenance(&p.disk_path).unwrap_or_default();
+    // A ring tyre's factor takes the weakest class of the values it is computed from.
+    entries.extend(towride_mbs::tyre::factors::provenance(&entries));
     // A value inside an inline table is tagged on the table's line (`spring = {...}  #
     // [assumed] ...`): the nearest tagged ancestor speaks for it.
     let mut key = p.path.as_str();

@@ -13,6 +13,7 @@ pub mod provenance;
 pub mod regular;
 pub mod suggest;
 pub mod tir;
+pub mod tyre_factors;
 
 pub use loader::{normalized, read_text, Applied, Layer, Loader};
 pub use overrides::{read_file as read_overrides, value_text, Origin, Override};

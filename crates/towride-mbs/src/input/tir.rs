@@ -53,7 +53,15 @@ impl TirFile {
         let mut t = TirFile::parse(path, &text)?;
         let entries =
             crate::input::loader::in_force(path, loader.matching(path)?, |p| p.trim().to_string())?;
-        for e in entries {
+        // Independent tyre factors (`factor.NAME`) are applied after the raw values.
+        let (factors, entries): (Vec<_>, Vec<_>) = entries.into_iter().partition(|e| {
+            e.ov.path
+                .trim()
+                .starts_with(crate::input::tyre_factors::PREFIX)
+        });
+        // The factors not set keep the file's own values, whatever raw values change.
+        let original = (!factors.is_empty()).then(|| t.clone());
+        for e in entries.iter() {
             let o = &e.ov;
             let (sec, key) = o.path.trim().split_once('.').ok_or_else(|| {
                 o.origin.at_path(format!(
@@ -83,7 +91,25 @@ impl TirFile {
             v.value = o.value.trim().to_string();
             e.placed(path);
         }
+        if let Some(original) = original {
+            crate::input::tyre_factors::apply(&mut t, &original, path, &factors, &entries)?;
+        }
         Ok(t)
+    }
+
+    /// Replaces the value text of `section.key`; false when the file has no such key.
+    pub(crate) fn set_value(&mut self, section: &str, key: &str, value: String) -> bool {
+        match self
+            .sections
+            .get_mut(section)
+            .and_then(|s| s.keys.get_mut(key))
+        {
+            Some(e) => {
+                e.value = value;
+                true
+            }
+            None => false,
+        }
     }
 
     /// Parses `text` as if read from `path`.

@@ -98,7 +98,8 @@ pub fn assumed_inputs(scene: &Path, dir: &Path, top: usize) -> AssumedInputs {
         let Some(f) = files.iter().find(|f| f.ends_with(file)) else {
             continue;
         };
-        let entries = read_provenance(f).unwrap_or_default();
+        let mut entries = read_provenance(f).unwrap_or_default();
+        entries.extend(towride_mbs::tyre::factors::provenance(&entries));
         let (class, source) = match entries.iter().find(|e| e.key == key) {
             Some(e) if e.class == SourceClass::Assumed => ("assumed", e.source.clone()),
             Some(_) => continue,

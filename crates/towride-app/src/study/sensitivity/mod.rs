@@ -74,7 +74,7 @@ pub fn parameters(s: &Settings) -> Result<(Vec<Param>, Vec<String>)> {
     let present = present.join(", ");
     let found: Vec<Param> = all
         .iter()
-        .filter(|p| groups.contains(&p.group))
+        .filter(|p| groups.contains(&p.group) && !params::driven_by_factors(p, &all))
         .cloned()
         .collect();
     if found.is_empty() {

@@ -12,7 +12,10 @@
 //! new fields and files join without a list in code. A value the assembled model does not
 //! depend on (a bushing of a ball coupling modelled as a joint, the payload of a load
 //! case not driven) is dropped as inactive: a 10 % change leaves the model description
-//! unchanged.
+//! unchanged. A ring tyre's `.tir` file also offers its independent factors
+//! (`factor.NAME`, [`towride_mbs::tyre::factors`]); the default lists take them instead
+//! of the coupled values they drive ([`driven_by_factors`]), which stay addressable by
+//! name.
 
 use std::path::{Path, PathBuf};
 
@@ -20,6 +23,7 @@ use serde::Serialize;
 
 use towride_mbs::input::{InputError, Loader};
 use towride_mbs::input::{Origin, Override};
+use towride_mbs::tyre::factors;
 
 /// The value a parameter scales.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -239,6 +243,7 @@ fn collect(scene: &Path, groups: &[String], every: bool) -> Result<Vec<Param>, c
                     p.base = Base::Scalar(x);
                 }
             }
+            tyre_factors(f, &rel, g, &mut out);
         } else if let Ok(t) = effective.toml_text(f)?.parse::<toml_edit::DocumentMut>() {
             let mut found = Vec::new();
             walk(t.as_item(), "", &mut found);
@@ -373,6 +378,54 @@ fn tir_values(text: &str, rel: &str, group: &str, every: bool, out: &mut Vec<Par
             disk_path: PathBuf::new(),
         });
     }
+}
+
+/// The independent factors of a ring tyre's `.tir` file ([`factors`]), base values from
+/// the file as written (the reader keeps unset factors there, whatever raw values a
+/// scene changes); nothing for a file without the ring's values.
+fn tyre_factors(f: &Path, rel: &str, group: &str, out: &mut Vec<Param>) {
+    let Ok(t) = towride_mbs::input::tir::TirFile::read(f, &Loader::new()) else {
+        return;
+    };
+    let Ok(x) = factors::values(&t) else {
+        return;
+    };
+    for (fac, v) in factors::FACTORS.iter().zip(x) {
+        let path = format!("{}{}", factors::PREFIX, fac.name);
+        let (sec, key) = fac.main.split_once('.').unwrap_or_default();
+        out.push(Param {
+            name: format!("{rel}:{path}"),
+            file: rel.into(),
+            path,
+            component: None,
+            group: group.into(),
+            kind: fac.kind.into(),
+            base: Base::Scalar(v),
+            line: t.entry(sec, key).map_or(0, |e| e.line),
+            disk_path: f.to_path_buf(),
+        });
+    }
+}
+
+/// True when `p` is a `.tir` value that the independent factors of its file, listed in
+/// `all`, drive: the factors are varied instead (a default list has one or the other).
+pub fn driven_by_factors(p: &Param, all: &[Param]) -> bool {
+    factors::DRIVEN.contains(&p.path.as_str())
+        && all
+            .iter()
+            .any(|q| q.file == p.file && q.path.starts_with(factors::PREFIX))
+}
+
+/// The multipliers of a factor's base `v` at which its margin to each end of its open
+/// range (a, b), v - a and b - v, has shrunk to the fraction `keep`:
+/// [(a + (v - a) keep) / v, (b - (b - v) keep) / v] (infinite above for b = inf). A study
+/// varying a factor by 1 -+ F stays within these at keep = 1 - F (a belt share of 0.78
+/// goes up to 1 - 0.22 (1 - F), not past 1). `None` for a value that is not a factor.
+pub fn factor_limits(p: &Param, keep: f64) -> Option<[f64; 2]> {
+    let f = factors::find(p.path.strip_prefix(factors::PREFIX)?)?;
+    let v = p.base_value();
+    let (a, b) = f.range;
+    Some([(a + (v - a) * keep) / v, (b - (b - v) * keep) / v])
 }
 
 /// The group of each file read (first the scene, then what it names): files named by
