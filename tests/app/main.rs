@@ -19,6 +19,7 @@ mod validate_sim;
 
 mod comfort_iso2631;
 mod comfort_summary;
+mod durability_iiw;
 mod durability_rainflow;
 mod fuzz;
 mod fuzz_loggers;
