@@ -74,7 +74,10 @@ fn a_run_checks_fibres_and_coupling_against_the_shipped_ratings() {
                 assert!(mx <= hi[j] + tol && mn >= lo[j] - tol, "{p} at {j}");
                 assert!(bend >= (hi[j] - axial) / 2f64.sqrt() - tol, "{p} at {j}");
             } else {
-                assert!((mx - hi[j]).abs() < tol && (mn - lo[j]).abs() < tol, "{p} at {j}");
+                assert!(
+                    (mx - hi[j]).abs() < tol && (mn - lo[j]).abs() < tol,
+                    "{p} at {j}"
+                );
             }
         }
     }
@@ -82,13 +85,15 @@ fn a_run_checks_fibres_and_coupling_against_the_shipped_ratings() {
     assert_eq!(sum.fat_check.len(), 4);
     for c in &sum.fat_check {
         assert_eq!(c.fat_mpa, 71.0, "{c:?}");
-        assert!(c.damage_per_passage > 0.0 && c.damage_per_passage < 1.0, "{c:?}");
+        assert!(
+            c.damage_per_passage > 0.0 && c.damage_per_passage < 1.0,
+            "{c:?}"
+        );
     }
     // UN R55: D = g T C / (T + C), from the shipped hitch file's masses.
-    let t: toml::Value = toml::from_str(
-        &std::fs::read_to_string(repo!("vehicles/fabia/hitch.toml")).unwrap(),
-    )
-    .unwrap();
+    let t: toml::Value =
+        toml::from_str(&std::fs::read_to_string(repo!("vehicles/fabia/hitch.toml")).unwrap())
+            .unwrap();
     let r = &t["rating"];
     let (tm, cm) = (
         r["towing_vehicle_max_mass_kg"].as_float().unwrap() / 1000.0,
@@ -113,5 +118,8 @@ fn a_run_checks_fibres_and_coupling_against_the_shipped_ratings() {
         * (fx.iter().cloned().fold(f64::MIN, f64::max)
             - fx.iter().cloned().fold(f64::MAX, f64::min));
     // The largest rainflow range of a history is its max minus its min.
-    assert!((cp.fx_amplitude_n - amp).abs() < 1e-9 * amp, "{cp:?} vs {amp}");
+    assert!(
+        (cp.fx_amplitude_n - amp).abs() < 1e-9 * amp,
+        "{cp:?} vs {amp}"
+    );
 }

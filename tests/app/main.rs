@@ -45,6 +45,7 @@ mod study_sensitivity_runs;
 mod summary_schema;
 mod sweep_rank;
 mod sweep_report;
+mod sweep_usage;
 mod tyre_cleat;
 mod tyre_enveloping;
 mod validate_csv;
