@@ -137,9 +137,9 @@ impl Fibres {
 
     /// Signed normal stress at four fixed fibres [Pa], for rainflow counting (the
     /// envelope `sx_max` jumps between fibres, so its ranges are no fibre's ranges).
-    /// Rectangle: the corners (y, z) = (+,+), (+,-), (-,+), (-,-), sigma = N/A + M_y z/I_y
-    /// - M_z y/I_z. Circle: the fibres on +z, -z, +y, -y (an inclined moment's peak
-    /// fibre lies between them: up to 1 - 1/sqrt(2) = 29 % lower there).
+    /// Rectangle: the corners (y, z) = (+,+), (+,-), (-,+), (-,-), where
+    /// sigma = N/A + M_y z/I_y - M_z y/I_z. Circle: the fibres on +z, -z, +y, -y (they read
+    /// down to 1/sqrt(2) = 71 % of an inclined moment's bending at the fibre between).
     pub fn fibre_stresses(&self, f: &[f64; 6]) -> [f64; 4] {
         let [n, _, _, _, my, mz] = *f;
         match *self {
