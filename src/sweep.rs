@@ -199,6 +199,22 @@ pub fn run(a: &SweepArgs) -> CliResult {
             res.wall_s,
             res.report.as_deref().unwrap_or("-"),
         );
+        // Damage per km of the file's usage spectrum, per group and stress point.
+        for u in res.usage.iter().flatten() {
+            let g: Vec<String> = u.group.iter().map(|(k, v)| format!("{k}={v}")).collect();
+            match (u.damage_per_km, u.km_to_allowable) {
+                (Some(d), Some(km)) => println!(
+                    "  usage {}: {} -> {d:.3e} per km, {km:.3e} km to D = 0.5",
+                    g.join(" "),
+                    u.figure
+                ),
+                _ => println!(
+                    "  usage {}: {} -> a case of the mix has no result",
+                    g.join(" "),
+                    u.figure
+                ),
+            }
+        }
         for r in res.rows.iter().filter(|r| r.status == "failed") {
             eprintln!(
                 "  case {} {:?}: {}",

@@ -19,6 +19,7 @@ mod validate_sim;
 
 mod comfort_iso2631;
 mod comfort_summary;
+mod durability_iiw;
 mod durability_rainflow;
 mod fuzz;
 mod fuzz_loggers;
@@ -45,6 +46,7 @@ mod study_tyre_factors;
 mod summary_schema;
 mod sweep_rank;
 mod sweep_report;
+mod sweep_usage;
 mod tyre_cleat;
 mod tyre_enveloping;
 mod validate_csv;

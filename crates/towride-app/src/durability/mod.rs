@@ -9,15 +9,20 @@
 //! - [`damage::SnCurve`] and [`damage::damage`] give the Palmgren-Miner sum
 //!   D = sum n_i (S_i / S_ref)^m / N_ref for a power-law S-N (or load-life) curve,
 //!   [`damage::del`] the damage-equivalent load DEL = (sum n_i S_i^m / N_eq)^(1/m);
-//! - [`csv::read_column`] reads one column of any CSV with units in its header.
+//! - [`csv::read_column`] reads one column of any CSV with units in its header;
+//! - [`iiw::IiwCurve`] is IIW's S-N curve of a weld detail (FAT, knee at 1e7) and
+//!   [`fat_check`] the damage per passage of a stress point's signed fibre stresses;
+//! - [`coupling`] the UN R55 D-value and test force beside a run's ball forces.
 //!
 //! Defaults ([`DEFAULT_M`], [`DEFAULT_N_REF`]) follow the IIW recommendations for
 //! welded steel details (Hobbacher, IIW document IIW-1823-07, 2008, chapter 3: the
 //! fatigue class FAT is the characteristic stress range at 2e6 cycles on an S-N curve
 //! of slope m = 3 for normal stress ranges).
 
+pub mod coupling;
 pub mod csv;
 pub mod damage;
+pub mod iiw;
 pub mod rainflow;
 
 pub use damage::{damage, del, SnCurve};
@@ -108,5 +113,45 @@ pub fn channel_block(channel: &str, unit: &str, values: &[f64]) -> Option<Channe
         n_ref: DEFAULT_N_REF,
         del_at_n_ref: del(&cycles, DEFAULT_M, DEFAULT_N_REF).ok()?,
         del_per_passage: del(&cycles, DEFAULT_M, 1.0).ok()?,
+    })
+}
+
+/// A stress point's check against its IIW fatigue class over one passage, for
+/// `summary.json` (`docs/durability.md`, "IIW check").
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct FatCheck {
+    /// The stress point (`hitch_stress_<point>_sx_f<k>` are its fibres).
+    pub point: String,
+    /// Its fatigue class [MPa] (flex file `fat_class_mpa`).
+    pub fat_mpa: f64,
+    /// The fibre (1..4) of largest damage.
+    pub worst_fibre: usize,
+    /// Largest signed-stress range at that fibre [MPa].
+    pub largest_range_mpa: f64,
+    /// Miner sum of one passage on the variable-amplitude IIW curve (worst fibre).
+    pub damage_per_passage: f64,
+    /// Passages to the allowable sum [`iiw::D_ALLOWABLE_STEEL`] (infinite: no damage).
+    pub passages_to_allowable: f64,
+}
+
+/// The IIW check of a point with FAT `fat_pa` whose four fibres' signed stresses [Pa]
+/// `fibres` gives; `None` when a fibre cannot be counted.
+pub fn fat_check(point: &str, fat_pa: f64, fibres: &[Vec<f64>]) -> Option<FatCheck> {
+    let curve = iiw::IiwCurve::variable_amplitude(fat_pa).ok()?;
+    let mut worst = (0, 0.0, 0.0);
+    for (k, y) in fibres.iter().enumerate() {
+        let c = count(&turning_points(y, 0.0).ok()?);
+        let d = curve.damage(&c);
+        if k == 0 || d > worst.1 {
+            worst = (k + 1, d, c.iter().map(|c| c.range).fold(0.0, f64::max));
+        }
+    }
+    Some(FatCheck {
+        point: point.to_string(),
+        fat_mpa: fat_pa / 1e6,
+        worst_fibre: worst.0,
+        largest_range_mpa: worst.2 / 1e6,
+        damage_per_passage: worst.1,
+        passages_to_allowable: iiw::D_ALLOWABLE_STEEL / worst.1,
     })
 }

@@ -379,6 +379,12 @@ pub struct RunSummary {
     /// equivalent stresses present ([`durability`]); empty without a hitch.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub durability: Vec<crate::durability::ChannelDurability>,
+    /// Each crossbeam stress point with a FAT class checked over this passage (IIW,
+    /// signed fibre stresses; docs/durability.md "IIW check").
+    pub fat_check: Vec<crate::durability::FatCheck>,
+    /// The ball forces beside the coupling's UN R55 D-value and test force, when the
+    /// hitch file rates the coupling (docs/durability.md).
+    pub coupling: Option<crate::durability::coupling::CouplingCheck>,
     /// Ride comfort (ISO 2631-1) at the car floor under the driver's seat, from the raw
     /// channels of the sensor [`crate::comfort::FLOOR_SENSOR`]; absent without them.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -486,6 +492,8 @@ impl RunSummary {
                 .map(|f| Acquisition::of(&f, job.settings.sample_rate)),
             channels: channels(samples, job.acquisition().as_ref()),
             durability: durability(samples),
+            fat_check: fat_checks(job, samples),
+            coupling: coupling(job, samples),
             comfort: crate::comfort::evaluate::of_sensor(
                 crate::comfort::FLOOR_SENSOR,
                 FLOOR_PLACE,
@@ -649,6 +657,42 @@ fn skipped(sys: &System, st: &Stats) -> Skipped {
             why: "a step change rebuilds the iteration matrix from the kept dF/dy and dF/dy' (jacobian_recombine); one evaluation costs about 25 Newton iterations",
         },
     }
+}
+
+/// The IIW check of each stress point with a FAT class: the rainflow of its four
+/// fibres' signed normal stress (`hitch_stress_<point>_sx_f<k>`).
+fn fat_checks(job: &Job, samples: &Samples) -> Vec<crate::durability::FatCheck> {
+    let Some(s) = job.scene.as_ref() else {
+        return Vec::new();
+    };
+    let Some(hh) = s.vehicle.handles.hitch.as_ref() else {
+        return Vec::new();
+    };
+    let Some(md) = s.vehicle.model.bodies[hh.body].modal.as_ref() else {
+        return Vec::new();
+    };
+    md.data
+        .stress
+        .points
+        .iter()
+        .filter_map(|p| {
+            let fibres: Option<Vec<Vec<f64>>> = (1..=4)
+                .map(|k| samples.channel(&format!("hitch_stress_{}_sx_f{k}", p.name)))
+                .collect();
+            crate::durability::fat_check(&p.name, p.fat_pa?, &fibres?)
+        })
+        .collect()
+}
+
+/// The ball forces against the hitch file's R55 rating.
+fn coupling(job: &Job, samples: &Samples) -> Option<crate::durability::coupling::CouplingCheck> {
+    let rating = job.scene.as_ref()?.vehicle.handles.hitch.as_ref()?.rating?;
+    crate::durability::coupling::check(
+        rating,
+        &samples.channel(channels::HITCH_FX)?,
+        &samples.channel(channels::HITCH_FY)?,
+        &samples.channel(channels::HITCH_FZ)?,
+    )
 }
 
 /// The durability block (`crate::durability`, docs/durability.md "In every run"): each

@@ -223,8 +223,9 @@ pub fn write_summary(path: &Path, sweep: &Sweep, rows: &[CaseRow]) -> Result<()>
 }
 
 /// Version of a merged table's report (`sweep merge --json`). 2: the merged table's
-/// figures are those of sweep summary version 5 ([`SCHEMA_VERSION`]); 3: version 6.
-pub const MERGE_SCHEMA_VERSION: u32 = 3;
+/// figures are those of sweep summary version 5 ([`SCHEMA_VERSION`]); 3: version 6;
+/// 4: version 7.
+pub const MERGE_SCHEMA_VERSION: u32 = 4;
 
 /// What [`merge`] joined.
 #[derive(Clone, Debug, serde::Serialize)]
@@ -470,8 +471,9 @@ pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<Merged> {
 /// stress. 6: the DELs of the crossbeam points' equivalent stress and of the bracket
 /// loads (per component, the worse bracket), each DEL in its channel's unit; and the
 /// driver's floor comfort (ISO 2631-1 a_w and VDV per axis, total value;
-/// [`super::figures`]).
-pub const SCHEMA_VERSION: u32 = 6;
+/// [`super::figures`]). 7: each stress point's IIW damage per passage and the ball
+/// force against the coupling's UN R55 D-value and test force.
+pub const SCHEMA_VERSION: u32 = 7;
 
 /// Refuses a sweep file (a shard's JSON twin, a summary or journal to resume) written
 /// with another layout version than [`SCHEMA_VERSION`]: an older one's figures (signed
@@ -535,6 +537,8 @@ pub struct SweepRun {
     pub report: Option<String>,
     /// What the sweep is ([`super::fingerprint`]): resume and merge refuse others'.
     pub fingerprint: Option<Fingerprint>,
+    /// Damage per km for the sweep file's `[usage]` spectrum ([`super::usage`]).
+    pub usage: Option<Vec<super::usage::PerKm>>,
     /// Every case.
     pub rows: Vec<CaseRow>,
 }
@@ -606,6 +610,7 @@ fn run_with(
         summary_csv: None,
         report: None,
         fingerprint: None,
+        usage: None,
         rows,
     })
 }
@@ -724,6 +729,9 @@ pub fn run_sweep_with(
     res.fingerprint = Some(fp);
     res.write_to(sweep, &csv)?;
     let _ = std::fs::remove_file(&journal);
+    if let Some(u) = &sweep.usage {
+        res.usage = Some(super::usage::per_km(&super::page::read(&csv)?, u));
+    }
     res.report = Some(match super::page::write(&csv, &sweep.name) {
         Ok(files) => files.html.display().to_string(),
         Err(e) => format!("not written: {e}"),

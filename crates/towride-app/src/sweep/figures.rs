@@ -91,6 +91,18 @@ pub fn figures(r: &RunResult) -> Figures {
             out.push((format!("{name} max [Pa]"), c.extremes.max));
         }
     }
+    // The IIW check of each stress point with a FAT class (Miner sum of one passage,
+    // worst fibre) and the ball forces against the coupling's R55 rating.
+    for c in &s.fat_check {
+        out.push((
+            format!("hitch_stress_{} IIW damage per passage [-]", c.point),
+            c.damage_per_passage,
+        ));
+    }
+    if let Some(c) = &s.coupling {
+        out.push((BALL_PEAK_OVER_D.into(), c.peak_over_d));
+        out.push((FX_AMPLITUDE_OVER_TEST.into(), c.fx_amplitude_over_test));
+    }
     // Ride comfort at the driver's floor (ISO 2631-1): each axis's a_w and VDV (the
     // measure that counts for a short passage, docs/comfort.md) and the total value.
     if let Some(c) = &s.comfort {
@@ -143,3 +155,7 @@ pub const CROSSBEAM_DEFLECTION: &str = "crossbeam |deflection| max [m]";
 pub const COMFORT_TOTAL: &str = "comfort a_v [m/s^2]";
 /// The figure of the crossbeam's largest strain energy.
 pub const CROSSBEAM_ENERGY: &str = "crossbeam strain energy max [J]";
+/// The figure of the ball force's largest |F| over the coupling's D-value (UN R55).
+pub const BALL_PEAK_OVER_D: &str = "ball |F| peak / D [-]";
+/// The figure of hitch_fx's largest amplitude over the R55 test force's fore-aft one.
+pub const FX_AMPLITUDE_OVER_TEST: &str = "hitch_fx amplitude / R55 test [-]";

@@ -28,6 +28,7 @@ pub mod guard;
 pub mod page;
 pub mod rank;
 pub mod resume;
+pub mod usage;
 
 use std::path::{Path, PathBuf};
 
@@ -45,6 +46,7 @@ struct SweepFile {
     sweep: Head,
     #[serde(default)]
     parameter: Vec<ParamIn>,
+    usage: Option<usage::UsageIn>,
 }
 
 #[derive(Deserialize)]
@@ -95,6 +97,8 @@ pub struct Sweep {
     /// The record each case's run starts from (version, commit, command line: the
     /// binary fills them in); the case's overrides are added to it.
     pub produced_by: ProducedBy,
+    /// The usage spectrum of `[usage]`, for damage per km ([`usage::per_km`]).
+    pub usage: Option<usage::Usage>,
 }
 
 /// One case: its index and the values it sets.
@@ -145,12 +149,18 @@ impl Sweep {
                 values_at: Box::new(src.error(&path!["parameter", k, "values"], "")),
             });
         }
+        let named: Vec<(String, Vec<String>)> = parameters
+            .iter()
+            .map(|p| (p.name.clone(), p.values.clone()))
+            .collect();
+        let usage = f.usage.map(|u| u.check(&src, &named)).transpose()?;
         Ok(Sweep {
             name: f.sweep.name,
             scene,
             parameters,
             base: Loader::new(),
             produced_by: ProducedBy::default(),
+            usage,
         })
     }
 

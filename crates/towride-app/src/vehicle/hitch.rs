@@ -28,6 +28,8 @@ struct File {
     hitch: Hitch,
     mounting: Mounting,
     ball_coupling: BallCouplingSec,
+    /// The coupling's UN R55 rating (optional).
+    rating: Option<crate::durability::coupling::RatingIn>,
 }
 
 /// How each bracket is held on the body: the bolted joint in series with the body-side
@@ -194,6 +196,8 @@ pub struct HitchHandle {
     pub brackets: [Link; 2],
     /// Where to complain about `fe_origin_m`.
     pub origin_complaint: InputError,
+    /// The coupling's UN R55 rating, when the file gives one.
+    pub rating: Option<crate::durability::coupling::Rating>,
 }
 
 /// Reads `file` and adds the hitch to the car body `body`; `variant` overrides the file.
@@ -307,6 +311,7 @@ pub fn build(
         modes,
         brackets: [mounts[0], mounts[1]],
         origin_complaint: src.error(&path!["hitch", "fe_origin_m"], ""),
+        rating: f.rating.as_ref().map(|r| r.check(&src)).transpose()?,
     })
 }
 

@@ -210,6 +210,8 @@ pub struct StressPointIn {
     pub node_a: String,
     pub node_b: String,
     pub at_fraction: f64,
+    /// IIW fatigue class of the weld detail at the point [MPa] (optional).
+    pub fat_class_mpa: Option<f64>,
 }
 
 /// How a flex file's default selection picks modes (`selection.rule`).

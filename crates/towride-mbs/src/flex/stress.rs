@@ -42,6 +42,8 @@ pub struct StressPoint {
     pub xi: f64,
     /// How the section's extreme fibres and torsional stress are found.
     pub fibres: Fibres,
+    /// IIW fatigue class FAT of the weld detail there [Pa], if the file gives one.
+    pub fat_pa: Option<f64>,
 }
 
 /// Section moduli of the shapes stress recovery knows.
@@ -130,6 +132,30 @@ impl Fibres {
             sx_min,
             tau,
             eq: (s * s + 3.0 * tau * tau).sqrt(),
+        }
+    }
+
+    /// Signed normal stress at four fixed fibres [Pa], for rainflow counting (the
+    /// envelope `sx_max` jumps between fibres, so its ranges are no fibre's ranges).
+    /// Rectangle: the corners (y, z) = (+,+), (+,-), (-,+), (-,-), where
+    /// sigma = N/A + M_y z/I_y - M_z y/I_z. Circle: the fibres on +z, -z, +y, -y (they read
+    /// down to 1/sqrt(2) = 71 % of an inclined moment's bending at the fibre between).
+    pub fn fibre_stresses(&self, f: &[f64; 6]) -> [f64; 4] {
+        let [n, _, _, _, my, mz] = *f;
+        match *self {
+            Fibres::Corners {
+                area_m2,
+                wy_m3,
+                wz_m3,
+                ..
+            } => {
+                let (a, b, c) = (n / area_m2, my / wy_m3, mz / wz_m3);
+                [a + b - c, a - b - c, a + b + c, a - b + c]
+            }
+            Fibres::Circle { area_m2, w_m3, .. } => {
+                let (a, b, c) = (n / area_m2, my / w_m3, mz / w_m3);
+                [a + b, a - b, a - c, a + c]
+            }
         }
     }
 }
@@ -232,6 +258,11 @@ impl StressModes {
         out
     }
 
+    /// Signed normal stresses at point `p`'s four fibres for modal coordinates `q`.
+    pub fn fibres_at(&self, p: usize, q: &[f64]) -> [f64; 4] {
+        self.points[p].fibres.fibre_stresses(&self.forces_at(p, q))
+    }
+
     /// Nominal stresses at point `p` for modal coordinates `q`.
     pub fn stress_at(&self, p: usize, q: &[f64]) -> NominalStress {
         self.points[p].fibres.stresses(&self.forces_at(p, q))
@@ -295,11 +326,25 @@ pub(crate) fn resolve(
             .poissons_ratio;
         let fibres = Fibres::of(section, nu)
             .map_err(|e| src.error(&path!["stress_point", i, "node_a"], e))?;
+        let fat_pa = match s.fat_class_mpa {
+            Some(v) => {
+                let v = src.finite(&path!["stress_point", i, "fat_class_mpa"], v)?;
+                if v <= 0.0 {
+                    return Err(src.error(
+                        &path!["stress_point", i, "fat_class_mpa"],
+                        format!("must be > 0, got {v}"),
+                    ));
+                }
+                Some(v * 1e6)
+            }
+            None => None,
+        };
         out.push(StressPoint {
             name: s.name.clone(),
             element: subs[k],
             xi: x - k as f64,
             fibres,
+            fat_pa,
         });
     }
     Ok(out)

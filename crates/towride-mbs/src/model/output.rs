@@ -34,8 +34,11 @@ fn vec_channels(base: &str, unit: &'static str) -> Vec<ChannelInfo> {
         .collect()
 }
 
-/// Components of a stress-point output, in order (`flex::stress::NominalStress`).
-pub const STRESS_PARTS: [&str; 4] = ["sx_max", "sx_min", "tau", "eq"];
+/// Components of a stress-point output, in order (`flex::stress::NominalStress`, then
+/// the signed fibre stresses of `flex::stress::Fibres::fibre_stresses`).
+pub const STRESS_PARTS: [&str; 8] = [
+    "sx_max", "sx_min", "tau", "eq", "sx_f1", "sx_f2", "sx_f3", "sx_f4",
+];
 
 /// Components of a transmitted-load output, in order: force, then moment.
 pub const TRANSMITTED_PARTS: [&str; 6] = ["fx", "fy", "fz", "mx", "my", "mz"];
@@ -366,6 +369,7 @@ pub fn evaluate(sys: &System, t: f64, y: &[f64], yp: &[f64]) -> Vec<f64> {
                         let md = &m.bodies[*body].modal.as_ref().expect("modal body").data;
                         let s = md.stress.stress_at(*point, eta);
                         out.extend([s.sx_max, s.sx_min, s.tau, s.eq]);
+                        out.extend(md.stress.fibres_at(*point, eta));
                     }
                     ModalQuantity::Deflection { node, reference } => {
                         let md = &m.bodies[*body].modal.as_ref().expect("modal body").data;
