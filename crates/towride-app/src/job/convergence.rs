@@ -29,7 +29,8 @@ pub const TIGHTEN: f64 = 10.0;
 
 /// The absolute floor of a unit: differences below it are round-off for this application
 /// (forces: 1e-3 of the hitch's 5 kN; accelerations: an accelerometer's noise floor class;
-/// deflections: 10 um, 1 % of the hitch's fore-aft deflection). 0 for other units.
+/// deflections: 10 um, 1 % of the hitch's fore-aft deflection; stresses: 0.1 MPa). 0 for
+/// other units.
 pub fn floor(unit: &str) -> f64 {
     match unit {
         "N" => 5.0,
@@ -40,6 +41,8 @@ pub fn floor(unit: &str) -> f64 {
         "rad" => 1e-4,
         "rad/s" => 1e-3,
         "J" => 1e-3,
+        // Stress: 0.1 MPa, 1e-3 of the crossbeam's 100 MPa peaks (as 5 N of 5 kN).
+        "Pa" => 1e5,
         _ => 0.0,
     }
 }
@@ -145,6 +148,7 @@ fn judged(name: &str, c: &super::ChannelSummary) -> bool {
     let has_twin_shown_instead = c.signal == Signal::Raw && c.twin.is_some();
     !has_twin_shown_instead
         && !name.starts_with(crate::scene::channels::HITCH_ETA_PREFIX)
+        && !crate::scene::channels::is_stress_envelope(name)
         && floor(&c.unit) > 0.0
 }
 
