@@ -209,8 +209,9 @@ fn the_summary_reports_max_min_and_abs_peak_raw_and_band_limited() {
         assert_eq!(run.channel(&twin).unwrap(), want, "{twin}");
     }
     // 15 accelerometer axes (the driver's floor point among them), trailer_ax, 3 ball
-    // forces, 12 bracket loads, 3 deflections.
-    assert_eq!(pairs, 34);
+    // forces, 12 bracket loads, 3 deflections, and at each of the 4 stress points 4 fibre
+    // stresses and the shear stress.
+    assert_eq!(pairs, 54);
     assert!(run.is_raw("hitch_fx") && !run.is_raw("hitch_fx_lp100"));
     assert_eq!(
         run.summary.channels["acc_hitch_z_lp100"].signal,
