@@ -16,6 +16,24 @@ macro_rules! repo {
 #[path = "../common/mod.rs"]
 mod common;
 
+/// The crossbeam file read with the a-priori load-path rule the project shipped until
+/// 2026-11-27 (it now keeps every mode, docs/flex.md): the rule `flex_hitch` and `model_modal` check.
+pub(crate) fn load_path_rule() -> towride_mbs::input::Loader {
+    let f = "flex/hitch_crossbeam.toml";
+    let set = [
+        "selection.rule=\"load_path\"",
+        "selection.band_hz=[0.0, 100.0]",
+        "selection.min_energy_share=0.01",
+        "selection.load_interfaces=[\"ball\"]",
+        "selection.load_moments=false",
+    ];
+    towride_mbs::input::Loader::with_overrides(
+        set.iter()
+            .map(|s| towride_mbs::input::Override::from_argument(&format!("{f}:{s}")).unwrap())
+            .collect(),
+    )
+}
+
 mod flex_beam;
 mod flex_drawbar;
 mod flex_hitch;

@@ -28,27 +28,9 @@ fn hitch() -> FlexBody {
             fixed_interface_modes: Some(8),
             rule: None,
         },
-        &load_path_rule(),
+        &crate::load_path_rule(),
     )
     .unwrap()
-}
-
-/// The crossbeam file read with the a-priori load-path rule the project shipped until
-/// 2026-11-27 (it now keeps every mode, docs/flex.md): the rule these tests check.
-fn load_path_rule() -> towride_mbs::input::Loader {
-    let f = "flex/hitch_crossbeam.toml";
-    let set = [
-        "selection.rule=\"load_path\"",
-        "selection.band_hz=[0.0, 100.0]",
-        "selection.min_energy_share=0.01",
-        "selection.load_interfaces=[\"ball\"]",
-        "selection.load_moments=false",
-    ];
-    towride_mbs::input::Loader::with_overrides(
-        set.iter()
-            .map(|s| towride_mbs::input::Override::from_argument(&format!("{f}:{s}")).unwrap())
-            .collect(),
-    )
 }
 
 /// The modal body held at its brackets by fixed joints to ground, with a force `load`
