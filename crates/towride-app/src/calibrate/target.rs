@@ -349,6 +349,8 @@ impl Target {
         }
         let t = &self.window_s;
         let dt = t[1] - t[0];
+        // `signal::butterworth::interp` on a uniform grid, by index instead of a search:
+        // the alignment calls it for every lag, sample and channel of every evaluation.
         let at = |y: &[f64], x: f64| {
             let u = ((x - t[0]) / dt).clamp(0.0, (y.len() - 1) as f64);
             let k = (u.floor() as usize).min(y.len().saturating_sub(2));
