@@ -564,9 +564,18 @@ fn print_summary(r: &RunResult) {
         }
     }
     if let Some(v) = verdict {
-        let judged = v.channels.len();
+        let judged = v.channels.len() - v.below_floor.len();
+        let below = if v.below_floor.is_empty() {
+            String::new()
+        } else {
+            format!(
+                "; {} below their floors (round-off, not results): {}",
+                v.below_floor.len(),
+                v.below_floor.join(", ")
+            )
+        };
         println!(
-            "convergence (--check: rtol {:e} against {:e}, {} steps; max, min and RMS within {} %): {}",
+            "convergence (--check: rtol {:e} against {:e}, {} steps; max, min and RMS within {} %): {}{below}",
             // Round-off of rtol / 10 (1.0000000000000002e-6) is not a setting: 12 digits.
             short(v.rtol),
             short(v.check_rtol),

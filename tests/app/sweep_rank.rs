@@ -3,16 +3,17 @@
 
 use towride_app::sweep::{page, rank};
 
-/// Three variants at two speeds; variant 2 has the lowest force and variant 3 the
-/// lowest energy; one case failed, one did not converge.
+/// Three variants at two speeds; variant 2 has the lowest force, variant 3 the lowest
+/// energy and variant 1 the smallest pull (the least negative minimum); one case
+/// failed, one did not converge.
 const TABLE: &str = "\
-case,hitch_variant,speed_km_h,status,wall_time [s],hitch_fx abs_peak [N],crossbeam strain energy max [J],steps,converged [-],error
-0,1,30,completed,0.5,100,9,10,1,
-1,1,60,completed,0.5,140,11,10,1,
-2,2,30,completed,0.5,80,6,10,1,
-3,2,60,completed,0.5,100,8,10,0,
-4,3,30,completed,0.5,120,3,10,1,
-5,3,60,failed,0.5,,,,,diverged
+case,hitch_variant,speed_km_h,status,wall_time [s],hitch_fx abs_peak [N],crossbeam strain energy max [J],hitch_fx min [N],steps,converged [-],error
+0,1,30,completed,0.5,100,9,-20,10,1,
+1,1,60,completed,0.5,140,11,-40,10,1,
+2,2,30,completed,0.5,80,6,-50,10,1,
+3,2,60,completed,0.5,100,8,-70,10,0,
+4,3,30,completed,0.5,120,3,-45,10,1,
+5,3,60,failed,0.5,,,,,,diverged
 ";
 
 fn table() -> page::Table {
@@ -31,7 +32,11 @@ fn variants_are_ranked_by_their_mean_over_the_band_with_its_extremes() {
     let names: Vec<&str> = r.figures.iter().map(|f| f.figure.as_str()).collect();
     assert_eq!(
         names,
-        ["hitch_fx abs_peak [N]", "crossbeam strain energy max [J]"]
+        [
+            "hitch_fx abs_peak [N]",
+            "crossbeam strain energy max [J]",
+            "hitch_fx min [N]"
+        ]
     );
     let fx = &r.figures[0];
     let want = [
@@ -52,6 +57,11 @@ fn variants_are_ranked_by_their_mean_over_the_band_with_its_extremes() {
     // (140 - 100) / 120 for variant 1 is the widest band.
     assert!((fx.largest_spread - 40.0 / 120.0).abs() < 1e-12);
     assert_eq!(r.figures[1].best, "3");
+    // A signed minimum ranks by its magnitude: -30 N (variant 1) before -45 and -60 N.
+    let pull = &r.figures[2];
+    let ranks: Vec<(f64, usize)> = pull.entries.iter().map(|e| (e.mean, e.rank)).collect();
+    assert_eq!(ranks, [(-30.0, 1), (-60.0, 3), (-45.0, 2)]);
+    assert_eq!(pull.best, "1");
     assert!(r.rankings_disagree);
 }
 

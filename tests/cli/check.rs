@@ -55,6 +55,24 @@ fn a_converged_scene_passes_and_its_differences_are_those_of_a_separate_tighter_
     let ch = c["channels"].as_object().unwrap();
     assert!(ch.contains_key("hitch_fx_lp100") && !ch.contains_key("hitch_fx"));
     assert!(!ch.keys().any(|k| k.starts_with("hitch_eta")));
+    // The lateral channels of this left/right symmetric run stay within their unit's
+    // floor: listed as round-off, not judged, not failing; every other channel is judged.
+    let below: Vec<&str> = c["below_floor"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|n| n.as_str().unwrap())
+        .collect();
+    assert!(below.contains(&"hitch_fy_lp100"), "{below:?}");
+    for (name, k) in ch {
+        let (max, min) = extremes(&run, name);
+        let under = max.abs().max(min.abs()) < k["floor"].as_f64().unwrap();
+        assert_eq!(k["below_floor"], below.contains(&name.as_str()), "{name}");
+        if below.contains(&name.as_str()) {
+            assert!(under && k["converged"] == true, "{name}: {k}");
+        }
+    }
+    assert!(!below.contains(&"hitch_fx_lp100"));
     // The same job run on its own at rtol / 10 and atol / 10 gives the same differences.
     towride_json(&[
         "run",

@@ -15,6 +15,11 @@
 //! force of a symmetric run) are not judged by round-off, and 1 % of the channel's own
 //! |peak|, so an extreme far below it (the crossbeam strain energy's minimum, 1e-4 of its
 //! maximum) is judged on the channel's scale.
+//!
+//! A channel whose values stay within its unit's floor in both runs carries no result:
+//! it is round-off (the lateral hitch acceleration of a left/right symmetric run, a few
+//! mm/s^2 that move by 1-3 mm/s^2 between tolerances), so it is listed as below its floor
+//! instead of being judged, and is neither converged nor failing in the count.
 
 use std::collections::BTreeMap;
 
@@ -63,8 +68,10 @@ pub struct ChannelCheck {
     pub rms_diff: f64,
     /// The floor used [unit]: the unit's, or 1 % of the channel's |peak| if larger.
     pub floor: f64,
-    /// All three within the threshold.
+    /// All three within the threshold, or the channel is below its floor.
     pub converged: bool,
+    /// Both runs' values stay within the unit's floor: round-off, not a result, not judged.
+    pub below_floor: bool,
 }
 
 /// The verdict of a run against its companion.
@@ -86,6 +93,8 @@ pub struct Verdict {
     pub converged: bool,
     /// The channels that did not, largest difference first.
     pub failing: Vec<String>,
+    /// The channels whose values stay within their unit's floor in both runs.
+    pub below_floor: Vec<String>,
     /// Per judged channel, written in natural order.
     #[serde(serialize_with = "crate::report::display::serialize_natural")]
     pub channels: BTreeMap<String, ChannelCheck>,
@@ -111,6 +120,8 @@ pub fn verdict(run: &RunResult, check: &RunResult, rtol: f64, threshold: f64) ->
         let fl = floor(&c.unit).max(PEAK_FLOOR * b.0.abs().max(b.1.abs()));
         let rel = |x: f64, y: f64| (x - y).abs() / y.abs().max(fl).max(f64::MIN_POSITIVE);
         let (max_diff, min_diff, rms_diff) = (rel(a.0, b.0), rel(a.1, b.1), rel(a.2, b.2));
+        let peak = |s: (f64, f64, f64)| s.0.abs().max(s.1.abs());
+        let below_floor = peak(a).max(peak(b)) < floor(&c.unit);
         channels.insert(
             name.clone(),
             ChannelCheck {
@@ -119,7 +130,8 @@ pub fn verdict(run: &RunResult, check: &RunResult, rtol: f64, threshold: f64) ->
                 min_diff,
                 rms_diff,
                 floor: fl,
-                converged: max_diff.max(min_diff).max(rms_diff) <= threshold,
+                converged: below_floor || max_diff.max(min_diff).max(rms_diff) <= threshold,
+                below_floor,
             },
         );
     }
@@ -129,6 +141,11 @@ pub fn verdict(run: &RunResult, check: &RunResult, rtol: f64, threshold: f64) ->
         .map(|(n, c)| (n, c.max_diff.max(c.min_diff).max(c.rms_diff)))
         .collect();
     failing.sort_by(|a, b| b.1.total_cmp(&a.1));
+    let below_floor = channels
+        .iter()
+        .filter(|(_, c)| c.below_floor)
+        .map(|(n, _)| n.clone())
+        .collect();
     Some(Verdict {
         method: "companion run",
         threshold,
@@ -138,6 +155,7 @@ pub fn verdict(run: &RunResult, check: &RunResult, rtol: f64, threshold: f64) ->
         check_wall_s: check.summary.wall_s,
         converged: failing.is_empty(),
         failing: failing.into_iter().map(|(n, _)| n.clone()).collect(),
+        below_floor,
         channels,
     })
 }

@@ -1,7 +1,8 @@
 //! Ranking the values of one swept parameter (the crossbeam variants) by each figure of
 //! a sweep, over the band the other parameters span (speeds, loads): for every value the
-//! figure's mean, smallest and largest over its completed cases, the rank by the mean
-//! (lowest first: loads, stresses, damage and accelerations are better small), and the
+//! figure's mean, smallest and largest over its completed cases, the rank by the mean's
+//! magnitude (lowest first: loads, stresses, damage and accelerations are better small,
+//! and a signed minimum such as the largest pull is better the nearer it is to zero), the
 //! best value of each figure, so that where peak force, bracket load and damage rank
 //! the variants differently shows at once. A figure that reads one signed peak at one
 //! speed hides that spread; this is the summary a designer choosing a variant needs.
@@ -142,7 +143,8 @@ pub fn rank(t: &Table, by: &str, only: &[String]) -> Result<Ranking, String> {
             continue;
         }
         let mut order: Vec<usize> = (0..entries.len()).collect();
-        order.sort_by(|&a, &b| entries[a].mean.total_cmp(&entries[b].mean));
+        // By magnitude: a figure's `min` is negative, and the most negative is the worst.
+        order.sort_by(|&a, &b| entries[a].mean.abs().total_cmp(&entries[b].mean.abs()));
         for (r, &k) in order.iter().enumerate() {
             entries[k].rank = r + 1;
         }

@@ -45,17 +45,19 @@
   if (!V) {
     app.append(el("p", { class: "hint" }, "Not checked: `towride run --check` runs the scene again at rtol and atol ten times tighter and judges every reported channel's max, min and RMS."));
   } else {
-    const n = Object.keys(V.channels).length;
+    const below = V.below_floor || [];
+    const n = Object.keys(V.channels).length - below.length;
     const pct = (x) => `${(100 * x).toFixed(2)} %`;
     app.append(el("p", { class: V.converged ? "" : "failed" }, V.converged
       ? `All ${n} judged channels converged: max, min and RMS within ${pct(V.threshold)} of a run at rtol ${V.check_rtol.toExponential()} (this run: ${V.rtol.toExponential()}; ${V.check_steps} steps, ${fmt(V.check_wall_s)} s wall).`
       : `${V.failing.length} of ${n} channels NOT converged (differences over ${pct(V.threshold)} against a run at rtol ${V.check_rtol.toExponential()}; this run: ${V.rtol.toExponential()}): ${V.failing.join(", ")}. Their numbers on this page depend on the tolerance.`));
+    if (below.length) app.append(el("p", { class: "hint" }, `${below.length} channels stay within their unit's floor in both runs (round-off, not results; not judged): ${below.join(", ")}.`));
     // Failing first; within each, the summary's natural order (the sort is stable).
     const names = Object.keys(V.channels).sort((a, b) => V.channels[a].converged - V.channels[b].converged);
     // Per channel, folded away when everything converged.
     const box = el("details", V.converged ? {} : { open: "" }, el("summary", {}, "per channel: differences relative to max(|value|, floor)"));
     box.append(table(["channel", "unit", "max diff", "min diff", "RMS diff", "floor", "verdict"],
-      names.map((k) => { const c = V.channels[k]; return [k, du(c.unit), pct(c.max_diff), pct(c.min_diff), pct(c.rms_diff), fmt(c.floor), c.converged ? "converged" : "NOT converged"]; })));
+      names.map((k) => { const c = V.channels[k]; return [k, du(c.unit), pct(c.max_diff), pct(c.min_diff), pct(c.rms_diff), fmt(c.floor), c.below_floor ? "below floor" : c.converged ? "converged" : "NOT converged"]; })));
     app.append(box);
   }
   // --- 3D view, its time cursor shared with the charts both ways
