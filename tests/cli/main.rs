@@ -34,6 +34,7 @@ mod sensitivity;
 mod slurm;
 mod slurm_real;
 mod sway;
+mod sway_single_track;
 mod sweep;
 mod sweep_inputs;
 mod sweep_rank;
