@@ -164,3 +164,51 @@ pub fn of_sensor(
     let point = format!("sensor `{sensor}`: {place}");
     evaluate(&point, rate_hz, &chans, Assessment::Comfort).ok()
 }
+
+/// The comfort at the seat surface of a seat on a floor sensor: the seat model, its
+/// resonance and the evaluation.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SeatComfort {
+    /// The seat with its occupant (SI).
+    pub seat: super::Seat,
+    /// Frequency of the largest vertical transmissibility [Hz].
+    pub resonance_hz: f64,
+    /// The largest vertical transmissibility |a_seat / a_floor| [-].
+    pub peak_transmissibility: f64,
+    /// The evaluation: z through the seat (channel [`SEAT_Z`]), x and y as the floor's.
+    pub comfort: PointComfort,
+}
+
+/// The name of the seat surface's vertical acceleration.
+pub const SEAT_Z: &str = "acc_driver_seat_z";
+
+/// The run summary's seat block: the sensor's raw channels as [`of_sensor`] takes them,
+/// z through `seat` (discretised at `rate_hz`), x and y passed through (no horizontal
+/// seat model); `None` when [`of_sensor`] gives none.
+pub fn of_seat(
+    sensor: &str,
+    place: &str,
+    rate_hz: f64,
+    seat: &super::Seat,
+    channel: impl Fn(&str) -> Option<Vec<f64>>,
+) -> Option<SeatComfort> {
+    let filter = super::SeatFilter::new(seat, rate_hz);
+    let z = format!("acc_{sensor}_z");
+    let mut comfort = of_sensor(sensor, place, rate_hz, |c| {
+        let v = channel(c)?;
+        Some(if c == z { filter.apply(&v) } else { v })
+    })?;
+    comfort.point = format!("seat surface over sensor `{sensor}`: {place}");
+    for a in &mut comfort.axes {
+        if a.channel == z {
+            a.channel = SEAT_Z.to_string();
+        }
+    }
+    let (resonance_hz, peak_transmissibility) = seat.resonance();
+    Some(SeatComfort {
+        seat: seat.clone(),
+        resonance_hz,
+        peak_transmissibility,
+        comfort,
+    })
+}
