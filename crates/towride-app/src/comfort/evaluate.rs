@@ -177,6 +177,13 @@ pub struct SeatComfort {
     pub peak_transmissibility: f64,
     /// The evaluation: z through the seat (channel [`SEAT_Z`]), x and y as the floor's.
     pub comfort: PointComfort,
+    /// SEAT value of the vertical axis, r.m.s. form: Wk-weighted a_w on the seat over
+    /// that on the floor, "the vibration experienced on top of the seat" over "the
+    /// vibration that one would be exposed to when sitting directly on the vibrating
+    /// floor" (van Niekerk et al. 2003, J. Sound Vib. 260, 867-888, abstract) [-].
+    pub seat_value_rms: f64,
+    /// The same ratio of the Wk-weighted VDVs, the form for shocks [-].
+    pub seat_value_vdv: f64,
 }
 
 /// The name of the seat surface's vertical acceleration.
@@ -194,6 +201,7 @@ pub fn of_seat(
 ) -> Option<SeatComfort> {
     let filter = super::SeatFilter::new(seat, rate_hz);
     let z = format!("acc_{sensor}_z");
+    let floor = super::weighted_measures(&channel(&z)?, rate_hz, Weighting::Wk)?;
     let mut comfort = of_sensor(sensor, place, rate_hz, |c| {
         let v = channel(c)?;
         Some(if c == z { filter.apply(&v) } else { v })
@@ -205,7 +213,10 @@ pub fn of_seat(
         }
     }
     let (resonance_hz, peak_transmissibility) = seat.resonance();
+    let on_seat = comfort.axes.iter().find(|a| a.channel == SEAT_Z)?.measures;
     Some(SeatComfort {
+        seat_value_rms: on_seat.rms_m_s2 / floor.rms_m_s2,
+        seat_value_vdv: on_seat.vdv_m_s1_75 / floor.vdv_m_s1_75,
         seat: seat.clone(),
         resonance_hz,
         peak_transmissibility,
