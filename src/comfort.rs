@@ -125,9 +125,8 @@ pub fn run(a: &ComfortArgs) -> CliResult {
     };
     let (rate, mut chans) = comfort::record::read(&a.file, &time, &specs)?;
     let seat = match &a.seat {
-        Some(f) => Some(
-            through_seat(f, rate, &mut chans).map_err(|e| format!("{}: {e}", a.file.display()))?,
-        ),
+        // The error names the body file (and its line and field) itself.
+        Some(f) => Some(through_seat(f, rate, &mut chans)?),
         None => None,
     };
     let assessment = match a.assessment {
