@@ -175,6 +175,9 @@ pub struct SeatComfort {
     pub resonance_hz: f64,
     /// The largest vertical transmissibility |a_seat / a_floor| [-].
     pub peak_transmissibility: f64,
+    /// |T(f)| of the seat on [`CURVE_POINTS`] frequencies log-spaced over 0.5-80 Hz (the
+    /// weightings' band), for the report's figure: (frequency [Hz], |T| [-]).
+    pub transmissibility: Vec<[f64; 2]>,
     /// The evaluation: z through the seat (channel [`SEAT_Z`]), x and y as the floor's.
     pub comfort: PointComfort,
     /// SEAT value of the vertical axis, r.m.s. form: Wk-weighted a_w on the seat over
@@ -185,6 +188,9 @@ pub struct SeatComfort {
     /// The same ratio of the Wk-weighted VDVs, the form for shocks [-].
     pub seat_value_vdv: f64,
 }
+
+/// Points of the seat's |T(f)| curve in the summary.
+pub const CURVE_POINTS: usize = 97;
 
 /// The name of the seat surface's vertical acceleration.
 pub const SEAT_Z: &str = "acc_driver_seat_z";
@@ -214,7 +220,14 @@ pub fn of_seat(
     }
     let (resonance_hz, peak_transmissibility) = seat.resonance();
     let on_seat = comfort.axes.iter().find(|a| a.channel == SEAT_Z)?.measures;
+    let transmissibility = (0..CURVE_POINTS)
+        .map(|k| {
+            let f = 0.5 * 160f64.powf(k as f64 / (CURVE_POINTS - 1) as f64);
+            [f, seat.transmissibility(f).norm()]
+        })
+        .collect();
     Some(SeatComfort {
+        transmissibility,
         seat_value_rms: on_seat.rms_m_s2 / floor.rms_m_s2,
         seat_value_vdv: on_seat.vdv_m_s1_75 / floor.vdv_m_s1_75,
         seat: seat.clone(),

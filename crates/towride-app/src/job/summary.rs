@@ -28,7 +28,7 @@ pub const SCHEMA_VERSION: u32 = 2;
 const FLOOR_PLACE: &str = "car floor under the driver's seat, weighted as at the seat surface (Wd x, y; Wk z; k = 1), no seat transmissibility";
 
 /// The seat block's point in words.
-const SEAT_PLACE: &str = "the driver's seat surface, z through the body file's [seat] model (cushion and seated occupant), x and y the floor's (no horizontal seat model), weighted Wd x, y; Wk z; k = 1";
+const SEAT_PLACE: &str = "z through the body file's [seat] model (cushion and seated occupant), x and y the floor's (no horizontal seat model), weighted Wd x, y; Wk z; k = 1";
 
 /// How a run ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]

@@ -184,6 +184,16 @@
       ["at [Hz]", Q.resonance_hz],
       ["SEAT value z, a_w seat / a_w floor [-]", Q.seat_value_rms],
       ["VDV seat / VDV floor, z [-]", Q.seat_value_vdv]]));
+    const tb = el("div", { class: "chart" });
+    app.append(tb);
+    charts.push(new uPlot({
+      width: width(), height: 260,
+      scales: { x: { time: false, distr: 3 } },
+      axes: [{ label: "frequency [Hz]", values: logTicks }, { label: "|a_seat / a_floor| [-]", size: 60, values: ticks }],
+      series: [{ label: "f [Hz]", value: (u, v) => fmt(v) },
+        { label: "vertical seat transmissibility", stroke: "#0072b2", width: 2, value: (u, v) => fmt(v) }],
+      plugins: [wheel()],
+    }, [Q.transmissibility.map((p) => p[0]), Q.transmissibility.map((p) => p[1])], tb));
     app.append(el("p", { class: "hint" }, "The seat is a filter on the floor's vertical acceleration (cushion spring and damper under the occupant's apparent mass, Fairley & Griffin 1989), not coupled back into the car; fore-aft and lateral pass through unchanged. docs/comfort.md gives the sources and what is assumed."));
   }
   if ((S.lift_off || []).length) {
