@@ -40,9 +40,25 @@ pub struct ComfortArgs {
     /// health (1.4, 1.4, 1; 7.2.3), both for the seat surface.
     #[arg(long, value_enum, default_value_t = Use::Comfort)]
     assessment: Use,
+    /// A car body file with a `[seat]` section (e.g. vehicles/fabia/body.toml): its
+    /// seat model turns each vertical (z) column, taken as the floor under the seat,
+    /// into the seat surface's acceleration before weighting; x and y pass through.
+    #[arg(long)]
+    seat: Option<PathBuf>,
     /// Print one JSON document instead of text.
     #[arg(long)]
     json: bool,
+}
+
+/// The seat applied, for `--json`.
+#[derive(serde::Serialize)]
+struct SeatUse {
+    file: String,
+    /// The z columns taken through the seat.
+    columns: Vec<String>,
+    resonance_hz: f64,
+    peak_transmissibility: f64,
+    model: comfort::Seat,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -55,6 +71,8 @@ enum Use {
 struct Report<'a> {
     schema_version: u32,
     file: String,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    seat: Option<SeatUse>,
     #[serde(flatten)]
     point: &'a comfort::PointComfort,
 }
@@ -105,7 +123,12 @@ pub fn run(a: &ComfortArgs) -> CliResult {
         Some(r) => TimeBase::RateHz(r),
         None => TimeBase::Column(a.time.clone()),
     };
-    let (rate, chans) = comfort::record::read(&a.file, &time, &specs)?;
+    let (rate, mut chans) = comfort::record::read(&a.file, &time, &specs)?;
+    let seat = match &a.seat {
+        // The error names the body file (and its line and field) itself.
+        Some(f) => Some(through_seat(f, rate, &mut chans)?),
+        None => None,
+    };
     let assessment = match a.assessment {
         Use::Comfort => Assessment::Comfort,
         Use::Health => Assessment::Health,
@@ -116,6 +139,7 @@ pub fn run(a: &ComfortArgs) -> CliResult {
         let r = Report {
             schema_version: SCHEMA_VERSION,
             file: a.file.display().to_string(),
+            seat,
             point: &p,
         };
         println!("{}", serde_json::to_string_pretty(&r)?);
@@ -169,8 +193,49 @@ pub fn run(a: &ComfortArgs) -> CliResult {
         ),
         None => println!("  no vibration total value: it needs one x, one y and one z column"),
     }
+    if let Some(s) = &seat {
+        println!(
+            "  seat surface: {} through the seat of {} (largest |T| {:.3} at {:.3} Hz); x and y as the floor's",
+            s.columns.join(", "),
+            s.file,
+            s.peak_transmissibility,
+            s.resonance_hz
+        );
+    }
     if p.transient {
         println!("  transient: {}", p.note);
     }
     Ok(0)
+}
+
+/// Takes the z columns of `chans` through the seat of the body file `file` (their names
+/// get ` (seat surface)`); an error when the file has no valid `[seat]` or no column is
+/// vertical.
+fn through_seat(
+    file: &std::path::Path,
+    rate: f64,
+    chans: &mut [comfort::record::Channel],
+) -> Result<SeatUse, String> {
+    let seat = comfort::seat::read(file).map_err(|e| format!("--seat: {e}"))?;
+    let filter = comfort::SeatFilter::new(&seat, rate);
+    let mut columns = Vec::new();
+    for c in chans.iter_mut().filter(|c| c.spec.axis == Axis::Z) {
+        c.values_m_s2 = filter.apply(&c.values_m_s2);
+        columns.push(c.name.clone());
+        c.name = format!("{} (seat surface)", c.name);
+    }
+    if columns.is_empty() {
+        return Err(format!(
+            "--seat {}: no vertical (z) column to take through the seat",
+            file.display()
+        ));
+    }
+    let (resonance_hz, peak_transmissibility) = seat.resonance();
+    Ok(SeatUse {
+        file: file.display().to_string(),
+        columns,
+        resonance_hz,
+        peak_transmissibility,
+        model: seat,
+    })
 }

@@ -480,27 +480,16 @@ fn print_summary(r: &RunResult) {
     }
     if let Some(c) = &s.comfort {
         // One line: ISO 2631-1 at the driver's floor point (docs/comfort.md).
-        let axes: Vec<String> = c
-            .axes
-            .iter()
-            .map(|a| match a.below_resolution {
-                true => format!("{} round-off (peak below 0.05 m/s^2)", a.channel),
-                false => format!(
-                    "{} a_w {:.3} m/s^2, VDV {:.3} m/s^1.75, MTVV {:.3} m/s^2",
-                    a.channel, a.measures.rms_m_s2, a.measures.vdv_m_s1_75, a.measures.mtvv_m_s2
-                ),
-            })
-            .collect();
-        println!(
-            "  comfort (ISO 2631-1, driver's floor{}): {}; a_v {}",
-            if c.transient {
-                ", transient: VDV and MTVV count"
-            } else {
-                ""
-            },
-            axes.join("; "),
-            c.total_value_m_s2
-                .map_or("-".into(), |v| format!("{v:.3} m/s^2"))
+        comfort_line("driver's floor", c);
+    }
+    if let Some(c) = &s.comfort_seat {
+        // And at the seat surface when the body file gives a seat.
+        comfort_line(
+            &format!(
+                "driver's seat surface, seat resonance {:.2} Hz, |T| {:.2}",
+                c.resonance_hz, c.peak_transmissibility
+            ),
+            &c.comfort,
         );
     }
     for l in &s.lift_off {
@@ -640,4 +629,30 @@ fn print_assumed(scene: &Path) {
 /// of a division.
 fn short(x: f64) -> f64 {
     format!("{x:.11e}").parse().unwrap_or(x)
+}
+
+/// One console line of a comfort evaluation at `place`.
+fn comfort_line(place: &str, c: &towride_app::comfort::PointComfort) {
+    let axes: Vec<String> = c
+        .axes
+        .iter()
+        .map(|a| match a.below_resolution {
+            true => format!("{} round-off (peak below 0.05 m/s^2)", a.channel),
+            false => format!(
+                "{} a_w {:.3} m/s^2, VDV {:.3} m/s^1.75, MTVV {:.3} m/s^2",
+                a.channel, a.measures.rms_m_s2, a.measures.vdv_m_s1_75, a.measures.mtvv_m_s2
+            ),
+        })
+        .collect();
+    println!(
+        "  comfort (ISO 2631-1, {place}{}): {}; a_v {}",
+        if c.transient {
+            ", transient: VDV and MTVV count"
+        } else {
+            ""
+        },
+        axes.join("; "),
+        c.total_value_m_s2
+            .map_or("-".into(), |v| format!("{v:.3} m/s^2"))
+    );
 }

@@ -18,6 +18,7 @@ mod common;
 mod validate_sim;
 
 mod comfort_iso2631;
+mod comfort_seat;
 mod comfort_summary;
 mod durability_iiw;
 mod durability_rainflow;

@@ -104,6 +104,32 @@ fn misspelt_field_is_named_with_its_line() {
 }
 
 #[test]
+fn seat_values_out_of_range() {
+    let f = "vehicles/fabia/body.toml";
+    for (from, to, field) in [
+        (
+            "occupant_moving_fraction = 0.8",
+            "occupant_moving_fraction = 1.0",
+            "seat.occupant_moving_fraction",
+        ),
+        (
+            "cushion_damping_n_s_m = 500.0",
+            "cushion_damping_n_s_m = -500.0",
+            "seat.cushion_damping_n_s_m",
+        ),
+        (
+            "occupant_damping_ratio = 0.475",
+            "occupant_damping_rate = 0.475",
+            "seat",
+        ),
+    ] {
+        let root = scratch("seat");
+        let line = break_file(&root, f, from, to);
+        check(&vehicle_error(&root), f, line, field);
+    }
+}
+
+#[test]
 fn damper_pushing_the_wrong_way() {
     let root = scratch("damper");
     let f = "vehicles/fabia/front_mcpherson.toml";

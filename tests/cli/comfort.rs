@@ -201,3 +201,136 @@ fn comfort_of_a_runs_outputs_matches_its_summary() {
     );
     assert!(err.contains("give --axes"), "{err}");
 }
+
+/// |T| of a cushion (kc, cc) under a frame mass m0 and a mass m1 on (k1, c1), by the two
+/// force balances at f (tests/app/comfort_seat.rs derives it).
+fn seat_gain(m0: f64, m1: f64, k1: f64, c1: f64, kc: f64, cc: f64, f: f64) -> f64 {
+    let w = 2.0 * std::f64::consts::PI * f;
+    let (z1r, z1i) = (k1, w * c1);
+    let (dr, di) = (k1 - w * w * m1, w * c1);
+    // Z1^2 / (Z1 - w^2 m1)
+    let (nr, ni) = (z1r * z1r - z1i * z1i, 2.0 * z1r * z1i);
+    let d2 = dr * dr + di * di;
+    let (tr, ti) = ((nr * dr + ni * di) / d2, (ni * dr - nr * di) / d2);
+    let (br, bi) = (kc - w * w * m0 + z1r - tr, w * cc + z1i - ti);
+    (kc * kc + (w * cc).powi(2)).sqrt() / br.hypot(bi)
+}
+
+/// `--seat`: a body file written here (60 kg on the cushion, 0.75 of it on a 5 Hz,
+/// 0.475 spring; cushion 40 kN/m, 400 N s/m) takes the z column of the sines through the
+/// seat: its a_w is the Table 3 factor (Wk 967 at 4 Hz) times the seat's |T(4 Hz)| times
+/// A / sqrt(2); x and y stay as without the seat. Tolerance 1 % as above.
+#[test]
+fn comfort_seat_option_takes_z_through_the_seat() {
+    let d = dir("seat");
+    let f = d.join("seat.csv");
+    sines_csv(&f);
+    let body = d.join("body.toml");
+    std::fs::write(
+        &body,
+        "[body]\nmass_kg = 800.0\n\n[seat]\noccupant_mass_kg = 60.0\noccupant_moving_fraction = 0.75\n\
+         occupant_natural_frequency_hz = 5.0\noccupant_damping_ratio = 0.475\n\
+         cushion_stiffness_n_m = 40000.0\ncushion_damping_n_s_m = 400.0\n",
+    )
+    .unwrap();
+    let args = |seat: bool| {
+        let mut a = vec![
+            "comfort".to_string(),
+            f.display().to_string(),
+            "--columns".into(),
+            "seat_x,seat_y,seat_z".into(),
+            "--json".into(),
+        ];
+        if seat {
+            a.extend(["--seat".into(), body.display().to_string()]);
+        }
+        a
+    };
+    let run = |seat: bool| {
+        let a = args(seat);
+        towride_json(&a.iter().map(String::as_str).collect::<Vec<_>>())
+    };
+    let (plain, seated) = (run(false), run(true));
+    let m1 = 0.75 * 60.0;
+    let k1 = m1 * (2.0 * std::f64::consts::PI * 5.0f64).powi(2);
+    let c1 = 2.0 * 0.475 * (k1 * m1).sqrt();
+    let t4 = seat_gain(15.0, m1, k1, c1, 40_000.0, 400.0, 4.0);
+    let want = 0.967 * t4 * 1.5 / 2f64.sqrt();
+    let z = &seated["axes"][2];
+    assert_eq!(z["channel"], "seat_z (seat surface)");
+    let got = z["rms_m_s2"].as_f64().unwrap();
+    assert!(
+        (got / want - 1.0).abs() < 0.01,
+        "a_w {got} vs {want} (|T| {t4})"
+    );
+    for k in [0, 1] {
+        assert_eq!(seated["axes"][k]["rms_m_s2"], plain["axes"][k]["rms_m_s2"]);
+    }
+    assert_eq!(seated["seat"]["columns"][0], "seat_z");
+    assert!(plain.get("seat").is_none());
+}
+
+#[test]
+fn comfort_seat_errors_name_file_line_and_field() {
+    let d = dir("seat-bad");
+    let f = d.join("seat.csv");
+    sines_csv(&f);
+    let cases = [
+        (
+            "none.toml",
+            "[body]\nmass_kg = 800.0\n",
+            "no [seat] section",
+        ),
+        (
+            "fraction.toml",
+            "[seat]\noccupant_mass_kg = 60.0\noccupant_moving_fraction = 1.2\n\
+             occupant_natural_frequency_hz = 5.0\noccupant_damping_ratio = 0.475\n\
+             cushion_stiffness_n_m = 40000.0\ncushion_damping_n_s_m = 400.0\n",
+            "field `seat.occupant_moving_fraction`: must be below 1",
+        ),
+        (
+            "missing.toml",
+            "[seat]\noccupant_mass_kg = 60.0\n",
+            "missing field `occupant_moving_fraction`",
+        ),
+    ];
+    for (name, text, want) in cases {
+        let b = d.join(name);
+        std::fs::write(&b, text).unwrap();
+        let err = towride_err(
+            &[
+                "comfort",
+                f.to_str().unwrap(),
+                "--columns",
+                "seat_x,seat_z",
+                "--seat",
+                b.to_str().unwrap(),
+            ],
+            2,
+        );
+        assert!(err.contains(name) && err.contains(want), "{name}: {err}");
+        if name == "fraction.toml" {
+            assert!(err.contains("fraction.toml:3:"), "{err}");
+        }
+    }
+    let b = d.join("fraction.toml");
+    std::fs::write(
+        &b,
+        "[seat]\noccupant_mass_kg = 60.0\noccupant_moving_fraction = 0.7\n\
+         occupant_natural_frequency_hz = 5.0\noccupant_damping_ratio = 0.475\n\
+         cushion_stiffness_n_m = 40000.0\ncushion_damping_n_s_m = 400.0\n",
+    )
+    .unwrap();
+    let err = towride_err(
+        &[
+            "comfort",
+            f.to_str().unwrap(),
+            "--columns",
+            "seat_x",
+            "--seat",
+            b.to_str().unwrap(),
+        ],
+        2,
+    );
+    assert!(err.contains("no vertical (z) column"), "{err}");
+}

@@ -164,3 +164,75 @@ pub fn of_sensor(
     let point = format!("sensor `{sensor}`: {place}");
     evaluate(&point, rate_hz, &chans, Assessment::Comfort).ok()
 }
+
+/// The comfort at the seat surface of a seat on a floor sensor: the seat model, its
+/// resonance and the evaluation.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SeatComfort {
+    /// The seat with its occupant (SI).
+    pub seat: super::Seat,
+    /// Frequency of the largest vertical transmissibility [Hz].
+    pub resonance_hz: f64,
+    /// The largest vertical transmissibility |a_seat / a_floor| [-].
+    pub peak_transmissibility: f64,
+    /// |T(f)| of the seat on [`CURVE_POINTS`] frequencies log-spaced over 0.5-80 Hz (the
+    /// weightings' band), for the report's figure: (frequency [Hz], |T| [-]).
+    pub transmissibility: Vec<[f64; 2]>,
+    /// The evaluation: z through the seat (channel [`SEAT_Z`]), x and y as the floor's.
+    pub comfort: PointComfort,
+    /// SEAT value of the vertical axis, r.m.s. form: Wk-weighted a_w on the seat over
+    /// that on the floor, "the vibration experienced on top of the seat" over "the
+    /// vibration that one would be exposed to when sitting directly on the vibrating
+    /// floor" (van Niekerk et al. 2003, J. Sound Vib. 260, 867-888, abstract) [-].
+    pub seat_value_rms: f64,
+    /// The same ratio of the Wk-weighted VDVs, the form for shocks [-].
+    pub seat_value_vdv: f64,
+}
+
+/// Points of the seat's |T(f)| curve in the summary.
+pub const CURVE_POINTS: usize = 97;
+
+/// The name of the seat surface's vertical acceleration.
+pub const SEAT_Z: &str = "acc_driver_seat_z";
+
+/// The run summary's seat block: the sensor's raw channels as [`of_sensor`] takes them,
+/// z through `seat` (discretised at `rate_hz`), x and y passed through (no horizontal
+/// seat model); `None` when [`of_sensor`] gives none.
+pub fn of_seat(
+    sensor: &str,
+    place: &str,
+    rate_hz: f64,
+    seat: &super::Seat,
+    channel: impl Fn(&str) -> Option<Vec<f64>>,
+) -> Option<SeatComfort> {
+    let filter = super::SeatFilter::new(seat, rate_hz);
+    let z = format!("acc_{sensor}_z");
+    let floor = super::weighted_measures(&channel(&z)?, rate_hz, Weighting::Wk)?;
+    let mut comfort = of_sensor(sensor, place, rate_hz, |c| {
+        let v = channel(c)?;
+        Some(if c == z { filter.apply(&v) } else { v })
+    })?;
+    comfort.point = format!("seat surface over sensor `{sensor}`: {place}");
+    for a in &mut comfort.axes {
+        if a.channel == z {
+            a.channel = SEAT_Z.to_string();
+        }
+    }
+    let (resonance_hz, peak_transmissibility) = seat.resonance();
+    let on_seat = comfort.axes.iter().find(|a| a.channel == SEAT_Z)?.measures;
+    let transmissibility = (0..CURVE_POINTS)
+        .map(|k| {
+            let f = 0.5 * 160f64.powf(k as f64 / (CURVE_POINTS - 1) as f64);
+            [f, seat.transmissibility(f).norm()]
+        })
+        .collect();
+    Some(SeatComfort {
+        transmissibility,
+        seat_value_rms: on_seat.rms_m_s2 / floor.rms_m_s2,
+        seat_value_vdv: on_seat.vdv_m_s1_75 / floor.vdv_m_s1_75,
+        seat: seat.clone(),
+        resonance_hz,
+        peak_transmissibility,
+        comfort,
+    })
+}

@@ -27,6 +27,9 @@ pub const SCHEMA_VERSION: u32 = 2;
 /// The comfort block's point in words: where it is and how it is weighted.
 const FLOOR_PLACE: &str = "car floor under the driver's seat, weighted as at the seat surface (Wd x, y; Wk z; k = 1), no seat transmissibility";
 
+/// The seat block's point in words.
+const SEAT_PLACE: &str = "z through the body file's [seat] model (cushion and seated occupant), x and y the floor's (no horizontal seat model), weighted Wd x, y; Wk z; k = 1";
+
 /// How a run ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -389,6 +392,10 @@ pub struct RunSummary {
     /// channels of the sensor [`crate::comfort::FLOOR_SENSOR`]; absent without them.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub comfort: Option<crate::comfort::PointComfort>,
+    /// Ride comfort at the seat surface over that floor point, when the body file gives
+    /// a seat (`[seat]`): the floor's z through the seat model (docs/comfort.md).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub comfort_seat: Option<crate::comfort::SeatComfort>,
     /// Per channel, by name (raw and band-limited): unit, which it is, max, min and
     /// |peak| with their times; written in natural order (`hitch_eta_2` before
     /// `hitch_eta_10`).
@@ -500,6 +507,19 @@ impl RunSummary {
                 job.settings.sample_rate,
                 |c| samples.channel(c),
             ),
+            comfort_seat: job
+                .scene
+                .as_ref()
+                .and_then(|s| s.vehicle.seat.as_ref())
+                .and_then(|seat| {
+                    crate::comfort::evaluate::of_seat(
+                        crate::comfort::FLOOR_SENSOR,
+                        SEAT_PLACE,
+                        job.settings.sample_rate,
+                        seat,
+                        |c| samples.channel(c),
+                    )
+                }),
             produced_by: job.produced_by.clone(),
             outputs_csv: None,
             outputs_mf4: None,

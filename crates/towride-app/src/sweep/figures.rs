@@ -22,7 +22,8 @@ pub const UNCONVERGED: &str = "unconverged channels [-]";
 /// min and the steps. A vehicle scene: the hitch force components' max, min and |peak|
 /// raw and the |peak| of their band-limited twins; each accelerometer's |peak|
 /// band-limited (as the instrument saw it) and raw; the crossbeam's largest deflection
-/// and strain energy; the driver's floor comfort (a_w and VDV per axis, total value);
+/// and strain energy; the driver's floor comfort (a_w and VDV per axis, total value) and
+/// the seat surface's (z a_w and VDV, total value) when the vehicle has a seat;
 /// solver effort. No signed peak: a larger pull and a larger push
 /// both read as a larger |peak|.
 pub fn figures(r: &RunResult) -> Figures {
@@ -117,6 +118,25 @@ pub fn figures(r: &RunResult) -> Figures {
             out.push((COMFORT_TOTAL.into(), v));
         }
     }
+    // And at the seat surface when the body file gives a seat: its z (x and y are the
+    // floor's) and the total value.
+    if let Some(c) = &s.comfort_seat {
+        for a in c
+            .comfort
+            .axes
+            .iter()
+            .filter(|a| a.channel == crate::comfort::SEAT_Z)
+        {
+            out.push((format!("{} a_w [m/s^2]", a.channel), a.measures.rms_m_s2));
+            out.push((
+                format!("{} VDV [m/s^1.75]", a.channel),
+                a.measures.vdv_m_s1_75,
+            ));
+        }
+        if let Some(v) = c.comfort.total_value_m_s2 {
+            out.push((COMFORT_SEAT_TOTAL.into(), v));
+        }
+    }
     let [dx, dy, dz] = channels::HITCH_DEFLECTION;
     if let (Some(x), Some(y), Some(z)) = (r.channel(dx), r.channel(dy), r.channel(dz)) {
         let d = (0..x.len()).fold(0.0f64, |m, k| {
@@ -154,6 +174,8 @@ fn verdict_figures(r: &RunResult, out: &mut Figures) {
 pub const CROSSBEAM_DEFLECTION: &str = "crossbeam |deflection| max [m]";
 /// The figure of the driver's floor point's vibration total value (ISO 2631-1 eq. 9).
 pub const COMFORT_TOTAL: &str = "comfort a_v [m/s^2]";
+/// The figure of the seat surface's vibration total value (z through the seat).
+pub const COMFORT_SEAT_TOTAL: &str = "comfort seat a_v [m/s^2]";
 /// The figure of the crossbeam's largest strain energy.
 pub const CROSSBEAM_ENERGY: &str = "crossbeam strain energy max [J]";
 /// The figure of the ball force's largest |F| over the coupling's D-value (UN R55).

@@ -35,9 +35,9 @@ pub fn assemble(d: Description, opts: &Options, loader: &Loader) -> Result<Vehic
     let car_place = Placement::translate([opts.x_offset, 0.0, 0.0]);
     let mut b = Builder::new(mb, loader, opts.run_modes.clone());
     b.set_place(car_place);
-    let car_body = match d.body {
+    let (car_body, seat) = match d.body {
         BodySpec::File(file) => body::build(&mut b, &file)?,
-        BodySpec::Given(m) => b.body("car_body", &m)?,
+        BodySpec::Given(m) => (b.body("car_body", &m)?, None),
     };
     if let Some(file) = &d.engine {
         engine::build(&mut b, file, car_body)?;
@@ -164,7 +164,9 @@ pub fn assemble(d: Description, opts: &Options, loader: &Loader) -> Result<Vehic
         trailer: trailer_design,
         total_mass_kg: 0.0,
     };
-    Ok(finish(b, handles, wheels, opts, design, assumed))
+    let mut v = finish(b, handles, wheels, opts, design, assumed);
+    v.seat = seat;
+    Ok(v)
 }
 
 /// What the car's design statics found.
@@ -287,6 +289,7 @@ fn finish(
         handles,
         design,
         assumed,
+        seat: None,
     }
 }
 

@@ -7,6 +7,7 @@ use serde::Deserialize;
 
 use super::build::Builder;
 use super::props::MassProps;
+use crate::comfort::seat::{Seat, SeatSpec};
 use towride_mbs::input::InputError;
 use towride_mbs::model::builder::BodyHandle;
 use towride_mbs::path;
@@ -15,12 +16,20 @@ use towride_mbs::path;
 #[serde(deny_unknown_fields)]
 struct File {
     body: MassProps,
+    /// The driver's seat with its occupant, for the comfort at the seat surface; not
+    /// part of the multibody model (`crate::comfort::seat`).
+    seat: Option<SeatSpec>,
 }
 
-/// Reads `file` and adds the body `car_body`; returns its index.
-pub fn build(b: &mut Builder, file: &Path) -> Result<BodyHandle, InputError> {
+/// Reads `file` and adds the body `car_body`; returns its index and the driver's seat
+/// when the file gives one.
+pub fn build(b: &mut Builder, file: &Path) -> Result<(BodyHandle, Option<Seat>), InputError> {
     let src = b.read(file)?;
     let f: File = src.parse()?;
     let m = f.body.check(&src, &path!["body"])?;
-    b.body("car_body", &m)
+    let seat = match &f.seat {
+        Some(s) => Some(s.check(&src, &path!["seat"])?),
+        None => None,
+    };
+    Ok((b.body("car_body", &m)?, seat))
 }

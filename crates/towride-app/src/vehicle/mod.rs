@@ -139,6 +139,9 @@ pub struct Vehicle {
     /// numbers, and values the design statics derived (air springs' pressures); empty
     /// for an assembly file of coil springs and rubber, which gives everything.
     pub assumed: Vec<simple::Assumed>,
+    /// The driver's seat (`[seat]` of the body file), for the comfort at the seat
+    /// surface; `None` when the body file gives none.
+    pub seat: Option<crate::comfort::Seat>,
 }
 
 /// Reads a vehicle file, an assembly file ([`assembly_file`]) or a compact `simple` file

@@ -168,6 +168,36 @@
       C.axes.map((a) => [a.channel, a.axis, a.weighting.replace("w", "W"), a.rms_m_s2, a.vdv_m_s1_75, a.mtvv_m_s2, a.peak_m_s2, a.crest_factor, a.below_resolution ? "round-off (peak < 0.05 m/s²)" : a.transient ? "yes" : "no"])));
     app.append(el("p", { class: "hint" }, `Over the whole record (${fmt(C.axes[0].duration_s)} s); ${C.note}.`));
   }
+  // --- and at the seat surface, when the body file gives a seat
+  if (S.comfort_seat) {
+    const Q = S.comfort_seat, C = Q.comfort, m = Q.seat;
+    app.append(el("h3", { id: "comfort_seat" }, "Ride comfort at the seat surface (ISO 2631-1)"));
+    app.append(el("p", {}, `${C.point}. Vibration total value a_v = ${C.total_value_m_s2 == null ? "-" : fmt(C.total_value_m_s2) + " m/s²"} (k = 1, 1, 1).`));
+    app.append(table(["channel", "axis", "weighting", "a_w [m/s²]", "VDV [m/s^1.75]", "MTVV [m/s²]", "peak [m/s²]", "crest factor", "transient"],
+      C.axes.map((a) => [a.channel, a.axis, a.weighting.replace("w", "W"), a.rms_m_s2, a.vdv_m_s1_75, a.mtvv_m_s2, a.peak_m_s2, a.crest_factor, a.below_resolution ? "round-off (peak < 0.05 m/s²)" : a.transient ? "yes" : "no"])));
+    app.append(table(["seat model", "value"], [
+      ["cushion stiffness [N/m]", m.cushion_stiffness_n_m],
+      ["cushion damping [N s/m]", m.cushion_damping_n_s_m],
+      ["occupant mass moving with the seat [kg]", m.frame_mass_kg],
+      ["occupant mass on its spring [kg]", m.moving_mass_kg],
+      ["occupant spring [N/m]", m.occupant_stiffness_n_m],
+      ["occupant damper [N s/m]", m.occupant_damping_n_s_m],
+      ["largest vertical transmissibility [-]", Q.peak_transmissibility],
+      ["at [Hz]", Q.resonance_hz],
+      ["SEAT value z, a_w seat / a_w floor [-]", Q.seat_value_rms],
+      ["VDV seat / VDV floor, z [-]", Q.seat_value_vdv]]));
+    const tb = el("div", { class: "chart" });
+    app.append(tb);
+    charts.push(new uPlot({
+      width: width(), height: 260,
+      scales: { x: { time: false, distr: 3 } },
+      axes: [{ label: "frequency [Hz]", values: logTicks }, { label: "|a_seat / a_floor| [-]", size: 60, values: ticks }],
+      series: [{ label: "f [Hz]", value: (u, v) => fmt(v) },
+        { label: "vertical seat transmissibility", stroke: "#0072b2", width: 2, value: (u, v) => fmt(v) }],
+      plugins: [wheel()],
+    }, [Q.transmissibility.map((p) => p[0]), Q.transmissibility.map((p) => p[1])], tb));
+    app.append(el("p", { class: "hint" }, "The seat is a filter on the floor's vertical acceleration (cushion spring and damper under the occupant's apparent mass, Fairley & Griffin 1989), not coupled back into the car; fore-aft and lateral pass through unchanged. docs/comfort.md gives the sources and what is assumed."));
+  }
   if ((S.lift_off || []).length) {
     app.append(el("h3", {}, "Wheels off the road"));
     app.append(table(["wheel", "from [s]", "to [s]", "for [s]"],
