@@ -177,11 +177,28 @@ impl TandemCams {
         s: f64,
         kinks: &mut Vec<f64>,
     ) -> (f64, f64, bool) {
+        self.cam_with(road, p, d, s, kinks, &mut Vec::new())
+    }
+
+    /// [`TandemCams::cam`] with a buffer for the road's pieces.
+    fn cam_with(
+        &self,
+        road: &Road,
+        p: [f64; 2],
+        d: [f64; 2],
+        s: f64,
+        kinks: &mut Vec<f64>,
+        pieces: &mut Vec<crate::road::Piece>,
+    ) -> (f64, f64, bool) {
         let (s0, s1) = (s - self.xi_max, s + self.xi_max);
         let (xa, xb) = (p[0] + s0 * d[0], p[0] + s1 * d[0]);
         let (ya, yb) = (p[1] + s0 * d[1], p[1] + s1 * d[1]);
         if let Some(h) = road.flat_height(xa.min(xb), xa.max(xb), ya.min(yb), ya.max(yb)) {
             return (h, 0.0, true);
+        }
+        // Profile roads: exact quadratic pieces, no search (envelope_pieces.rs).
+        if let Some((w, dw)) = self.cam_on_pieces(road, p, d, s, kinks, pieces) {
+            return (w, dw, false);
         }
         let h_at = |eta: f64| road.height(p[0] + eta * d[0], p[1] + eta * d[1]);
         let g = |eta: f64| h_at(eta) + self.contour(eta - s);
@@ -265,14 +282,16 @@ impl TandemCams {
         heading: [f64; 2],
         lateral: [f64; 2],
     ) -> EffectiveRoad {
-        let mut kinks = Vec::new();
+        let (mut kinks, mut pieces) = (Vec::new(), Vec::new());
         let (mut w, mut tan, mut dw, mut dtan) = (0.0, 0.0, 0.0, 0.0);
         let mut flat = true;
         let n = self.offsets.len() as f64;
         for &y in &self.offsets {
             let p = [centre[0] + y * lateral[0], centre[1] + y * lateral[1]];
-            let (wf, dwf, ff) = self.cam(road, p, heading, 0.5 * self.l_s, &mut kinks);
-            let (wr, dwr, fr) = self.cam(road, p, heading, -0.5 * self.l_s, &mut kinks);
+            let (wf, dwf, ff) =
+                self.cam_with(road, p, heading, 0.5 * self.l_s, &mut kinks, &mut pieces);
+            let (wr, dwr, fr) =
+                self.cam_with(road, p, heading, -0.5 * self.l_s, &mut kinks, &mut pieces);
             flat &= ff && fr;
             w += 0.5 * (wf + wr) / n;
             tan += (wf - wr) / self.l_s / n;
@@ -291,7 +310,7 @@ impl TandemCams {
 }
 
 /// Maximum of a concave (unimodal) function on [lo, hi] by golden-section search.
-fn golden_max(f: &impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> (f64, f64) {
+pub(super) fn golden_max(f: &impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> (f64, f64) {
     const R: f64 = 0.618_033_988_749_895;
     let mut x1 = hi - R * (hi - lo);
     let mut x2 = lo + R * (hi - lo);
