@@ -20,6 +20,11 @@
 //! dw/ds = -z_c'(xi*) at the maximiser xi*, so the slope rate needs no differencing.
 //! Only the part of the cam within ELLIPS_MAX_STEP of its lowest point is searched (higher
 //! parts cannot touch an obstacle lower than that).
+//!
+//! On a two-track profile (and so the ISO 8608 random road) every piece is an exact
+//! quadratic along the cam's line, and `envelope_pieces.rs` finds each piece's maximum
+//! without a search (and skips pieces that cannot hold it); other roads take the search
+//! below.
 
 use crate::road::Road;
 
@@ -57,6 +62,8 @@ pub struct TandemCams {
     pub xi_max: f64,
     /// Lateral offsets of the tandems from the wheel centre plane [m].
     pub offsets: Vec<f64>,
+    /// z_c at BOUND_INTERVALS + 1 points evenly over [0, xi_max] (envelope_pieces.rs).
+    pub(super) bound: Vec<f64>,
     /// The last query and its answer: a Newton matrix built by finite differences asks
     /// for the same contact point again and again while it perturbs velocities and
     /// states, and the search over an obstacle is the tyre's costliest part.
@@ -95,15 +102,25 @@ impl TandemCams {
         let offsets = (0..n)
             .map(|i| p.width * ((i as f64 + 0.5) / n as f64 - 0.5))
             .collect();
-        TandemCams {
+        let mut cams = TandemCams {
             a,
             b,
             c,
             l_s: p.d.l_s,
             xi_max: a * u,
             offsets,
+            bound: Vec::new(),
             last: Box::default(),
-        }
+        };
+        cams.fill_bound();
+        cams
+    }
+
+    fn fill_bound(&mut self) {
+        let n = super::envelope_pieces::BOUND_INTERVALS;
+        self.bound = (0..=n)
+            .map(|j| self.contour(self.xi_max * j as f64 / n as f64))
+            .collect();
     }
 
     /// Effective-road queries so far: (all, answered from the memo, answered by the
@@ -353,6 +370,7 @@ mod tests {
             l_s: 0.15,
             xi_max: 0.12,
             offsets: vec![0.0],
+            bound: Vec::new(),
             last: Box::default(),
         };
         for m in [0.0, 0.05, -0.3, 1.0, -1.0, 4.0] {

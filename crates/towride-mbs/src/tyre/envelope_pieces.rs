@@ -32,7 +32,17 @@ const ETA_TOL: f64 = 1e-13;
 /// Largest contraction factor for which the fixed-point iteration is used.
 const K_MAX: f64 = 0.5;
 
+/// Intervals of the contour table over [0, xi_max] (the bound used to skip pieces).
+pub(super) const BOUND_INTERVALS: usize = 64;
+
 impl TandemCams {
+    /// An upper bound of z_c(xi) for |xi| >= dist: the table's value at the grid point at
+    /// or inside dist (z_c falls with |xi|).
+    fn contour_bound(&self, dist: f64) -> f64 {
+        let j = (dist / self.xi_max * BOUND_INTERVALS as f64).floor();
+        self.bound[(j.max(0.0) as usize).min(BOUND_INTERVALS)]
+    }
+
     /// xi where the contour's slope is -m: z_c'(xi) = -m (c_e > 1).
     fn xi_for_slope(&self, m: f64) -> f64 {
         if m == 0.0 {
@@ -86,9 +96,25 @@ impl TandemCams {
             return None;
         }
         // Each piece's maximum over its closed interval covers the window ends and both
-        // one-sided heights at a kink; the first strictly higher one wins.
+        // one-sided heights at a kink. The piece under the cam's centre goes first; a
+        // piece whose upper bound (its highest end, plus the most a concave quadratic
+        // rises above its chord, |c2| len^2 / 4, plus the contour's value at the piece's
+        // nearest point from the table) is below the best so far cannot hold the maximum.
+        let first = pieces.iter().position(|pc| pc.hi >= s).unwrap_or(0);
+        let order = std::iter::once(first).chain((0..pieces.len()).filter(|&i| i != first));
         let mut best: Option<(f64, f64, usize)> = None;
-        for (i, pc) in pieces.iter().enumerate() {
+        for i in order {
+            let pc = &pieces[i];
+            if let Some((_, b, _)) = best {
+                let half = 0.5 * (pc.hi - pc.lo);
+                let rise = (-pc.c2).max(0.0) * half * half;
+                let dist = (pc.lo - s).max(s - pc.hi).max(0.0);
+                let ub = pc.height(pc.lo).max(pc.height(pc.hi)) + rise + self.contour_bound(dist);
+                // 1e-15 m: rounding of the bound's terms.
+                if ub + 1e-15 < b {
+                    continue;
+                }
+            }
             let (eta, v) = self.piece_max(pc, s);
             if best.is_none_or(|(_, b, _)| v > b) {
                 best = Some((eta, v, i));
