@@ -7,20 +7,22 @@
 //! with a lateral component makes the product quadratic. The general search
 //! ([`TandemCams::cam`]) then finds no linear piece and runs a golden-section search on
 //! every piece (about 50 height queries each); on a profile sampled every 5 cm that search
-//! was 57 % of a whole class C run's time (perf, docs/roads.md).
+//! was 57 % of a class C run's time (perf; docs/roads.md, "Cost on a dense profile").
 //!
 //! Here each piece's maximum of g(eta) = h(eta) + z_c(eta - s) comes from the stationarity
 //! condition z_c'(xi) = -h'(eta), xi = eta - s, solved by the fixed-point iteration
 //! eta <- clamp(s + xi*(h'(eta))) with xi*(m) the closed-form root for a constant slope m
 //! (see `linear_piece_max`). For 1 < c_e <= 2 the contour's curvature is bounded away from
 //! zero: z_c''(xi) = -(c-1) (b/a^2) u^(c-2) (1-u^c)^(1/c-2) with u = |xi|/a, both factors
-//! >= 1, so |z_c''| >= (c-1) b/a^2 and |dxi*/dm| = 1/|z_c''| <= a^2/((c-1) b). The map is
+//! at least 1, so |z_c''| >= (c-1) b/a^2 and |dxi*/dm| = 1/|z_c''| <= a^2/((c-1) b). The map is
 //! then a contraction with factor k = 2 |c2| a^2 / ((c-1) b) (clamping does not enlarge
 //! it), and g is concave when k < 1, so its fixed point is the piece's maximum (at an end
-//! when the clamp is active, as for a concave function). On the 5 cm class C profile
-//! |c2| is below 1e-5 1/m for small yaw, so k ~ 1e-5 and two or three iterations reach
-//! 1e-12 m. Where k >= 1/2 or c_e > 2 (z_c'' vanishes at xi = 0) the piece falls back to
-//! the golden-section search, as before. A linear piece (c2 = 0) needs one step.
+//! when the clamp is active, as for a concave function). c2 is the heading's lateral
+//! component times the difference of the tracks' slopes over the track width, so k is
+//! tiny for the small yaw of a straight run. Where k > 1/2 or c_e > 2 (z_c'' vanishes at
+//! xi = 0) the piece falls back to the golden-section search, as before. A linear piece
+//! (c2 = 0) needs one step. Pieces that cannot beat the best so far are skipped (the
+//! bound in `cam_on_pieces`).
 
 use crate::road::{Piece, Road};
 
