@@ -50,6 +50,7 @@ mod road_obstacles;
 mod road_one_sided;
 mod road_profile_mesh;
 mod road_random;
+mod tyre_envelope_profile;
 mod tyre_factors;
 mod tyre_lateral;
 mod tyre_lift_off;

@@ -40,7 +40,7 @@ use crate::path;
 pub use hump::Hump;
 pub use mesh::HeightField;
 pub use obstacle::Obstacle;
-pub use profile::TrackProfile;
+pub use profile::{Piece, TrackProfile};
 pub use random::RandomSpec;
 
 /// A road surface.
@@ -326,6 +326,32 @@ impl Road {
             Kind::Mesh(m) => m.kinks_along(p, d, s0, s1, out),
         }
         out[from..].sort_by(f64::total_cmp);
+    }
+
+    /// The road along p + s d, s in [s0, s1], as exact quadratic pieces between its kinks
+    /// (see [`TrackProfile::pieces_along`]); `false` (and `out` empty) for a road whose
+    /// pieces are not polynomials (obstacles, meshes, CRG grids), which callers search.
+    pub fn pieces_along(
+        &self,
+        p: [f64; 2],
+        d: [f64; 2],
+        s0: f64,
+        s1: f64,
+        kinks: &mut Vec<f64>,
+        out: &mut Vec<Piece>,
+    ) -> bool {
+        let pr = match &self.kind {
+            Kind::Profile(pr) => pr,
+            Kind::Random(r) => &r.1,
+            _ => {
+                out.clear();
+                return false;
+            }
+        };
+        kinks.clear();
+        self.kinks_along(p, d, s0, s1, kinks);
+        pr.pieces_along(p, d, s0, s1, kinks, out);
+        true
     }
 
     /// A short description for logs and reports.

@@ -13,6 +13,37 @@ use crate::input::InputError;
 
 use super::{push_x_crossing, push_y_crossing};
 
+/// One piece of a road along a line: h(s) = h + dh (s - mid) + c2 (s - mid)^2 on
+/// [lo, hi] (one-sided at the ends where the road jumps).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Piece {
+    /// Start and end of the piece along the line [m].
+    pub lo: f64,
+    /// See `lo`.
+    pub hi: f64,
+    /// The expansion point (the piece's middle) [m].
+    pub mid: f64,
+    /// Height at `mid` [m].
+    pub h: f64,
+    /// dh/ds at `mid` [1].
+    pub dh: f64,
+    /// Half the second derivative d2h/ds2 [1/m].
+    pub c2: f64,
+}
+
+impl Piece {
+    /// Height at s [m].
+    pub fn height(&self, s: f64) -> f64 {
+        let u = s - self.mid;
+        self.h + u * (self.dh + u * self.c2)
+    }
+
+    /// dh/ds at s [1].
+    pub fn slope(&self, s: f64) -> f64 {
+        self.dh + 2.0 * self.c2 * (s - self.mid)
+    }
+}
+
 /// Two measured tracks.
 #[derive(Clone, Debug)]
 pub struct TrackProfile {
@@ -188,6 +219,41 @@ impl TrackProfile {
         }
         push_y_crossing(p, d, self.half_track, s0, s1, out);
         push_y_crossing(p, d, -self.half_track, s0, s1, out);
+    }
+
+    /// The road along the line p + s d between consecutive `kinks` (sorted, inside
+    /// [s0, s1]) as exact quadratics in s, one per piece: inside a piece both tracks are
+    /// linear in x and the blend weight is linear (or constant) in y, so their blend is a
+    /// polynomial of degree two in s (degree one when the line runs along x).
+    pub fn pieces_along(
+        &self,
+        p: [f64; 2],
+        d: [f64; 2],
+        s0: f64,
+        s1: f64,
+        kinks: &[f64],
+        out: &mut Vec<Piece>,
+    ) {
+        out.clear();
+        let mut lo = s0;
+        for &hi in kinks.iter().chain(std::iter::once(&s1)) {
+            let mid = 0.5 * (lo + hi);
+            let (x, y) = (p[0] + mid * d[0], p[1] + mid * d[1]);
+            // Mid-piece queries see the piece's own segment and weight regime.
+            let (zl, sl) = self.track(&self.left, x);
+            let (zr, sr) = self.track(&self.right, x);
+            let (t, dt) = self.weight(y);
+            let (gl, gr, gt) = (sl * d[0], sr * d[0], dt * d[1]);
+            out.push(Piece {
+                lo,
+                hi,
+                mid,
+                h: t * zl + (1.0 - t) * zr,
+                dh: t * gl + (1.0 - t) * gr + gt * (zl - zr),
+                c2: gt * (gl - gr),
+            });
+            lo = hi;
+        }
     }
 
     /// Lateral distance of the two tracks [m].

@@ -20,6 +20,11 @@
 //! dw/ds = -z_c'(xi*) at the maximiser xi*, so the slope rate needs no differencing.
 //! Only the part of the cam within ELLIPS_MAX_STEP of its lowest point is searched (higher
 //! parts cannot touch an obstacle lower than that).
+//!
+//! On a two-track profile (and so the ISO 8608 random road) every piece is an exact
+//! quadratic along the cam's line, and `envelope_pieces.rs` finds each piece's maximum
+//! without a search (and skips pieces that cannot hold it); other roads take the search
+//! below.
 
 use crate::road::Road;
 
@@ -57,6 +62,8 @@ pub struct TandemCams {
     pub xi_max: f64,
     /// Lateral offsets of the tandems from the wheel centre plane [m].
     pub offsets: Vec<f64>,
+    /// z_c at BOUND_INTERVALS + 1 points evenly over [0, xi_max] (envelope_pieces.rs).
+    pub(super) bound: Vec<f64>,
     /// The last query and its answer: a Newton matrix built by finite differences asks
     /// for the same contact point again and again while it perturbs velocities and
     /// states, and the search over an obstacle is the tyre's costliest part.
@@ -95,15 +102,25 @@ impl TandemCams {
         let offsets = (0..n)
             .map(|i| p.width * ((i as f64 + 0.5) / n as f64 - 0.5))
             .collect();
-        TandemCams {
+        let mut cams = TandemCams {
             a,
             b,
             c,
             l_s: p.d.l_s,
             xi_max: a * u,
             offsets,
+            bound: Vec::new(),
             last: Box::default(),
-        }
+        };
+        cams.fill_bound();
+        cams
+    }
+
+    fn fill_bound(&mut self) {
+        let n = super::envelope_pieces::BOUND_INTERVALS;
+        self.bound = (0..=n)
+            .map(|j| self.contour(self.xi_max * j as f64 / n as f64))
+            .collect();
     }
 
     /// Effective-road queries so far: (all, answered from the memo, answered by the
@@ -177,11 +194,28 @@ impl TandemCams {
         s: f64,
         kinks: &mut Vec<f64>,
     ) -> (f64, f64, bool) {
+        self.cam_with(road, p, d, s, kinks, &mut Vec::new())
+    }
+
+    /// [`TandemCams::cam`] with a buffer for the road's pieces.
+    fn cam_with(
+        &self,
+        road: &Road,
+        p: [f64; 2],
+        d: [f64; 2],
+        s: f64,
+        kinks: &mut Vec<f64>,
+        pieces: &mut Vec<crate::road::Piece>,
+    ) -> (f64, f64, bool) {
         let (s0, s1) = (s - self.xi_max, s + self.xi_max);
         let (xa, xb) = (p[0] + s0 * d[0], p[0] + s1 * d[0]);
         let (ya, yb) = (p[1] + s0 * d[1], p[1] + s1 * d[1]);
         if let Some(h) = road.flat_height(xa.min(xb), xa.max(xb), ya.min(yb), ya.max(yb)) {
             return (h, 0.0, true);
+        }
+        // Profile roads: exact quadratic pieces, no search (envelope_pieces.rs).
+        if let Some((w, dw)) = self.cam_on_pieces(road, p, d, s, kinks, pieces) {
+            return (w, dw, false);
         }
         let h_at = |eta: f64| road.height(p[0] + eta * d[0], p[1] + eta * d[1]);
         let g = |eta: f64| h_at(eta) + self.contour(eta - s);
@@ -265,14 +299,16 @@ impl TandemCams {
         heading: [f64; 2],
         lateral: [f64; 2],
     ) -> EffectiveRoad {
-        let mut kinks = Vec::new();
+        let (mut kinks, mut pieces) = (Vec::new(), Vec::new());
         let (mut w, mut tan, mut dw, mut dtan) = (0.0, 0.0, 0.0, 0.0);
         let mut flat = true;
         let n = self.offsets.len() as f64;
         for &y in &self.offsets {
             let p = [centre[0] + y * lateral[0], centre[1] + y * lateral[1]];
-            let (wf, dwf, ff) = self.cam(road, p, heading, 0.5 * self.l_s, &mut kinks);
-            let (wr, dwr, fr) = self.cam(road, p, heading, -0.5 * self.l_s, &mut kinks);
+            let (wf, dwf, ff) =
+                self.cam_with(road, p, heading, 0.5 * self.l_s, &mut kinks, &mut pieces);
+            let (wr, dwr, fr) =
+                self.cam_with(road, p, heading, -0.5 * self.l_s, &mut kinks, &mut pieces);
             flat &= ff && fr;
             w += 0.5 * (wf + wr) / n;
             tan += (wf - wr) / self.l_s / n;
@@ -291,7 +327,7 @@ impl TandemCams {
 }
 
 /// Maximum of a concave (unimodal) function on [lo, hi] by golden-section search.
-fn golden_max(f: &impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> (f64, f64) {
+pub(super) fn golden_max(f: &impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> (f64, f64) {
     const R: f64 = 0.618_033_988_749_895;
     let mut x1 = hi - R * (hi - lo);
     let mut x2 = lo + R * (hi - lo);
@@ -334,6 +370,7 @@ mod tests {
             l_s: 0.15,
             xi_max: 0.12,
             offsets: vec![0.0],
+            bound: Vec::new(),
             last: Box::default(),
         };
         for m in [0.0, 0.05, -0.3, 1.0, -1.0, 4.0] {

@@ -86,6 +86,7 @@
 
 pub(crate) mod combined;
 pub(crate) mod envelope;
+mod envelope_pieces;
 pub use crate::input::tyre_factors as factors;
 pub(crate) mod magic;
 pub(crate) mod magic_lateral;
