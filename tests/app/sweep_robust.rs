@@ -198,6 +198,38 @@ fn top_takes_the_highest_ranked_assumed_values_of_a_study_with_its_ranges() {
 }
 
 #[test]
+fn a_ring_tyre_value_moves_with_the_tyre_factors_held_so_each_end_builds() {
+    // FREQ_WINDUP x 0.7 alone leaves the file's longitudinal stiffness above the ring's
+    // (the tyre is refused); with the factors held the stiffness follows the ring, as in
+    // the sensitivity study. Each end is built when the block is read.
+    let dir = tmp("windup");
+    let f = study(
+        &dir,
+        "1, 10",
+        "params = [\"trailer_155_80r13.tir:STRUCTURAL.FREQ_WINDUP\"]",
+    );
+    let s = Sweep::load(&f).unwrap();
+    let m = &s.robustness.unwrap().moves[0];
+    assert_eq!(m.class, "assumed");
+    for end in &m.ends {
+        assert_eq!(end[0].path, "STRUCTURAL.FREQ_WINDUP");
+        let held: Vec<&str> = end[1..].iter().map(|o| o.path.as_str()).collect();
+        assert!(
+            held.len() == 7 && held.iter().all(|p| p.starts_with("factor.")),
+            "{held:?}"
+        );
+    }
+    // The raw value alone does not build: what the block avoids.
+    let alone = towride_mbs::input::Loader::with_overrides(vec![m.ends[0][0].clone()]);
+    let e = towride_app::job::Job::from_file(Path::new(repo!("scenes/default.toml")), &alone)
+        .err()
+        .expect("FREQ_WINDUP x 0.7 alone is refused")
+        .to_string();
+    assert!(e.contains("LONGITUDINAL_STIFFNESS"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
 fn a_bad_robustness_block_is_refused_naming_file_line_and_field() {
     let dir = tmp("bad");
     // The block starts on line 23 of the study file written by `study`.

@@ -18,7 +18,7 @@
 //! from it (`top`), else [`crate::study::sensitivity::settings::range_of`] (1 -+ `range`
 //! within the value's plausibility bounds or a tyre factor's open range).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
@@ -28,8 +28,9 @@ use crate::study::sensitivity::params::{candidates, named, Param};
 use crate::study::sensitivity::settings::range_of;
 use crate::study::sensitivity::{default_dir, Settings};
 use towride_mbs::input::provenance::read_provenance;
-use towride_mbs::input::{InputError, Origin, Override, Source};
+use towride_mbs::input::{InputError, Loader, Origin, Override, Source};
 use towride_mbs::path;
+use towride_mbs::tyre::factors;
 
 /// The block as read.
 #[derive(Deserialize, Debug, Clone)]
@@ -60,9 +61,13 @@ pub struct Move {
     pub base: f64,
     /// The scale factors of its range's ends [low, high].
     pub factors: [f64; 2],
-    /// The overrides setting it to each end.
+    /// The overrides setting it to each end (with a ring tyre's independent factors held
+    /// at their file values, see [`make_move`]).
     #[serde(skip)]
-    pub ends: [Override; 2],
+    pub ends: [Vec<Override>; 2],
+    /// The block's field that names it (errors about it point there).
+    #[serde(skip)]
+    pub at: Box<InputError>,
 }
 
 /// A validated `[robustness]` block.
@@ -144,7 +149,7 @@ impl RobustnessIn {
             let p =
                 named(&all, std::slice::from_ref(name)).map_err(|e| src.error(&here, e.message))?;
             let at = src.error(&here, "");
-            moves.push(make_move(&p[0], "params", range_of(&p[0], range), at));
+            moves.push(make_move(&p[0], "params", range_of(&p[0], range), &all, at));
         }
         if let Some(n) = self.top.filter(|&n| n > 0) {
             let file = match &self.study {
@@ -154,6 +159,20 @@ impl RobustnessIn {
             for m in top_assumed(src, scene, &file, n, &all, range)? {
                 if !moves.iter().any(|q: &Move| q.parameter == m.parameter) {
                     moves.push(m);
+                }
+            }
+        }
+        // Each end must still build the scene: a refused value costs no runs.
+        for m in &moves {
+            for (e, ov) in m.ends.iter().enumerate() {
+                let loader = Loader::with_overrides(ov.clone());
+                if let Err(err) =
+                    crate::scene::load_with(scene, &crate::scene::Changes::default(), &loader)
+                {
+                    return Err(InputError {
+                        message: format!("{} x {}: {err}", m.parameter, m.factors[e]),
+                        ..(*m.at).clone()
+                    });
                 }
             }
         }
@@ -172,7 +191,7 @@ impl RobustnessIn {
 fn top_assumed(
     src: &Source,
     scene: &Path,
-    file: &PathBuf,
+    file: &Path,
     n: usize,
     all: &[Param],
     range: f64,
@@ -200,7 +219,7 @@ fn top_assumed(
             r.study,
             r.output.as_deref().unwrap_or("its first output")
         );
-        out.push(make_move(&p[0], &from, factors, src.error(&here, "")));
+        out.push(make_move(&p[0], &from, factors, all, src.error(&here, "")));
     }
     if out.len() < n {
         return Err(src.error(
@@ -215,14 +234,32 @@ fn top_assumed(
     Ok(out)
 }
 
-/// Value `p` moved to `factors`, its overrides blamed on `at` (the block's field).
-fn make_move(p: &Param, from: &str, factors: [f64; 2], at: InputError) -> Move {
-    let end = |f: f64| Override {
+/// Value `p` moved to `factors`, its overrides blamed on `at` (the block's field). A
+/// `.tir` value of a ring tyre that is not itself a factor (FREQ_WINDUP) moves with the
+/// file's independent factors held at their values ([`candidates`] lists them), as the
+/// sensitivity study moves it beside them: the values they drive (the longitudinal
+/// stiffness, which must stay below the ring's) follow, and the tyre stays valid
+/// (docs/road_tyre.md, "Independent factors of the ring tyre").
+fn make_move(p: &Param, from: &str, factors: [f64; 2], all: &[Param], at: InputError) -> Move {
+    let blame = |o: Override| Override {
         origin: Origin::File {
             file: Box::new(at.clone()),
             path: Box::new(at.clone()),
         },
-        ..p.scaled(f)
+        ..o
+    };
+    let held: Vec<Override> = all
+        .iter()
+        .filter(|q| q.file == p.file && q.path.starts_with(factors::PREFIX) && q.path != p.path)
+        .filter(|_| {
+            !p.path.starts_with(factors::PREFIX) && !factors::DRIVEN.contains(&p.path.as_str())
+        })
+        .map(|q| blame(q.scaled(1.0)))
+        .collect();
+    let end = |f: f64| {
+        let mut v = vec![blame(p.scaled(f))];
+        v.extend(held.iter().cloned());
+        v
     };
     Move {
         parameter: p.name.clone(),
@@ -231,6 +268,7 @@ fn make_move(p: &Param, from: &str, factors: [f64; 2], at: InputError) -> Move {
         base: p.base_value(),
         factors,
         ends: [end(factors[0]), end(factors[1])],
+        at: Box::new(at),
     }
 }
 

@@ -226,7 +226,7 @@ pub fn run(
             let sub = Sweep {
                 name: format!("{}: {} x {:.3}", sweep.name, m.parameter, m.factors[e]),
                 parameters: parameters.clone(),
-                base: sweep.base.fresh().extended(vec![m.ends[e].clone()]),
+                base: sweep.base.fresh().extended(m.ends[e].clone()),
                 usage: None,
                 robustness: None,
                 ..sweep.clone()

@@ -1,12 +1,12 @@
 // towride sweep page, the study's sections (D.extra): damage per km of the [usage]
 // spectrum with the spectrum and its source classes, and the ranking's robustness to
-// the [robustness] block's values. Placed before the cases table.
+// the [robustness] block's values. Placed first: they are the study's answers.
 "use strict";
 (function () {
   const D = JSON.parse(document.getElementById("data").textContent);
   const X = D.extra || {};
   const app = document.getElementById("app");
-  const before = document.getElementById("cases");
+  const before = document.getElementById("plots");
   const put = (node) => app.insertBefore(node, before);
   const pct = (v) => `${+(100 * v).toFixed(1)} %`;
 
