@@ -745,7 +745,10 @@ pub fn run_sweep_with(
     if let Some(block) = &sweep.robustness {
         use super::robust_run::{run, RobustnessRun};
         res.robustness = Some(if shard != (0, 1) {
-            RobustnessRun::not_run(block, "a shard has not the nominal ranking: run the whole sweep (or merge the shards and run it with --resume)".into())
+            RobustnessRun::not_run(
+                block,
+                "a shard has not the whole nominal ranking: run the sweep without --shard".into(),
+            )
         } else if res.interrupted > 0 {
             RobustnessRun::not_run(
                 block,

@@ -166,9 +166,8 @@ impl RobustnessIn {
         for m in &moves {
             for (e, ov) in m.ends.iter().enumerate() {
                 let loader = Loader::with_overrides(ov.clone());
-                if let Err(err) =
-                    crate::scene::load_with(scene, &crate::scene::Changes::default(), &loader)
-                {
+                // A job, as a case builds it: a scene or a mechanism.
+                if let Err(err) = crate::job::Job::from_file(scene, &loader) {
                     return Err(InputError {
                         message: format!("{} x {}: {err}", m.parameter, m.factors[e]),
                         ..(*m.at).clone()
