@@ -164,7 +164,7 @@ pub fn default_dir(file: &Path) -> PathBuf {
             .join("_"),
         _ => {
             let stem = file.file_stem().unwrap_or_default().to_string_lossy();
-            let h = crate::sweep::fingerprint::fnv1a(full.to_string_lossy().as_bytes());
+            let h = towride_mbs::input::fnv1a(full.to_string_lossy().as_bytes());
             format!("{stem}_{:08x}", h as u32)
         }
     };
