@@ -133,6 +133,48 @@ fn rank(summary: &Path, by: &str, figures: &[String], out: Option<&Path>, json: 
     Ok(0)
 }
 
+/// The ranking's robustness: per perturbation and figure, tau-b and the best value.
+fn print_robustness(r: &towride_app::sweep::robust_run::RobustnessRun) {
+    let b = &r.block;
+    println!(
+        "robustness of the {} ranking ({}, {} cases per run, {:.1} s):",
+        b.by, r.status, r.cases_per_run, r.wall_s
+    );
+    if let Some(n) = &r.note {
+        println!("  {n}");
+    }
+    if let Some(nom) = &r.nominal {
+        for f in &nom.figures {
+            println!("  {}: nominal best {} {}", f.figure, b.by, f.best);
+        }
+    }
+    for p in &r.perturbations {
+        println!(
+            "  {} x {:.3} ({}, {}){}",
+            p.parameter,
+            p.factor,
+            p.end,
+            p.class,
+            p.note
+                .as_deref()
+                .map_or(String::new(), |n| format!(": {n}"))
+        );
+        for o in &p.outcomes {
+            let held = match (o.stays_best, o.within_spread) {
+                (true, _) => "stays best".to_string(),
+                (false, w) => format!(
+                    "nominal best {} now rank {}{}",
+                    o.nominal_best,
+                    o.nominal_best_rank,
+                    if w { ", within the spread" } else { "" }
+                ),
+            };
+            let tau = o.tau_b.map_or("-".to_string(), |t| format!("{t:+.3}"));
+            println!("    {}: tau_b {tau}, best {}; {held}", o.figure, o.best);
+        }
+    }
+}
+
 pub fn run(a: &SweepArgs) -> CliResult {
     if let Some(SweepCmd::Rank {
         summary,
@@ -215,6 +257,9 @@ pub fn run(a: &SweepArgs) -> CliResult {
                 ),
             }
         }
+        if let Some(r) = &res.robustness {
+            print_robustness(r);
+        }
         for r in res.rows.iter().filter(|r| r.status == "failed") {
             eprintln!(
                 "  case {} {:?}: {}",
@@ -224,10 +269,18 @@ pub fn run(a: &SweepArgs) -> CliResult {
             );
         }
     }
-    if res.interrupted > 0 {
+    let robust_cut = res
+        .robustness
+        .as_ref()
+        .is_some_and(|r| r.status == "interrupted");
+    if res.interrupted > 0 || robust_cut {
+        let what = if res.interrupted > 0 {
+            format!("{} cases not finished", res.interrupted)
+        } else {
+            "the robustness runs not finished".to_string()
+        };
         eprintln!(
-            "interrupted: {} cases not finished; `towride sweep {} --resume` runs them",
-            res.interrupted,
+            "interrupted: {what}; `towride sweep {} --resume` runs them",
             file.display()
         );
         return Ok(crate::interrupt::EXIT);

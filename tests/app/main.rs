@@ -47,6 +47,7 @@ mod study_tyre_factors;
 mod summary_schema;
 mod sweep_rank;
 mod sweep_report;
+mod sweep_robust;
 mod sweep_usage;
 mod tyre_cleat;
 mod tyre_enveloping;

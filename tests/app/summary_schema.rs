@@ -318,11 +318,11 @@ fn merge_and_resume_refuse_the_previous_layout() {
     let csv = |s: usize| dir.join(format!("summary_shard{s}of2.csv"));
     let merged = dir.join("merged.csv");
     let m = merge(&[csv(0), csv(1)], &merged).unwrap();
-    assert_eq!((m.cases, m.schema_version), (6, 4));
+    assert_eq!((m.cases, m.schema_version), (6, 5));
     // Shard 1 as version 6 wrote it.
     let twin = csv(1).with_extension("json");
     let text = std::fs::read_to_string(&twin).unwrap();
-    let old = text.replace("\"schema_version\": 7", "\"schema_version\": 6");
+    let old = text.replace("\"schema_version\": 8", "\"schema_version\": 6");
     assert_ne!(old, text);
     std::fs::write(&twin, &old).unwrap();
     std::fs::remove_file(&merged).unwrap();
@@ -330,7 +330,7 @@ fn merge_and_resume_refuse_the_previous_layout() {
     assert!(
         e.contains("summary_shard1of2.json")
             && e.contains("schema version 6")
-            && e.contains("version 7"),
+            && e.contains("version 8"),
         "{e}"
     );
     assert!(!merged.exists());

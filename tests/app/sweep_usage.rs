@@ -41,6 +41,7 @@ fn damage_per_km_is_obstacles_times_the_share_weighted_passage_damage() {
                 share: 0.75,
             },
         ],
+        provenance: Vec::new(),
     };
     let out = per_km(&table, &usage);
     assert_eq!(out.len(), 2, "{out:?}");
@@ -91,5 +92,18 @@ fn a_usage_block_whose_shares_do_not_add_to_one_is_refused_with_its_field() {
         .usage
         .expect("the shipped study declares a usage spectrum");
     assert!((u.mix.iter().map(|m| m.share).sum::<f64>() - 1.0).abs() < 1e-12);
+    // Its values carry their source class, which the study page shows beside the damage.
+    let keys: Vec<(&str, &str)> = u
+        .provenance
+        .iter()
+        .map(|e| (e.key.as_str(), e.class.as_str()))
+        .collect();
+    assert_eq!(
+        keys,
+        [
+            ("usage.obstacles_per_km", "assumed"),
+            ("usage.mix", "assumed")
+        ]
+    );
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -203,7 +203,7 @@ fn sweep_merge_refuses_missing_shards_and_speaks_json() {
         merged.to_str().unwrap(),
         "--json",
     ]);
-    assert_eq!(j["schema_version"], 4);
+    assert_eq!(j["schema_version"], 5);
     assert_eq!(
         (j["cases"].as_u64(), j["cases_total"].as_u64()),
         (Some(6), Some(6))

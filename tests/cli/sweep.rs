@@ -97,3 +97,59 @@ fn a_failing_case_is_recorded_and_the_others_go_on() {
     let e = rows[1]["error"].as_str().unwrap();
     assert!(e.contains("pendulum.toml") && e.contains("mass_kg"), "{e}");
 }
+
+/// A `[robustness]` block through the command: the pendulum's peak link tension is
+/// 3 m g whatever the bob's inertia, so moving the (tiny) inertia keeps the order of the
+/// masses (tau-b 1) and the lightest bob best; a bad block is refused with its line.
+#[test]
+fn a_robustness_block_ranks_the_pendulum_masses_as_3_m_g_does() {
+    let dir = std::env::temp_dir().join(format!("towride_robust_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let f = dir.join("study.toml");
+    let text = format!(
+        "[sweep]\nname = \"pendulum robustness\"\nscene = \"{}\"\n\n\
+         [[parameter]]\nname = \"mass_kg\"\nfile = \"pendulum.toml\"\npath = \"body[0].mass_kg\"\n\
+         values = [2.0, 0.5, 1.0]\n\n\
+         [[parameter]]\nname = \"length\"\nfile = \"pendulum.toml\"\npath = \"body[0].cm_position_m\"\n\
+         values = [[0.5, 0.0, 0.0], [1.0, 0.0, 0.0]]\n\n\
+         [robustness]\nparams = [\"pendulum.toml:body[0].inertia_kg_m2\"]\nby = \"mass_kg\"\n\
+         figures = [\"pivot.force.z max\"]\nsubset = {{ length = [[1.0, 0.0, 0.0]] }}\nrange = 0.3\n",
+        repo!("scenes/examples/pendulum.toml")
+    );
+    std::fs::write(&f, &text).unwrap();
+    let out = dir.join("out");
+    let j = towride_json(&[
+        "sweep",
+        f.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--jobs",
+        "2",
+        "--json",
+    ]);
+    let r = &j["robustness"];
+    assert_eq!(r["status"], "completed");
+    assert_eq!(r["cases_per_run"], 3);
+    assert_eq!(r["nominal"]["figures"][0]["best"], "0.5");
+    let p = r["perturbations"].as_array().unwrap();
+    assert_eq!(p.len(), 2);
+    for q in p {
+        let o = &q["outcomes"][0];
+        assert_eq!(o["figure"], "pivot.force.z max [N]");
+        assert_eq!(
+            (o["best"].as_str(), o["tau_b"].as_f64()),
+            (Some("0.5"), Some(1.0))
+        );
+        assert_eq!(o["stays_best"], true);
+    }
+    // range = 2 (line 22 of the file): refused before any run, naming line and field.
+    std::fs::write(&f, text.replace("range = 0.3", "range = 2.0")).unwrap();
+    let o = towride(&["sweep", f.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && !e.contains("panicked"), "{e}");
+    assert!(
+        e.contains("study.toml:22") && e.contains("robustness.range"),
+        "{e}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

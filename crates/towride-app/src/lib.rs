@@ -85,11 +85,11 @@ pub mod job;
 
 pub mod report;
 
-pub mod sweep;
-
 pub mod validate;
 
 pub mod study;
+
+pub mod sweep;
 
 pub mod calibrate;
 

@@ -224,8 +224,8 @@ pub fn write_summary(path: &Path, sweep: &Sweep, rows: &[CaseRow]) -> Result<()>
 
 /// Version of a merged table's report (`sweep merge --json`). 2: the merged table's
 /// figures are those of sweep summary version 5 ([`SCHEMA_VERSION`]); 3: version 6;
-/// 4: version 7.
-pub const MERGE_SCHEMA_VERSION: u32 = 4;
+/// 4: version 7; 5: version 8.
+pub const MERGE_SCHEMA_VERSION: u32 = 5;
 
 /// What [`merge`] joined.
 #[derive(Clone, Debug, serde::Serialize)]
@@ -472,8 +472,10 @@ pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<Merged> {
 /// loads (per component, the worse bracket), each DEL in its channel's unit; and the
 /// driver's floor comfort (ISO 2631-1 a_w and VDV per axis, total value;
 /// [`super::figures`]). 7: each stress point's IIW damage per passage and the ball
-/// force against the coupling's UN R55 D-value and test force.
-pub const SCHEMA_VERSION: u32 = 7;
+/// force against the coupling's UN R55 D-value and test force. 8: the usage spectrum
+/// with its provenance (`usage_spectrum`) and the ranking's robustness (`robustness`,
+/// [`super::robust_run`]).
+pub const SCHEMA_VERSION: u32 = 8;
 
 /// Refuses a sweep file (a shard's JSON twin, a summary or journal to resume) written
 /// with another layout version than [`SCHEMA_VERSION`]: an older one's figures (signed
@@ -539,6 +541,11 @@ pub struct SweepRun {
     pub fingerprint: Option<Fingerprint>,
     /// Damage per km for the sweep file's `[usage]` spectrum ([`super::usage`]).
     pub usage: Option<Vec<super::usage::PerKm>>,
+    /// The spectrum `usage` is of, with the source classes the study file gives it.
+    pub usage_spectrum: Option<super::usage::Usage>,
+    /// The ranking's robustness to the `[robustness]` block's values
+    /// ([`super::robust_run`]).
+    pub robustness: Option<super::robust_run::RobustnessRun>,
     /// Every case.
     pub rows: Vec<CaseRow>,
 }
@@ -611,6 +618,8 @@ fn run_with(
         report: None,
         fingerprint: None,
         usage: None,
+        usage_spectrum: None,
+        robustness: None,
         rows,
     })
 }
@@ -731,8 +740,29 @@ pub fn run_sweep_with(
     let _ = std::fs::remove_file(&journal);
     if let Some(u) = &sweep.usage {
         res.usage = Some(super::usage::per_km(&super::page::read(&csv)?, u));
+        res.usage_spectrum = Some(u.clone());
     }
-    res.report = Some(match super::page::write(&csv, &sweep.name) {
+    if let Some(block) = &sweep.robustness {
+        use super::robust_run::{run, RobustnessRun};
+        res.robustness = Some(if shard != (0, 1) {
+            RobustnessRun::not_run(
+                block,
+                "a shard has not the whole nominal ranking: run the sweep without --shard".into(),
+            )
+        } else if res.interrupted > 0 {
+            RobustnessRun::not_run(
+                block,
+                "the sweep was interrupted: `--resume` finishes it and then runs the block".into(),
+            )
+        } else {
+            run(sweep, block, &csv, dir, opts, progress)?
+        });
+    }
+    let extra = serde_json::json!({
+        "usage": res.usage_spectrum.as_ref().map(|s| serde_json::json!({"spectrum": s, "per_km": res.usage})),
+        "robustness": res.robustness,
+    });
+    res.report = Some(match super::page::write_with(&csv, &sweep.name, &extra) {
         Ok(files) => files.html.display().to_string(),
         Err(e) => format!("not written: {e}"),
     });

@@ -23,15 +23,7 @@ use serde::{Deserialize, Serialize};
 
 use super::Sweep;
 
-/// 64-bit FNV-1a of `bytes`.
-pub fn fnv1a(bytes: &[u8]) -> u64 {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for b in bytes {
-        h ^= u64::from(*b);
-        h = h.wrapping_mul(0x0100_0000_01b3);
-    }
-    h
-}
+pub use towride_mbs::input::fnv1a;
 
 fn hex(bytes: &[u8]) -> String {
     format!("{:016x}", fnv1a(bytes))

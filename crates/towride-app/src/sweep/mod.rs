@@ -28,6 +28,8 @@ pub mod guard;
 pub mod page;
 pub mod rank;
 pub mod resume;
+pub mod robust;
+pub mod robust_run;
 pub mod usage;
 
 use std::path::{Path, PathBuf};
@@ -47,6 +49,7 @@ struct SweepFile {
     #[serde(default)]
     parameter: Vec<ParamIn>,
     usage: Option<usage::UsageIn>,
+    robustness: Option<robust::RobustnessIn>,
 }
 
 #[derive(Deserialize)]
@@ -99,6 +102,9 @@ pub struct Sweep {
     pub produced_by: ProducedBy,
     /// The usage spectrum of `[usage]`, for damage per km ([`usage::per_km`]).
     pub usage: Option<usage::Usage>,
+    /// The `[robustness]` block: values to move and the grid to re-run
+    /// ([`robust_run`]).
+    pub robustness: Option<robust::Robustness>,
 }
 
 /// One case: its index and the values it sets.
@@ -154,6 +160,10 @@ impl Sweep {
             .map(|p| (p.name.clone(), p.values.clone()))
             .collect();
         let usage = f.usage.map(|u| u.check(&src, &named)).transpose()?;
+        let robustness = f
+            .robustness
+            .map(|r| r.check(&src, &scene, &named))
+            .transpose()?;
         Ok(Sweep {
             name: f.sweep.name,
             scene,
@@ -161,6 +171,7 @@ impl Sweep {
             base: Loader::new(),
             produced_by: ProducedBy::default(),
             usage,
+            robustness,
         })
     }
 

@@ -306,8 +306,9 @@ pub fn figure(t: &Table, title: &str, png: &Path) -> Result<(), Error> {
     Ok(())
 }
 
-/// The HTML page of table `t`.
-pub fn page(t: &Table, title: &str, png: Option<&str>) -> String {
+/// The HTML page of table `t`, with the study's sections in `extra` (`usage`,
+/// `robustness`; JSON null: none).
+pub fn page(t: &Table, title: &str, png: Option<&str>, extra: &serde_json::Value) -> String {
     let mut d = String::from("{\"title\":");
     string(&mut d, title);
     d.push_str(",\"x\":");
@@ -328,18 +329,30 @@ pub fn page(t: &Table, title: &str, png: Option<&str>) -> String {
             .unwrap_or_default()
             .replace("</", "<\\/"),
     );
+    d.push_str(",\"extra\":");
+    d.push_str(&extra.to_string().replace("</", "<\\/"));
     d.push('}');
+    // The study's sections (usage, robustness) after the table's own.
+    let script = concat!(
+        include_str!("../report/assets/sweep.js"),
+        include_str!("../report/assets/sweep_study.js")
+    );
     crate::report::html::page(
         &format!("towride sweep: {title}"),
         &format!("Sweep: {title}"),
         &d,
-        include_str!("../report/assets/sweep.js"),
+        script,
     )
 }
 
 /// Writes the page and figure of summary `csv` beside it ([`page_path`]), each whole or
 /// not at all.
 pub fn write(csv: &Path, title: &str) -> Result<Files, Error> {
+    write_with(csv, title, &serde_json::Value::Null)
+}
+
+/// [`write`] with the study's sections `extra` (see [`page`]).
+pub fn write_with(csv: &Path, title: &str, extra: &serde_json::Value) -> Result<Files, Error> {
     let t = read(csv)?;
     let png = page_path(csv, "png");
     let html = page_path(csv, "html");
@@ -348,7 +361,7 @@ pub fn write(csv: &Path, title: &str) -> Result<Files, Error> {
     figure(&t, title, &part)?;
     std::fs::rename(&part, &png).map_err(|e| Error::io(&png, e))?;
     let name = png.file_name().map(|n| n.to_string_lossy().into_owned());
-    crate::atomic::write(&html, page(&t, title, name.as_deref()))
+    crate::atomic::write(&html, page(&t, title, name.as_deref(), extra))
         .map_err(|e| Error::io(&html, e))?;
     Ok(Files { html, png })
 }

@@ -232,12 +232,15 @@ fn figure(r: &Ranking) -> Figure {
                 dot: 0.0,
             };
             Panel {
-                title: format!("{name}: best {} {}", r.by, f.best),
+                // The x axis names the ranked parameter; a long figure name on the y
+                // axis would run past the panel, so the title alone carries it there.
+                title: format!("{name}: best {}", f.best),
                 x: Axis::linear(r.by.clone()),
-                y: Axis::linear(format!(
-                    "{name} [{}]",
-                    crate::report::display::display_unit(&unit)
-                )),
+                y: Axis::linear(if name.len() > 28 {
+                    format!("[{}]", crate::report::display::display_unit(&unit))
+                } else {
+                    format!("{name} [{}]", crate::report::display::display_unit(&unit))
+                }),
                 traces: vec![
                     Trace {
                         label: format!("mean over {}", r.over.join(", ")),

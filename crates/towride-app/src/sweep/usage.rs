@@ -12,6 +12,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::page::Table;
+use towride_mbs::input::provenance::{read_provenance, ProvenanceEntry};
 use towride_mbs::input::{InputError, Source};
 use towride_mbs::path;
 
@@ -39,6 +40,8 @@ pub struct Usage {
     pub obstacles_per_km: f64,
     /// The mix of cases.
     pub mix: Vec<Mix>,
+    /// The source classes the study file gives the block's values (`usage.*`).
+    pub provenance: Vec<ProvenanceEntry>,
 }
 
 /// The figures damage per km is made of: a per-passage Miner sum.
@@ -95,16 +98,23 @@ impl UsageIn {
                 format!("the shares add to {total}, not 1"),
             ));
         }
+        // The spectrum's tags, shown beside its damage (an assumed spectrum says so).
+        let provenance = read_provenance(&src.path)
+            .unwrap_or_default()
+            .into_iter()
+            .filter(|e| e.key.starts_with("usage."))
+            .collect();
         Ok(Usage {
             obstacles_per_km: opk,
             mix,
+            provenance,
         })
     }
 }
 
 /// Two values as TOML text or as written in a table: equal as numbers or as strings
 /// without quotes.
-fn same_value(a: &str, b: &str) -> bool {
+pub(crate) fn same_value(a: &str, b: &str) -> bool {
     let t = |s: &str| s.trim().trim_matches('"').to_string();
     match (t(a).parse::<f64>(), t(b).parse::<f64>()) {
         (Ok(x), Ok(y)) => x == y,

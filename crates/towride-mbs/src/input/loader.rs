@@ -367,6 +367,19 @@ impl Loader {
     }
 }
 
+/// 64-bit FNV-1a of `bytes` (Fowler, Noll and Vo; offset basis 0xcbf29ce484222325,
+/// prime 0x100000001b3): the same on every machine and Rust version, which std's
+/// `DefaultHasher` does not promise, so it names inputs and results stably (a sweep's
+/// fingerprint, a study folder outside the working directory).
+pub fn fnv1a(bytes: &[u8]) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for b in bytes {
+        h ^= u64::from(*b);
+        h = h.wrapping_mul(0x0100_0000_01b3);
+    }
+    h
+}
+
 /// `path` with `.` components dropped and each `..` cancelling the component before it
 /// (lexically: the project's inputs name files, not symbolic links).
 pub fn normalized(path: &Path) -> PathBuf {

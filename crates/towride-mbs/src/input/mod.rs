@@ -15,7 +15,7 @@ pub mod suggest;
 pub mod tir;
 pub mod tyre_factors;
 
-pub use loader::{normalized, read_text, Applied, Layer, Loader};
+pub use loader::{fnv1a, normalized, read_text, Applied, Layer, Loader};
 pub use overrides::{read_file as read_overrides, value_text, Origin, Override};
 
 use std::fmt;

@@ -41,22 +41,74 @@ pub struct AssumedInputs {
 /// The assumed values among the `top` inputs the first output of the study in `dir`
 /// ranks highest, for `scene`.
 pub fn assumed_inputs(scene: &Path, dir: &Path, top: usize) -> AssumedInputs {
-    let path = dir.join("sensitivity.json");
-    let none = |note: String| AssumedInputs {
-        study: None,
-        output: None,
-        inputs: Vec::new(),
-        note: Some(note),
-    };
-    let Ok(text) = std::fs::read_to_string(&path) else {
-        return none(format!(
+    match ranked(scene, &dir.join("sensitivity.json")) {
+        Ok(r) => AssumedInputs {
+            study: Some(r.study),
+            output: r.output,
+            inputs: r
+                .inputs
+                .into_iter()
+                .filter(|i| i.input.rank <= top && i.class != Class::Tagged)
+                .map(|i| i.input)
+                .collect(),
+            note: None,
+        },
+        Err(note) => AssumedInputs {
+            study: None,
+            output: None,
+            inputs: Vec::new(),
+            note: Some(note),
+        },
+    }
+}
+
+/// A ranked input's source class, as far as a ranking of assumed values cares.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Class {
+    /// Tagged `assumed`.
+    Assumed,
+    /// No source class.
+    Untagged,
+    /// Measured, published or scaled.
+    Tagged,
+}
+
+/// One input of a study's ranking with its class and the study's range for it.
+#[derive(Clone, Debug)]
+pub struct RankedInput {
+    /// Rank, name, sensitivity, class text and source text.
+    pub input: SensitiveInput,
+    /// Its class.
+    pub class: Class,
+    /// The study's scale factors [low, high] for it (Morris's range; an OAT study
+    /// records the range it would have used).
+    pub range: Option<[f64; 2]>,
+}
+
+/// A study's full ranking by its first output.
+#[derive(Clone, Debug)]
+pub struct Ranked {
+    /// The study file.
+    pub study: String,
+    /// The output ranked by.
+    pub output: Option<String>,
+    /// Every parameter whose file the scene reads, most sensitive first.
+    pub inputs: Vec<RankedInput>,
+}
+
+/// Every parameter of the study `path` (a `sensitivity.json`) of `scene`, ranked by
+/// the study's first output (|elasticity| for OAT, mu* / base for Morris) with its
+/// source class; `Err`: why there is no ranking (no study, another scene's).
+pub fn ranked(scene: &Path, path: &Path) -> Result<Ranked, String> {
+    let Ok(text) = std::fs::read_to_string(path) else {
+        return Err(format!(
             "no sensitivity study of this scene in {} (`towride sensitivity {}` makes one)",
-            dir.display(),
+            path.parent().unwrap_or(Path::new(".")).display(),
             scene.display()
         ));
     };
     let Ok(v) = serde_json::from_str::<serde_json::Value>(&text) else {
-        return none(format!("{} is not a sensitivity study", path.display()));
+        return Err(format!("{} is not a sensitivity study", path.display()));
     };
     // A study of another scene (an older layout keyed studies by the scene's stem) says
     // nothing about this one's inputs.
@@ -64,10 +116,10 @@ pub fn assumed_inputs(scene: &Path, dir: &Path, top: usize) -> AssumedInputs {
         .as_str()
         .filter(|f| !same_file(Path::new(f), scene))
     {
-        return none(format!(
+        return Err(format!(
             "the study in {} is of another scene ({of}): `towride sensitivity {}` makes \
              one of this scene",
-            dir.display(),
+            path.display(),
             scene.display()
         ));
     }
@@ -90,7 +142,7 @@ pub fn assumed_inputs(scene: &Path, dir: &Path, top: usize) -> AssumedInputs {
     let _ = crate::scene::load_with(scene, &crate::scene::Changes::default(), &loader);
     let files = loader.files_read();
     let mut inputs = Vec::new();
-    for (i, p) in params.iter().take(top).enumerate() {
+    for (i, p) in params.iter().enumerate() {
         let (file, key) = (
             p["param"]["file"].as_str().unwrap_or(""),
             p["param"]["path"].as_str().unwrap_or(""),
@@ -100,25 +152,34 @@ pub fn assumed_inputs(scene: &Path, dir: &Path, top: usize) -> AssumedInputs {
         };
         let mut entries = read_provenance(f).unwrap_or_default();
         entries.extend(towride_mbs::tyre::factors::provenance(&entries));
-        let (class, source) = match entries.iter().find(|e| e.key == key) {
-            Some(e) if e.class == SourceClass::Assumed => ("assumed", e.source.clone()),
-            Some(_) => continue,
-            None => ("untagged", String::new()),
+        let (class, text, source) = match entries.iter().find(|e| e.key == key) {
+            Some(e) if e.class == SourceClass::Assumed => {
+                (Class::Assumed, "assumed", e.source.clone())
+            }
+            Some(e) => (Class::Tagged, e.class.as_str(), e.source.clone()),
+            None => (Class::Untagged, "untagged", String::new()),
         };
-        inputs.push(SensitiveInput {
-            rank: i + 1,
-            parameter: p["param"]["name"].as_str().unwrap_or("").to_string(),
-            sensitivity: score(p),
-            class: class.into(),
-            source,
+        let range = match (p["range"][0].as_f64(), p["range"][1].as_f64()) {
+            (Some(lo), Some(hi)) => Some([lo, hi]),
+            _ => None,
+        };
+        inputs.push(RankedInput {
+            input: SensitiveInput {
+                rank: i + 1,
+                parameter: p["param"]["name"].as_str().unwrap_or("").to_string(),
+                sensitivity: score(p),
+                class: text.into(),
+                source,
+            },
+            class,
+            range,
         });
     }
-    AssumedInputs {
-        study: Some(path.display().to_string()),
+    Ok(Ranked {
+        study: path.display().to_string(),
         output: v["outputs"][0]["name"].as_str().map(String::from),
         inputs,
-        note: None,
-    }
+    })
 }
 
 /// True when `a` and `b` name one file (by where they are, or by their normalised text

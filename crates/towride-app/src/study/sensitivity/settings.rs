@@ -131,7 +131,7 @@ pub const MAX_TRAJECTORIES: usize = 1000;
 /// The Morris range of a parameter's scale factor: 1 -+ `range`, narrowed to the
 /// plausibility bounds of its key (a ring tyre's factor: to its open range, see
 /// [`super::params::factor_limits`]).
-pub(super) fn range_of(p: &Param, range: f64) -> [f64; 2] {
+pub fn range_of(p: &Param, range: f64) -> [f64; 2] {
     if let Some([lo, hi]) = super::params::factor_limits(p, 1.0 - range) {
         return [(1.0 - range).max(lo), (1.0 + range).min(hi)];
     }
@@ -164,7 +164,7 @@ pub fn default_dir(file: &Path) -> PathBuf {
             .join("_"),
         _ => {
             let stem = file.file_stem().unwrap_or_default().to_string_lossy();
-            let h = crate::sweep::fingerprint::fnv1a(full.to_string_lossy().as_bytes());
+            let h = towride_mbs::input::fnv1a(full.to_string_lossy().as_bytes());
             format!("{stem}_{:08x}", h as u32)
         }
     };
