@@ -45,6 +45,10 @@ pub struct SweepArgs {
     /// With --check: the relative difference a converged channel may show [%] (default 2).
     #[arg(long, requires = "check", value_parser = crate::bounded::share_pct)]
     check_threshold: Option<f64>,
+    /// Leave the file's `[robustness]` block out: run and rank the grid alone (the block
+    /// re-runs part of the grid once per moved value and end, many times its cost).
+    #[arg(long)]
+    no_robustness: bool,
     #[command(flatten)]
     inputs: crate::inputs::InputArgs,
 }
@@ -203,6 +207,9 @@ pub fn run(a: &SweepArgs) -> CliResult {
     }
     let file = a.file.as_ref().ok_or("a sweep file is required")?;
     let mut sweep = Sweep::load(file)?;
+    if a.no_robustness {
+        sweep.robustness = None;
+    }
     // The command line's overrides reach every case, under the case's own values.
     sweep.base = a.inputs.loader()?;
     sweep.produced_by = crate::inputs::stamp(&Default::default());

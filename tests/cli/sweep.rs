@@ -142,6 +142,19 @@ fn a_robustness_block_ranks_the_pendulum_masses_as_3_m_g_does() {
         );
         assert_eq!(o["stays_best"], true);
     }
+    // --no-robustness runs the grid alone: the same six cases, no block.
+    let alone = towride_json(&[
+        "sweep",
+        f.to_str().unwrap(),
+        "--out",
+        dir.join("alone").to_str().unwrap(),
+        "--jobs",
+        "2",
+        "--no-robustness",
+        "--json",
+    ]);
+    assert!(alone["robustness"].is_null(), "{}", alone["robustness"]);
+    assert_eq!(alone["cases"], 6);
     // range = 2 (line 22 of the file): refused before any run, naming line and field.
     std::fs::write(&f, text.replace("range = 0.3", "range = 2.0")).unwrap();
     let o = towride(&["sweep", f.to_str().unwrap(), "--out", out.to_str().unwrap()]);
