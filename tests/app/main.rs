@@ -67,6 +67,7 @@ mod vehicle_drawbar;
 mod vehicle_driveline;
 mod vehicle_engine;
 mod vehicle_errors;
+mod vehicle_kinematics;
 mod vehicle_scene;
 mod vehicle_simple;
 mod vehicle_simple_calib;

@@ -322,7 +322,7 @@ fn coincident_hardpoints_are_blamed_on_the_hardpoints() {
         ),
         // This one panicked (a tie rod of zero length).
         (
-            "front_mcpherson.toml:hardpoints.tie_rod_outer_m=[-0.150, 0.330, 0.290]",
+            "front_mcpherson.toml:hardpoints.tie_rod_outer_m=[-0.150, 0.330, 0.3104]",
             "hardpoints.tie_rod_outer_m",
         ),
         // These were blamed on `spring 'spring_rl': point_j_m` (in hitch.toml!), on

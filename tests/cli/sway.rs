@@ -1,13 +1,14 @@
-//! The combination's sway (snaking) mode: the growth rate and period `towride linear`
-//! gives for an unstable case (the legal-limit trailer with its payload over the axle and
-//! spread along the box, 130 km/h) against the growth a time-domain run shows after a
-//! small steering input (docs/manoeuvres.md, "Sway").
+//! The combination's sway (snaking) mode: the decay rate and period `towride linear`
+//! gives for the least damped loading (the legal-limit trailer with its payload over the
+//! axle and spread along the box, 130 km/h) against the decay a time-domain run shows
+//! after a small steering input (docs/manoeuvres.md, "Sway").
 
 use std::path::PathBuf;
 
 const TRAILER: &str = "vehicles/trailer/box_trailer.toml";
 
-/// The unstable loading: nose load of the empty trailer only, payload yaw inertia 450 kg m^2.
+/// The least damped loading: nose load of the empty trailer only, payload yaw inertia
+/// 450 kg m^2.
 fn loading(scene: &str) -> Vec<String> {
     vec![
         "--set".into(),
@@ -22,7 +23,7 @@ fn loading(scene: &str) -> Vec<String> {
 }
 
 #[test]
-fn the_sway_mode_linear_analysis_predicts_grows_at_its_rate_in_a_run() {
+fn the_sway_mode_decays_in_a_run_at_the_rate_the_linear_analysis_gives() {
     let dir = std::env::temp_dir().join(format!("towride_sway_{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     // Linear: the default scene rolling at 130 km/h, the ramp far ahead.
@@ -68,7 +69,11 @@ fn the_sway_mode_linear_analysis_predicts_grows_at_its_rate_in_a_run() {
         sway["real_1_per_s"].as_f64().unwrap(),
         sway["damped_hz"].as_f64().unwrap(),
     );
-    assert!(sigma > 0.05, "the case is meant to be unstable: {sway}");
+    // Damped well enough to measure over a few cycles, lightly enough to see them.
+    assert!(
+        (-0.6..-0.05).contains(&sigma),
+        "the sway mode's real part: {sway}"
+    );
 
     // Time domain: the lane-change scene's input scaled down 20 times (0.1 mm of rack),
     // so the sway stays small and linear while it grows.
@@ -122,14 +127,13 @@ fn the_sway_mode_linear_analysis_predicts_grows_at_its_rate_in_a_run() {
     let (a, b) = (peaks[0], peaks[peaks.len() - 1]);
     let cycles = (peaks.len() - 1) as f64;
     let period = (b.0 - a.0) / cycles;
-    let growth = (b.1 / a.1).ln() / (b.0 - a.0);
-    // Measured: period 1.122 s against 1 / 0.893 Hz, growth 0.159 against 0.151 1/s.
+    let rate = (b.1 / a.1).ln() / (b.0 - a.0);
     assert!(
         (period * hz - 1.0).abs() < 0.02,
         "period {period} s against {hz} Hz"
     );
     assert!(
-        (growth / sigma - 1.0).abs() < 0.10,
-        "growth {growth} against {sigma} 1/s"
+        (rate / sigma - 1.0).abs() < 0.10,
+        "decay {rate} against {sigma} 1/s"
     );
 }

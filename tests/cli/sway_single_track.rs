@@ -359,12 +359,6 @@ fn spread_vehicle() -> Vehicle {
     .unwrap()
 }
 
-/// The damping ratio of an eigenvalue (re, frequency [Hz]).
-fn zeta((re, hz): (f64, f64)) -> f64 {
-    let w = 2.0 * std::f64::consts::PI * hz;
-    -re / (re * re + w * w).sqrt()
-}
-
 #[test]
 fn the_reference_model_behind_a_massless_trailer_is_the_bicycle_model() {
     // With the trailer's mass and inertia gone and no relaxation, the car's (v, r) obey
@@ -403,26 +397,50 @@ fn the_reference_model_behind_a_massless_trailer_is_the_bicycle_model() {
 }
 
 #[test]
-fn the_sway_mode_is_less_damped_than_the_classical_linear_model_at_its_frequency() {
+fn the_sway_mode_and_its_critical_speed_match_the_classical_linear_model() {
     let p = single_track(&spread_vehicle());
-    // The reference with the tyres' relaxation snakes above 200 km/h for this load.
-    let uc = critical_speed(&p).expect("the spread load snakes below 100 m/s");
-    assert!(uc * 3.6 > 150.0, "{} km/h", uc * 3.6);
-    for kmh in [60.0, 120.0, 160.0] {
+    let uc = critical_speed(&p).expect("the spread load snakes below 100 m/s") * 3.6;
+    for kmh in [60.0, 160.0] {
         let reference = sway(&p, kmh / 3.6);
-        let (z, hz) = full_model_sway(kmh, &spread_load());
+        let (_, hz) = full_model_sway(kmh, &spread_load());
         // The same mode: frequency within 10 %.
         assert!(
             (hz / reference.1 - 1.0).abs() < 0.10,
             "{kmh} km/h: {hz} Hz, {reference:?}"
         );
-        // The full model (roll, suspension and steering compliance, the flexible
-        // crossbeam, camber) is less damped than the rigid single-track model
-        // (docs/manoeuvres.md, "The classical linear model").
-        assert!(
-            z < zeta(reference),
-            "{kmh} km/h: {z} against {}",
-            zeta(reference)
-        );
     }
+    // The full model's critical speed, where its damping ratio changes sign between two
+    // linearisations 20 km/h apart around the reference's. It has what the rigid
+    // single-track model leaves out (roll, the front axle's roll understeer of -5 deg/m
+    // bump steer, suspension compliance, the flexible crossbeam), so agreement within
+    // 15 % is what is asked; the E90-scaled tie rod (-30 deg/m) gave 114 km/h against
+    // 225 km/h (docs/manoeuvres.md, "The classical linear model").
+    let lo = 20.0 * (uc / 20.0).floor();
+    let (z_lo, _) = full_model_sway(lo, &spread_load());
+    let (z_hi, _) = full_model_sway(lo + 20.0, &spread_load());
+    let (mut a, mut za, mut b, mut zb) = (lo, z_lo, lo + 20.0, z_hi);
+    // Step outwards (at most 60 km/h either way) until the sign changes.
+    for _ in 0..3 {
+        if za > 0.0 && zb <= 0.0 {
+            break;
+        }
+        if za <= 0.0 {
+            (b, zb) = (a, za);
+            a -= 20.0;
+            za = full_model_sway(a, &spread_load()).0;
+        } else {
+            (a, za) = (b, zb);
+            b += 20.0;
+            zb = full_model_sway(b, &spread_load()).0;
+        }
+    }
+    assert!(
+        za > 0.0 && zb <= 0.0,
+        "no sign change between {a} and {b} km/h"
+    );
+    let full = a + (b - a) * za / (za - zb);
+    assert!(
+        (full / uc - 1.0).abs() < 0.15,
+        "critical speed {full} km/h against the classical model's {uc} km/h"
+    );
 }

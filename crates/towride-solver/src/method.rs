@@ -15,7 +15,7 @@ use crate::roots::Roots;
 /// Convergence failures in one step after which the run ends: IDA's `MXNCF` (`ida.c`),
 /// the default of `SolverOptions::max_convergence_failures`.
 pub const MXNCF: usize = 10;
-/// Error-test failures in one step after which the run ends: IDA's `MXNEF` (`ida.c`),
+/// Error-test failures in one step after which a BDF run ends: IDA's `MXNEF` (`ida.c`),
 /// the default of `SolverOptions::max_error_failures`.
 pub const MXNEF: usize = 10;
 

@@ -162,7 +162,8 @@ pub struct SolverOptions {
     pub max_newton_iters: usize,
     /// Newton convergence failures allowed in one step (IDA: 10).
     pub max_convergence_failures: usize,
-    /// Error-test failures allowed in one step (IDA: 10).
+    /// Error-test failures allowed in one step (IDA: 10); the BDF only. Radau IIA, as
+    /// RADAU5, has no such limit: its step-size guard ends a step that keeps failing.
     pub max_error_failures: usize,
     /// Newton convergence constant: converged when rate/(1-rate)*||delta|| < this (IDA: 0.33).
     pub newton_tol: f64,

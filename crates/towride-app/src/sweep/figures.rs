@@ -162,7 +162,7 @@ fn verdict_figures(r: &RunResult, out: &mut Figures) {
         .channels
         .values()
         .filter(|c| !c.below_floor)
-        .map(|c| c.max_diff.max(c.min_diff).max(c.rms_diff))
+        .map(|c| c.worst())
         .fold(0.0f64, f64::max);
     out.push((CONVERGED.into(), if v.converged { 1.0 } else { 0.0 }));
     out.push((CONVERGENCE_WORST.into(), 100.0 * worst));

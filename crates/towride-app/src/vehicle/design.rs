@@ -60,6 +60,7 @@ pub fn finish(
     let p = preload(&c.rates, g, load);
     let mr = motion_ratio(&c.rates, g);
     let unsprung_kg = reduced_mass(&c.rates, g);
+    let (bump_steer_deg_m, camber_gain_deg_m) = toe_and_camber_rates(&c.rates, g);
     let complain = |message: String| InputError {
         message,
         ..c.complaint.clone()
@@ -105,6 +106,8 @@ pub fn finish(
         wheel_rate_n_m: element_rate * mr * mr,
         free_length_m,
         unsprung_kg,
+        bump_steer_deg_m,
+        camber_gain_deg_m,
     };
     Ok((design, air))
 }
@@ -118,6 +121,10 @@ pub struct CornerRates {
     pub wheel_centre: V,
     /// Rate of the preloaded element's length [m] or angle [rad].
     pub element_rate: f64,
+    /// Where the wheel centre is [m] (its side, for the sign of toe and camber).
+    pub wheel_centre_at: V,
+    /// Angular velocity of the wheel carrier [rad/s]: its toe and camber rates.
+    pub carrier_turn: V,
 }
 
 /// The force (or torque) the preloaded element must carry, repulsive positive, for the
@@ -171,6 +178,30 @@ pub struct CornerDesign {
     /// kinetic energy [kg]: sum m_i (|v_i| / v_wheel.up)^2 (tyre belt included, rotary
     /// inertia left out).
     pub unsprung_kg: f64,
+    /// Bump steer: toe angle per wheel-centre rise [deg/m], toe-in positive (SAE J670),
+    /// at the design position with the body held and the bushings rigid.
+    pub bump_steer_deg_m: f64,
+    /// Camber per wheel-centre rise [deg/m], top of the wheel outward positive.
+    pub camber_gain_deg_m: f64,
+}
+
+/// Bump steer and camber gain [deg/m] of a corner: its carrier's turn about the vertical
+/// and the fore-aft axis per unit rise of the wheel centre. A left wheel (y > 0) toes in
+/// when it turns clockwise seen from above and leans its top out when it turns about -x.
+pub fn toe_and_camber_rates(r: &CornerRates, g: V) -> (f64, f64) {
+    let up = scale(&g, -1.0 / norm(&g));
+    let rise = dot(&up, &r.wheel_centre);
+    let side = if r.wheel_centre_at[1] >= 0.0 {
+        1.0
+    } else {
+        -1.0
+    };
+    let w = &r.carrier_turn;
+    // `+ 0.0` turns a negative zero (a right wheel that does not steer) into zero.
+    (
+        (-side * dot(w, &up) / rise).to_degrees() + 0.0,
+        (-side * w[0] / rise).to_degrees() + 0.0,
+    )
 }
 
 /// Unsprung mass reduced to the wheel centre's vertical motion.
@@ -200,6 +231,8 @@ mod tests {
             masses: vec![],
             wheel_centre: [0.0, 0.0, 1.0],
             element_rate: -0.5,
+            wheel_centre_at: [1.0, 0.0, 0.0],
+            carrier_turn: [0.0, -1.0, 0.0],
         };
         assert!((preload(&r, [0.0, 0.0, -9.81], 100.0) - 200.0).abs() < 1e-12);
     }

@@ -368,6 +368,8 @@ fn side(
         ],
         wheel_centre: v.wheel_centre,
         element_rate: v.spring,
+        wheel_centre_at: p.wheel_centre,
+        carrier_turn: v.knuckle,
     };
     let corner = Corner {
         wheel: name.to_string(),

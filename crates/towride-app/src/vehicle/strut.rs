@@ -52,6 +52,8 @@ pub struct Rates {
     pub wheel_centre: V,
     /// Spring length rate.
     pub spring: f64,
+    /// The knuckle's angular velocity.
+    pub knuckle: V,
 }
 
 /// The rates of side `p` with the parts' centres of mass `cms` (knuckle, lower arm,
@@ -103,5 +105,6 @@ pub fn rates(p: &StrutPoints, src: &Source, cms: &[V; 4]) -> Result<Rates, Input
         ],
         wheel_centre: on_knuckle(&p.wheel_centre),
         spring: length_rate(&p.spring_seat, &on_knuckle(&p.spring_seat), &p.strut_top),
+        knuckle: w,
     })
 }

@@ -188,6 +188,8 @@ pub fn build(b: &mut Builder, s: &Spec, tyre: &Tyre) -> Result<Built, InputError
             ],
             wheel_centre: vw,
             element_rate: 0.0,
+            wheel_centre_at: rim.cm,
+            carrier_turn: y,
         });
         bushing_rates[k] = dot(&col(&laws.axes, 2), &y);
         halves.push(h);
