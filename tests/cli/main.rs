@@ -27,6 +27,7 @@ mod modes;
 mod out_guard;
 mod overrides;
 mod provenance;
+mod radau_rejections;
 mod rainflow;
 mod reliability;
 mod road;

@@ -13,7 +13,8 @@ use crate::problem::{DaeProblem, VarKind};
 use crate::roots::Roots;
 
 /// Convergence failures in one step after which the run ends: IDA's `MXNCF` (`ida.c`),
-/// the default of `SolverOptions::max_convergence_failures`.
+/// the default of `SolverOptions::max_convergence_failures` (Radau IIA: non-finite
+/// residuals only).
 pub const MXNCF: usize = 10;
 /// Error-test failures in one step after which a BDF run ends: IDA's `MXNEF` (`ida.c`),
 /// the default of `SolverOptions::max_error_failures`.

@@ -160,7 +160,8 @@ pub struct SolverOptions {
     pub jacobian: JacobianSource,
     /// Newton iterations per step attempt (IDA: 4).
     pub max_newton_iters: usize,
-    /// Newton convergence failures allowed in one step (IDA: 10).
+    /// Newton convergence failures allowed in one step (IDA: 10). Radau IIA, as RADAU5,
+    /// counts only non-finite residuals: a diverging or slow iteration just cuts the step.
     pub max_convergence_failures: usize,
     /// Error-test failures allowed in one step (IDA: 10); the BDF only. Radau IIA, as
     /// RADAU5, has no such limit: its step-size guard ends a step that keeps failing.

@@ -294,7 +294,13 @@ impl<P: DaeProblem + ?Sized> Radau5<'_, P> {
         if let NewtonFail::Singular(_) = fail {
             self.ctl.singular_in_row += 1;
         }
-        let give_up = failures >= self.core.opts.max_convergence_failures
+        // As RADAU5 ("UNEXPECTED STEP-REJECTION"): a Newton iteration that diverges or
+        // converges too slowly only cuts the step (by at least 1 - SLOW_SAFETY), and the
+        // step-size guard ends a step that cannot pass; IDA's ten failures per step ended
+        // runs a few more cuts would have carried through (the coupling head's play).
+        // Singular matrices in a row and non-finite residuals still end the run.
+        let counted = matches!(fail, NewtonFail::NonFinite(_));
+        let give_up = (counted && failures >= self.core.opts.max_convergence_failures)
             || self.ctl.singular_in_row >= MAX_SINGULAR;
         if give_up {
             return Err(match fail {

@@ -1,0 +1,64 @@
+//! Runs that Radau IIA used to give up on: ten error-test failures (a tight reference at
+//! the ramp's foot) or ten Newton failures (a coupling head's play) in one step ended them,
+//! where RADAU5 keeps cutting the step. Each now completes and agrees with a run at a
+//! tolerance ten times tighter (docs/solver.md).
+
+use super::towride_json;
+
+const S: &str = "scenes/default.toml";
+const H: &str = "vehicles/fabia/hitch.toml";
+
+/// hitch_fx |peak| [N] of the default scene with `sets`, after checking it completed.
+fn peak(tag: &str, sets: &[String]) -> f64 {
+    let dir = std::env::temp_dir().join(format!("towride_rej_{}_{tag}", std::process::id()));
+    let mut args = vec![
+        "run".to_string(),
+        S.into(),
+        "--animation-rate-hz".into(),
+        "0".into(),
+        "--json".into(),
+        "--out".into(),
+        dir.display().to_string(),
+    ];
+    for s in sets {
+        args.extend(["--set".into(), s.clone()]);
+    }
+    let v = towride_json(&args.iter().map(String::as_str).collect::<Vec<_>>());
+    std::fs::remove_dir_all(&dir).ok();
+    assert_eq!(v["status"], "completed", "{tag}: {}", v["error"]);
+    v["channels"]["hitch_fx"]["abs_peak"].as_f64().unwrap()
+}
+
+fn tolerance(rtol: f64, atol_scale: f64) -> Vec<String> {
+    vec![
+        format!("{S}:solver.rtol={rtol:e}"),
+        format!("{S}:run.atol_scale={atol_scale:e}"),
+    ]
+}
+
+#[test]
+fn a_tight_reference_passes_the_ramp_foot() {
+    // Variant 10 at 60 km/h at rtol 1e-6: stopped at t = 0.049 s by ten error-test
+    // failures as the front tyres' cams reached the ramp's foot.
+    let case = [
+        format!("{S}:scene.hitch_variant=10"),
+        format!("{S}:run.speed_km_h=60"),
+    ];
+    let run = peak("ref", &[&case[..], &tolerance(1e-6, 1e-3)].concat());
+    let tight = peak("tight", &[&case[..], &tolerance(1e-7, 1e-4)].concat());
+    assert!((run / tight - 1.0).abs() < 1e-3, "{run} against {tight}");
+}
+
+#[test]
+fn the_coupling_heads_play_runs_at_the_scenes_tolerance() {
+    // 0.5 mm of play smoothed over 50 um at the scene's rtol 1e-4: stopped at t = 0.672 s
+    // by ten Newton failures in one step.
+    let law = "{ stiffness_n_m = 2.0e7, play_m = 5.0e-4, smoothing_m = 5.0e-5 }";
+    let case = [
+        format!("{H}:ball_coupling.kind=\"coupling_head\""),
+        format!("{H}:ball_coupling.coupling_head.stiffness_n_m=[{law}, {law}, {law}]"),
+    ];
+    let run = peak("play", &case);
+    let tight = peak("play_tight", &[&case[..], &tolerance(1e-5, 0.1)].concat());
+    assert!((run / tight - 1.0).abs() < 2e-3, "{run} against {tight}");
+}
