@@ -67,18 +67,11 @@ fn front_bump_steer_and_camber_gain_of_the_model_match_the_design_analysis() {
     // The multibody model at 0.9 g and 1.1 g: the springs were preloaded for 1 g, so
     // the body sinks and rises about the design position by some 15 mm at the front.
     // The tyres' lateral stiffness would hold the contact patch against the track change,
-    // so the pads float (the least lateral stiffness the file's bounds accept).
-    let pads =
-        towride_mbs::input::Loader::with_overrides(vec![towride_mbs::input::Override::program(
-            "car_185_60r14.tir",
-            "STRUCTURAL.LATERAL_STIFFNESS",
-            "1e3",
-            "floating pads",
-        )]);
+    // so the pads float.
     v = vehicle::load(
         std::path::Path::new(repo!("vehicles/fabia.toml")),
         &Options::default(),
-        &pads,
+        &crate::vehicle_statics::floating_pads(),
     )
     .unwrap();
     v.model.road = Some(Road::flat(0.0));

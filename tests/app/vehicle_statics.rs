@@ -43,6 +43,18 @@ pub(crate) fn at_rest_with(
     (v, sys, st.y, st.yp)
 }
 
+/// The car's tyres on floating pads: their lateral stiffness at the least the file's
+/// bounds accept (1e3 N/m, 1/86 of the tyre's), so the contact patch follows the track
+/// change as on a ride-frequency or kinematics rig.
+pub(crate) fn floating_pads() -> towride_mbs::input::Loader {
+    towride_mbs::input::Loader::with_overrides(vec![towride_mbs::input::Override::program(
+        "car_185_60r14.tir",
+        "STRUCTURAL.LATERAL_STIFFNESS",
+        "1e3",
+        "floating pads",
+    )])
+}
+
 /// Normal force of every tyre [N], by wheel name.
 pub(crate) fn tyre_loads(sys: &System, y: &[f64]) -> Vec<(String, f64)> {
     let (_, ov, ol, _) = sys.offsets();
@@ -228,15 +240,7 @@ fn car_body_and_wheel_hop_frequencies() {
     // stiffness resists the McPherson's track change and stiffens the front (bounce
     // 1.42 -> 1.48 Hz), which the half-car estimate (wheel rate and tyre rate in series)
     // leaves out; rolling, the lateral slip relaxes that resistance.
-    let pads =
-        towride_mbs::input::Loader::with_overrides(vec![towride_mbs::input::Override::program(
-            "car_185_60r14.tir",
-            "STRUCTURAL.LATERAL_STIFFNESS",
-            // The least the file's bounds accept, 1/86 of the tyre's.
-            "1e3",
-            "floating pads",
-        )]);
-    let (v, sys, y, _) = at_rest_with(repo!("vehicles/fabia.toml"), None, &pads);
+    let (v, sys, y, _) = at_rest_with(repo!("vehicles/fabia.toml"), None, &floating_pads());
     let lin = linearise(&sys, 0.0, &y).unwrap();
     let unsprung = |n: &str| {
         ["wheel_", "knuckle_", "arm_", "lca_"]

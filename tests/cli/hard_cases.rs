@@ -5,49 +5,39 @@
 //! a sharply smoothed play; the start now finds the ball load of the play-free coupling
 //! (docs/mechanism.md, "Statics").
 
-use super::towride_json;
-
 const S: &str = "scenes/default.toml";
 const H: &str = "vehicles/fabia/hitch.toml";
 
-/// hitch_fx |peak| [N] of the default scene with `sets`, after checking it completed.
-fn peak(tag: &str, sets: &[String]) -> f64 {
+/// Runs the default scene with `sets` (and `extra` arguments) into a fresh folder; returns
+/// the folder and the command's output.
+fn run(tag: &str, sets: &[String], extra: &[&str]) -> (std::path::PathBuf, std::process::Output) {
     let dir = std::env::temp_dir().join(format!("towride_rej_{}_{tag}", std::process::id()));
-    let mut args = vec![
-        "run".to_string(),
-        S.into(),
-        "--animation-rate-hz".into(),
-        "0".into(),
-        "--json".into(),
-        "--out".into(),
-        dir.display().to_string(),
-    ];
+    let mut args: Vec<String> = ["run", S, "--animation-rate-hz", "0", "--out"]
+        .iter()
+        .map(|a| a.to_string())
+        .collect();
+    args.push(dir.display().to_string());
+    args.extend(extra.iter().map(|a| a.to_string()));
     for s in sets {
         args.extend(["--set".into(), s.clone()]);
     }
-    let v = towride_json(&args.iter().map(String::as_str).collect::<Vec<_>>());
+    let out = super::towride_ok(&args.iter().map(String::as_str).collect::<Vec<_>>());
+    (dir, out)
+}
+
+/// hitch_fx |peak| [N] of the default scene with `sets`, after checking it completed.
+fn peak(tag: &str, sets: &[String]) -> f64 {
+    let (dir, out) = run(tag, sets, &["--json"]);
     std::fs::remove_dir_all(&dir).ok();
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["status"], "completed", "{tag}: {}", v["error"]);
     v["channels"]["hitch_fx"]["abs_peak"].as_f64().unwrap()
 }
 
 /// The ball's vertical force [N] at the start of a short run of the default scene.
 fn ball_load(tag: &str, sets: &[String]) -> f64 {
-    let dir = std::env::temp_dir().join(format!("towride_rej_{}_{tag}", std::process::id()));
-    let mut args = vec![
-        "run".to_string(),
-        S.into(),
-        "--animation-rate-hz".into(),
-        "0".into(),
-        "--set".into(),
-        format!("{S}:run.duration_s=0.01"),
-        "--out".into(),
-        dir.display().to_string(),
-    ];
-    for s in sets {
-        args.extend(["--set".into(), s.clone()]);
-    }
-    super::towride_ok(&args.iter().map(String::as_str).collect::<Vec<_>>());
+    let short = format!("{S}:run.duration_s=0.01");
+    let (dir, _) = run(tag, &[sets, &[short]].concat(), &[]);
     let mut r = csv::Reader::from_path(dir.join("outputs.csv")).unwrap();
     let h = r.headers().unwrap().clone();
     let c = h.iter().position(|x| x.starts_with("hitch_fz ")).unwrap();

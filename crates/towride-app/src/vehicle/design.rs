@@ -123,7 +123,8 @@ pub struct CornerRates {
     pub element_rate: f64,
     /// Where the wheel centre is [m] (its side, for the sign of toe and camber).
     pub wheel_centre_at: V,
-    /// Angular velocity of the wheel carrier [rad/s]: its toe and camber rates.
+    /// Angular velocity of the wheel carrier per unit of the coordinate [rad]: its toe
+    /// and camber rates.
     pub carrier_turn: V,
 }
 
