@@ -87,11 +87,12 @@ impl System {
     }
 
     /// How far controller `k`'s hold is in at `t`: 0 while the target speed is above its
-    /// brakes' `hold_speed`, rising smoothly to 1 at a zero target; 0 without brakes.
+    /// brakes' `hold_speed`, rising smoothly to 1 at a zero target; 0 without brakes or
+    /// without a hold.
     pub fn hold_weight(&self, k: usize, t: f64) -> f64 {
         let c = &self.model.controls[k];
         match &c.brakes {
-            Some(b) if self.controls_active.get() => {
+            Some(b) if self.controls_active.get() && b.hold_torque > 0.0 => {
                 let target = c.target.eval(t).0.max(0.0);
                 1.0 - smooth_step01(target / b.hold_speed)
             }
