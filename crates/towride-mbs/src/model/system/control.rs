@@ -63,10 +63,11 @@ impl System {
         c.feedforward_kg_m * rate + c.kp * (target - speed) + c.ki * z
     }
 
-    /// How controller `k` meets a `demand` at time `t` [N m]: (engine, brake) totals. Without brakes
-    /// the engine takes it all, either sign (the thesis's engine). With brakes the engine
-    /// takes down to its drag and the brakes the rest (brake <= 0). Saturations and the
-    /// hand-over are smooth so the residual stays differentiable.
+    /// How controller `k` meets a `demand` at time `t` [N m]: (engine, brake) totals.
+    /// Without brakes the engine takes it all, either sign (the thesis's engine). With
+    /// brakes the engine takes down to its drag and the brakes the rest (brake <= 0), plus
+    /// the driver's hold at a stopped target. Saturations and the hand-over are smooth so
+    /// the residual stays differentiable.
     pub fn control_split(&self, k: usize, t: f64, demand: f64) -> (f64, f64) {
         let c = &self.model.controls[k];
         let saturate = |x: f64, limit: f64| limit * (x / limit).tanh();
