@@ -6,7 +6,8 @@
 //! (J + m r^2) above. The wheel here is that disc on a fixed axle, loaded by that torque;
 //! the brake is the Fabia's driveline file's, its capacity the driver's hold at a
 //! standstill (a zero target speed) on one front wheel; r, m (the tyre's nominal load) and
-//! J (rim and tyre) are the property files'.
+//! J (rim and tyre) are the property files'. Released (the capacity falling to zero as
+//! the target speed rises), the wheel rolls at T / (J + m r^2) as if it had no brake.
 
 use crate::common;
 use towride_mbs::model::desc::{
@@ -29,7 +30,13 @@ fn num(v: &toml::Value, table: &str, key: &str) -> f64 {
 }
 
 /// The wheel on its axle with `torque` about +y, braked by `brakes`; (time, angle, spin).
-fn run(inertia: f64, torque: f64, brakes: Brakes, t_end: f64) -> (Vec<f64>, Vec<f64>) {
+fn run(
+    inertia: f64,
+    torque: f64,
+    brakes: Brakes,
+    target: TimeFunction,
+    t_end: f64,
+) -> (Vec<f64>, Vec<f64>) {
     let mut m = Model {
         name: "braked wheel".into(),
         ..Default::default()
@@ -82,7 +89,7 @@ fn run(inertia: f64, torque: f64, brakes: Brakes, t_end: f64) -> (Vec<f64>, Vec<
     m.controls.push(SpeedControl {
         name: "driver".into(),
         sensor: MarkerHandle::new(2),
-        target: TimeFunction::Constant { value: 0.0 },
+        target,
         kp: 0.0,
         ki: 0.0,
         max_torque: 1.0,
@@ -155,6 +162,7 @@ fn a_braked_wheel_on_a_slope_stands_below_the_capacity_and_rolls_at_the_closed_f
         v["wheel"]["spin_inertia_kg_m2"].as_float().unwrap()
     };
     let inertia = rim + common::tir_value(tir, "INERTIA", "IYY") + mass * r * r;
+    let stopped = || TimeFunction::Constant { value: 0.0 };
     let grade = |share: f64| (share * capacity / (mass * g * r)).asin();
 
     // 80 % of the capacity (a 16 deg grade for this wheel): held still. Loaded slowly,
@@ -163,7 +171,7 @@ fn a_braked_wheel_on_a_slope_stands_below_the_capacity_and_rolls_at_the_closed_f
     // alpha(s) s)), alpha the paper's yield weight, written out here.
     let theta = grade(0.8);
     let load = mass * g * theta.sin() * r;
-    let (t, angle) = run(inertia, load, brakes.clone(), 5.0);
+    let (t, angle) = run(inertia, load, brakes.clone(), stopped(), 5.0);
     let at = |x: f64| t.iter().position(|&s| s >= x).unwrap();
     let b = stick.elastic_share;
     let yield_weight =
@@ -195,7 +203,7 @@ fn a_braked_wheel_on_a_slope_stands_below_the_capacity_and_rolls_at_the_closed_f
     // 125 %: it slips and the wheel rolls down at (T - C) / (J + m r^2).
     let theta = grade(1.25);
     let load = mass * g * theta.sin() * r;
-    let (t, angle) = run(inertia, load, brakes, 2.0);
+    let (t, angle) = run(inertia, load, brakes.clone(), stopped(), 2.0);
     let at = |x: f64| t.iter().position(|&s| s >= x).unwrap();
     let (i1, i2, i3) = (at(1.0), at(1.5), at(2.0));
     // Second difference of the angle: its acceleration while it slips.
@@ -212,4 +220,26 @@ fn a_braked_wheel_on_a_slope_stands_below_the_capacity_and_rolls_at_the_closed_f
         (alpha / expected - 1.0).abs() < 1e-3,
         "{alpha} against {expected}"
     );
+
+    // The driver lets go: the target speed rises past the hold's speed over 2.5-3 s, the
+    // capacity falls to zero with it, and the wheel held at 80 % rolls freely from then
+    // on at T / (J + m r^2): nothing of the bristle is left.
+    let theta = grade(0.8);
+    let load = mass * g * theta.sin() * r;
+    let release = TimeFunction::Step {
+        t0_s: 2.5,
+        from: 0.0,
+        t1_s: 3.0,
+        to: brakes.hold_speed,
+    };
+    let (t, angle) = run(inertia, load, brakes, release, 4.5);
+    let at = |x: f64| t.iter().position(|&s| s >= x).unwrap();
+    let held = (angle[at(2.5)] - angle[at(2.0)]).abs() * r;
+    let (i1, i2, i3) = (at(3.5), at(4.0), at(4.5));
+    let h = t[i2] - t[i1];
+    let alpha = (angle[i3] - 2.0 * angle[i2] + angle[i1]) / (h * h);
+    let free = load / inertia;
+    println!("released: held to {held:.2e} m before, then {alpha:.6} rad/s^2 against {free:.6}");
+    assert!(held < 1e-7, "moved {held} m while held");
+    assert!((alpha / free - 1.0).abs() < 1e-3, "{alpha} against {free}");
 }
