@@ -282,3 +282,29 @@ fn bad_selection_override_of_the_cross_member() {
     check(&e, f, line, "cross_member.selection.load_interfaces[0]");
     assert!(e.message.contains("arm_middle"), "{e}");
 }
+
+#[test]
+fn a_brake_bristle_that_cannot_stick_is_refused_at_its_field() {
+    let f = "vehicles/fabia/driveline.toml";
+    for (from, to, field) in [
+        (
+            "stick_elastic_share = 0.5",
+            "stick_elastic_share = 1.0",
+            "brakes.stick_elastic_share",
+        ),
+        (
+            "stick_deflection_rad = 1.0e-3",
+            "stick_deflection_rad = 0.0",
+            "brakes.stick_deflection_rad",
+        ),
+        (
+            "hold_below_m_s = 0.3",
+            "hold_below_m_s = -0.3",
+            "brakes.hold_below_m_s",
+        ),
+    ] {
+        let root = scratch(field);
+        let line = break_file(&root, f, from, to);
+        check(&vehicle_error(&root), f, line, field);
+    }
+}

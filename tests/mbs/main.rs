@@ -34,6 +34,7 @@ pub(crate) fn load_path_rule() -> towride_mbs::input::Loader {
     )
 }
 
+mod brake_stick;
 mod flex_beam;
 mod flex_drawbar;
 mod flex_hitch;

@@ -89,6 +89,8 @@ enum Kind {
     },
     /// A speed controller's engine torque (index into the model's controllers).
     Drive { control: usize },
+    /// A speed controller's brake torque (index into the model's controllers).
+    Brake { control: usize },
     Pressure {
         element: ElementHandle,
         area_m2: f64,
@@ -247,6 +249,17 @@ pub fn quantities(v: &Vehicle) -> Vec<Quantity> {
             ),
             Kind::Drive { control: k },
         );
+        if c.brakes.is_some() {
+            add(
+                format!("brake_torque{}", if k == 0 { String::new() } else { format!("_{k}") }),
+                "N m",
+                format!(
+                    "{}: the friction brakes' total torque capacity asked (negative: opposing forward spin)",
+                    c.name
+                ),
+                Kind::Brake { control: k },
+            );
+        }
     }
     let bodies = [("body", Some(h.car_body)), ("trailer", h.trailer_body)];
     for (prefix, b) in bodies {
@@ -393,6 +406,7 @@ fn output_for(v: &mut Vehicle, q: &Quantity, name: &str) -> Option<Output> {
         Kind::Tyre { tyre, quantity } => Request::Tyre { tyre, quantity },
         Kind::Element { element, quantity } => Request::Element { element, quantity },
         Kind::Drive { control } => Request::DriveTorque { control },
+        Kind::Brake { control } => Request::BrakeTorque { control },
         Kind::Body { body, quantity } => Request::Body {
             body,
             quantity,

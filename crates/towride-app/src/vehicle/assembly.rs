@@ -17,6 +17,7 @@ use super::{
 };
 use towride_mbs::input::{InputError, Loader};
 use towride_mbs::model::builder::{BodyHandle, MarkerHandle, ModelBuilder};
+use towride_mbs::model::function::TimeFunction;
 use towride_mbs::model::math::sub;
 use towride_mbs::model::Model;
 use towride_mbs::path;
@@ -326,7 +327,15 @@ fn feed_forward(model: &mut Model, wheels: &[wheel::WheelHandle], mass: f64, opt
         let shaft = c.driveline.map_or(0.0, |d| d.inertia / (r * r));
         c.feedforward_kg_m = (mass + spin + shaft) * r;
         match &opts.speed_target {
-            Some(t) => c.target = t.clone(),
+            Some(t) => {
+                c.target = t.clone();
+                // The driver's hold is for a stop: a manoeuvre that ends moving (a
+                // start) has none, so nothing holds the car before it pulls away.
+                let stops = matches!(t, TimeFunction::JerkLimited { to, .. } if *to <= 0.0);
+                if let (false, Some(b)) = (stops, c.brakes.as_mut()) {
+                    b.hold_torque = 0.0;
+                }
+            }
             None => c.brakes = None,
         }
     }

@@ -15,6 +15,7 @@ use towride_mbs::input::InputError;
 use towride_mbs::model::builder::MarkerHandle;
 use towride_mbs::model::desc::{Brakes, DrivelineInertia, SpeedControl};
 use towride_mbs::model::function::TimeFunction;
+use towride_mbs::model::stick::StickFriction;
 use towride_mbs::path;
 
 #[derive(Deserialize, Debug)]
@@ -66,8 +67,16 @@ struct BrakesSec {
     engine_drag_n_m: f64,
     /// Width of the smooth hand-over from the drive to the brakes [N m].
     blend_n_m: f64,
-    /// Relative wheel spin over which a brake's torque changes sign [rad/s].
-    release_rad_s: f64,
+    /// Bristle deflection at which a brake or the engine's drag slips, z_ss [rad].
+    stick_deflection_rad: f64,
+    /// Share of that deflection that stays elastic (no creep below it), z_ba / z_ss [-].
+    stick_elastic_share: f64,
+    /// Damping time constant of the bristle [s].
+    stick_damping_s: f64,
+    /// Brake torque a driver keeps on at a standstill [N m].
+    hold_torque_n_m: f64,
+    /// Target speed below which that hold comes in [m/s].
+    hold_below_m_s: f64,
 }
 
 #[derive(Deserialize, Debug)]
@@ -169,6 +178,16 @@ pub fn build(
                     format!("is a share of the brake torque, 0 to 1, got {front}"),
                 ));
             }
+            let elastic_share = |x: f64| {
+                let x = src.non_negative(&p("stick_elastic_share"), x)?;
+                if x >= 1.0 {
+                    return Err(src.error(
+                        &p("stick_elastic_share"),
+                        format!("is a share of the slip deflection, 0 to below 1, got {x}"),
+                    ));
+                }
+                Ok(x)
+            };
             let mut shared = Vec::new();
             for (key, names, share) in [
                 ("front_wheels", &b.front_wheels, front),
@@ -186,7 +205,14 @@ pub fn build(
                 max_torque: src.positive(&p("max_torque_n_m"), b.max_torque_n_m)?,
                 engine_drag: src.non_negative(&p("engine_drag_n_m"), b.engine_drag_n_m)?,
                 blend: src.positive(&p("blend_n_m"), b.blend_n_m)?,
-                release_rad_s: src.positive(&p("release_rad_s"), b.release_rad_s)?,
+                stick: StickFriction {
+                    deflection_rad: src
+                        .positive(&p("stick_deflection_rad"), b.stick_deflection_rad)?,
+                    elastic_share: elastic_share(b.stick_elastic_share)?,
+                    damping_s: src.non_negative(&p("stick_damping_s"), b.stick_damping_s)?,
+                },
+                hold_torque: src.non_negative(&p("hold_torque_n_m"), b.hold_torque_n_m)?,
+                hold_speed: src.positive(&p("hold_below_m_s"), b.hold_below_m_s)?,
             })
         }
     };

@@ -522,6 +522,12 @@ pub enum Request {
         /// Index into `Model::controls`.
         control: usize,
     },
+    /// The friction brakes' share of a speed controller's demand: the total brake
+    /// torque capacity of the moment, negative (a brake opposes forward spin) [N m].
+    BrakeTorque {
+        /// Index into `Model::controls`.
+        control: usize,
+    },
 }
 
 /// A named output request: one or more channels of the output table.
@@ -624,9 +630,15 @@ pub struct Brakes {
     pub engine_drag: f64,
     /// Width of the smooth hand-over from the drive to the brakes [N m].
     pub blend: f64,
-    /// Wheel spin rate relative to the carrier over which a brake's torque changes sign
-    /// (tanh(w / release)): friction regularised, so a wheel at rest is not held [rad/s].
-    pub release_rad_s: f64,
+    /// The bristle of every brake and of the engine's drag: stick-slip friction that
+    /// holds a part at rest against any torque below the contact's capacity
+    /// ([`crate::model::stick`]).
+    pub stick: crate::model::stick::StickFriction,
+    /// Brake torque a driver keeps on at a standstill, added to the controller's as
+    /// the target speed falls below `hold_speed` (smoothly, full at zero) [N m].
+    pub hold_torque: f64,
+    /// Target speed below which the hold comes in [m/s].
+    pub hold_speed: f64,
 }
 
 /// Where sampled accelerations and joint reactions come from.

@@ -25,6 +25,7 @@ pub mod run;
 pub mod spec;
 pub mod start;
 pub mod statics;
+pub mod stick;
 pub use crate::input::suggest;
 pub mod system;
 

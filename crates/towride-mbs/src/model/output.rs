@@ -93,7 +93,7 @@ fn raw_channels(m: &Model, o: &Output) -> Vec<ChannelInfo> {
                 angle: false,
             },
         )),
-        Request::DriveTorque { .. } => out.push(one("N m")),
+        Request::DriveTorque { .. } | Request::BrakeTorque { .. } => out.push(one("N m")),
         Request::LinePressure { .. } => out.push(one("Pa")),
         Request::Relative { quantity, .. } => out.push(one(match quantity {
             RelativeQuantity::Position => "m",
@@ -297,7 +297,7 @@ pub fn evaluate(sys: &System, t: f64, y: &[f64], yp: &[f64]) -> Vec<f64> {
                 out.extend_from_slice(&resolve(*axes, f));
                 out.extend_from_slice(&resolve(*axes, tq));
             }
-            Request::DriveTorque { control } => {
+            Request::DriveTorque { control } | Request::BrakeTorque { control } => {
                 let e = sys
                     .ext
                     .iter()
@@ -305,7 +305,9 @@ pub fn evaluate(sys: &System, t: f64, y: &[f64], yp: &[f64]) -> Vec<f64> {
                     .expect("every controller has its states");
                 let speed = sys.control_speed(*control, q, v);
                 let demand = sys.control_demand(*control, t, speed, x[e.off]);
-                out.push(sys.control_split(*control, demand).0);
+                let (engine, brake) = sys.control_split(*control, t, demand);
+                let drive = matches!(o.request, Request::DriveTorque { .. });
+                out.push(if drive { engine } else { brake });
             }
             Request::LinePart { element, part } => {
                 let (_, _, meas) = sys.force_eval(*element, t, q, v);

@@ -35,6 +35,7 @@ use super::math::{cst33, mvc, qdot, quat_from_matrix, rot};
 use towride_solver::problem::{DaeProblem, JacobianSink, VarKind};
 
 mod constraint;
+pub(crate) mod control;
 pub(crate) mod ext;
 pub(crate) mod flexmarker;
 mod forces;
