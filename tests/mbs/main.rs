@@ -55,6 +55,7 @@ mod tyre_envelope_profile;
 mod tyre_factors;
 mod tyre_lateral;
 mod tyre_lift_off;
+mod tyre_low_speed;
 mod tyre_rolling;
 mod tyre_static;
 mod tyre_tir;

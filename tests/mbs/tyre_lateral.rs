@@ -338,7 +338,10 @@ fn at_standstill_the_tyre_is_a_lateral_spring_of_the_lateral_stiffness() {
         assert!(res.iter().all(|r| r.is_finite()));
         // v' = V_cy at rest.
         assert!((res[iv] + 0.02).abs() < 1e-12, "{}", res[iv]);
+        // The spring alone: no side speed, so the low-speed damping adds nothing
+        // (tests/mbs/tyre_low_speed.rs checks it).
         x[iv] = 1e-4;
+        let kin = WheelKinematics::upright(Vector3::new(0.0, 0.0, z), Vector3::zeros(), 0.0);
         let o = t.outputs(&kin, &road, &x);
         let k = -o.lateral_force / 1e-4;
         let cy = tir_numbers(CAR)["LATERAL_STIFFNESS"] * o.normal_force / p.fnomin;

@@ -364,12 +364,6 @@ pub(crate) fn contact_velocity(
     (vc.dot(&fr.ex), vc.dot(&ly))
 }
 
-/// Transient slip angle alpha' = atan(v / sigma_alpha) of the lateral tread state `v`.
-#[inline]
-pub(crate) fn slip_angle(v: f64, sigma_alpha: f64) -> f64 {
-    (v / sigma_alpha).atan()
-}
-
 impl WheelFrame {
     pub fn new(kin: &WheelKinematics) -> WheelFrame {
         let ey: Vector3<f64> = kin.rotation.column(1).into_owned();

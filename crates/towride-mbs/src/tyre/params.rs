@@ -74,6 +74,11 @@ pub struct TyreParams {
     pub damp_windup: f64,
     /// Residual damping time constant DAMP_RESIDUAL [s] (damping = value x stiffness).
     pub damp_residual: f64,
+    /// Low-speed damping time constant DAMP_VLOW [s] (damping = value x the overall
+    /// longitudinal or lateral stiffness, faded in below VXLOW); 0 when the file has none.
+    pub damp_vlow: f64,
+    /// VXLOW: speed below which the low-speed damping fades in [m/s] (MODEL section).
+    pub vxlow: f64,
     // [CONTACT_PATCH]
     /// Q_RA1: square-root term of the contact-length law [-].
     pub q_ra1: f64,
@@ -140,6 +145,11 @@ pub struct Derived {
     /// Lateral relaxation length sigma_alpha = |K_ya(FNOMIN)| / C_y [m] (both models: the
     /// ring has no lateral freedom, so the whole lateral compliance is in the slip state).
     pub sigma_alpha: f64,
+    /// Low-speed damping at standstill, k_Vlow0 = DAMP_VLOW x C_x (longitudinal) and
+    /// DAMP_VLOW x C_y (lateral) [N s/m].
+    pub k_vlow_x: f64,
+    /// Lateral low-speed damping at standstill [N s/m].
+    pub k_vlow_y: f64,
 }
 
 impl TyreParams {
@@ -204,6 +214,21 @@ impl TyreParams {
         let damp_long = t.in_range("STRUCTURAL", "DAMP_LONG", 0.0, 2.0)?;
         let damp_windup = t.in_range("STRUCTURAL", "DAMP_WINDUP", 0.0, 2.0)?;
         let damp_residual = t.positive("STRUCTURAL", "DAMP_RESIDUAL")?;
+        // Optional, as in MF-Tyre files that carry no low-speed model: absent means none.
+        let damp_vlow = t.f64_or("STRUCTURAL", "DAMP_VLOW", 0.0)?;
+        if damp_vlow < 0.0 {
+            return Err(t.error(
+                "STRUCTURAL",
+                "DAMP_VLOW",
+                format!("must not be negative, got {damp_vlow}"),
+            ));
+        }
+        // The fade-in speed is needed only with a low-speed damping.
+        let vxlow = if damp_vlow > 0.0 {
+            t.positive("MODEL", "VXLOW")?
+        } else {
+            t.f64_or("MODEL", "VXLOW", 0.0)?
+        };
         let q_ra1 = t.non_negative("CONTACT_PATCH", "Q_RA1")?;
         let q_ra2 = t.non_negative("CONTACT_PATCH", "Q_RA2")?;
         if q_ra1 + q_ra2 <= 0.0 {
@@ -303,6 +328,8 @@ impl TyreParams {
             damp_long,
             damp_windup,
             damp_residual,
+            damp_vlow,
+            vxlow,
             q_ra1,
             q_ra2,
             ellips_shift,
@@ -334,8 +361,58 @@ impl TyreParams {
                 sigma_point: k_slip0 / cx,
                 k_alpha0,
                 sigma_alpha: k_alpha0 / cy,
+                k_vlow_x: damp_vlow * cx,
+                k_vlow_y: damp_vlow * cy,
             },
         })
+    }
+
+    /// Weight of the low-speed damping at forward speed `v_x` [m/s]: 1/2 (1 + cos(pi |v_x| /
+    /// VXLOW)) below VXLOW, 0 above (Pacejka 2012 sec. 7.2.2; smooth at both ends).
+    pub fn low_speed_weight(&self, v_x: f64) -> f64 {
+        let v = v_x.abs();
+        if self.damp_vlow == 0.0 || v >= self.vxlow {
+            0.0
+        } else {
+            0.5 * (1.0 + (std::f64::consts::PI * v / self.vxlow).cos())
+        }
+    }
+
+    /// Slips with the low-speed damping (Pacejka 2012 sec. 7.2.2): at standstill the
+    /// relaxation states are undamped springs, so below VXLOW the slips take a term
+    /// proportional to the sliding velocity, kappa - k_Vlow V_sx / C_Fkappa and
+    /// tan(alpha) + k_Vlow V_cy / |C_Falpha| (ISO: a positive alpha gives a negative F_y);
+    /// in the linear range this adds -k_Vlow V_s to the force, and the Magic Formula still
+    /// caps it at the friction limit. `kappa`, `tan_alpha` the undamped slips, `v_slip`
+    /// the longitudinal sliding velocity V_c - V_r, `v_cx`, `v_cy` the contact point's
+    /// velocity, `f_n` the load. Returns (kappa, alpha).
+    pub fn damped_slips(
+        &self,
+        kappa: f64,
+        tan_alpha: f64,
+        v_slip: f64,
+        v_cx: f64,
+        v_cy: f64,
+        f_n: f64,
+    ) -> (f64, f64) {
+        let w = self.low_speed_weight(v_cx);
+        if w == 0.0 {
+            return (kappa, tan_alpha.atan());
+        }
+        let kxk = self.mf.long.slip_stiffness(f_n);
+        let kya = self.mf.cornering_stiffness(f_n).abs();
+        // Without load the Magic Formula gives no force whatever the slip.
+        let dk = if kxk > 0.0 {
+            w * self.d.k_vlow_x * v_slip / kxk
+        } else {
+            0.0
+        };
+        let da = if kya > 0.0 {
+            w * self.d.k_vlow_y * v_cy / kya
+        } else {
+            0.0
+        };
+        (kappa - dk, (tan_alpha + da).atan())
     }
 
     /// Effective rolling radius [m] at total deflection `rho` [m] and spin `omega` [rad/s]

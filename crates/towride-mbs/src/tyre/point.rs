@@ -13,8 +13,7 @@ use towride_solver::VarKind;
 use super::envelope::EffectiveRoad;
 use super::params::TyreParams;
 use super::{
-    contact_velocity, ramp, slip_angle, smooth_step, ContactOutputs, HubLoad, WheelFrame,
-    WheelKinematics,
+    contact_velocity, ramp, smooth_step, ContactOutputs, HubLoad, WheelFrame, WheelKinematics,
 };
 
 /// State indices of the point follower.
@@ -90,11 +89,17 @@ impl PointFollower {
         let r_e = p.rolling_radius(ramp(rho, eps), omega);
         let v_roll = r_e * omega;
         let v_slip = kin.velocity.dot(&t) - v_roll;
-        let sigma = p.d.sigma_point;
-        let kappa = x[idx::U] / sigma;
-        let alpha = slip_angle(x[idx::V], p.d.sigma_alpha);
         let cp = Vector3::new(px, py, z_road);
         let (v_cx, v_cy) = contact_velocity(kin, &fr, &cp);
+        // Pacejka's single contact point with its low-speed damping (sec. 7.2.2).
+        let (kappa, alpha) = p.damped_slips(
+            x[idx::U] / p.d.sigma_point,
+            x[idx::V] / p.d.sigma_alpha,
+            v_slip,
+            v_cx,
+            v_cy,
+            f_n,
+        );
         let mf = p.mf.forces(kappa, alpha, f_n, v_cx >= 0.0);
         let f_x = mf.fx;
         let ly = Vector3::new(fr.lateral[0], fr.lateral[1], 0.0);

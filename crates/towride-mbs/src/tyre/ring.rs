@@ -16,8 +16,7 @@ use towride_solver::VarKind;
 use super::envelope::{EffectiveRoad, TandemCams};
 use super::params::TyreParams;
 use super::{
-    contact_velocity, ramp, slip_angle, smooth_step, ContactOutputs, HubLoad, WheelFrame,
-    WheelKinematics,
+    contact_velocity, ramp, smooth_step, ContactOutputs, HubLoad, WheelFrame, WheelKinematics,
 };
 
 /// State indices of the rigid-ring tyre.
@@ -157,11 +156,17 @@ impl RigidRing {
         let v_c = vb.dot(&t) + h * beta_dot;
         let v_roll = r_e * omega_b + h * beta_dot;
         let v_slip = v_c - v_roll;
-        let sigma = d.a0;
-        let kappa = x[idx::UT] / sigma;
-        let alpha = slip_angle(x[idx::VT], d.sigma_alpha);
         let cp = pb - n * h;
         let (v_cx, v_cy) = contact_velocity(kin, &fr, &cp);
+        // The tread's slips, damped below VXLOW where the relaxation stops damping them.
+        let (kappa, alpha) = p.damped_slips(
+            x[idx::UT] / d.a0,
+            x[idx::VT] / d.sigma_alpha,
+            v_slip,
+            v_cx,
+            v_cy,
+            f_n,
+        );
         let mf = p.mf.forces(kappa, alpha, f_n, v_cx >= 0.0);
         let f_x = mf.fx;
 
