@@ -48,9 +48,11 @@
     const below = V.below_floor || [];
     const n = Object.keys(V.channels).length - below.length;
     const pct = (x) => `${(100 * x).toFixed(2)} %`;
+    // The companion's rtol is rtol / 10 in binary floating point (1e-5 / 10 = 1.0000000000000002e-6).
+    const sci = (x) => Number(x.toPrecision(12)).toExponential();
     app.append(el("p", { class: V.converged ? "" : "failed" }, V.converged
-      ? `All ${n} judged channels converged: max, min and RMS within ${pct(V.threshold)} of a run at rtol ${V.check_rtol.toExponential()} (this run: ${V.rtol.toExponential()}; ${V.check_steps} steps, ${fmt(V.check_wall_s)} s wall).`
-      : `${V.failing.length} of ${n} channels NOT converged (differences over ${pct(V.threshold)} against a run at rtol ${V.check_rtol.toExponential()}; this run: ${V.rtol.toExponential()}): ${V.failing.join(", ")}. Their numbers on this page depend on the tolerance.`));
+      ? `All ${n} judged channels converged: max, min and RMS within ${pct(V.threshold)} of a run at rtol ${sci(V.check_rtol)} (this run: ${sci(V.rtol)}; ${V.check_steps} steps, ${fmt(V.check_wall_s)} s wall).`
+      : `${V.failing.length} of ${n} channels NOT converged (differences over ${pct(V.threshold)} against a run at rtol ${sci(V.check_rtol)}; this run: ${sci(V.rtol)}): ${V.failing.join(", ")}. Their numbers on this page depend on the tolerance.`));
     if (below.length) app.append(el("p", { class: "hint" }, `${below.length} channels stay within their unit's floor in both runs (round-off, not results; not judged): ${below.join(", ")}.`));
     // Failing first; within each, the summary's natural order (the sort is stable).
     const names = Object.keys(V.channels).sort((a, b) => V.channels[a].converged - V.channels[b].converged);
