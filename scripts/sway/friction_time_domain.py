@@ -51,7 +51,7 @@ def scene(scale):
 
 
 def run(scale, speed, t_n_m, w_reg, duration, rtol=None, atol_scale=None, z_law=None):
-    """Runs one case; returns (t [s], articulation [rad], CPU seconds of the solver)."""
+    """Runs one case; returns (t [s], articulation [rad], solver wall seconds, folder)."""
     s = scene(scale)
     law = f"{{ friction_torque_n_m = {PLAIN_HEAD_N_M}, release_rad_s = 0.01 }}"
     z = z_law or f"{{ friction_torque_n_m = {t_n_m}, release_rad_s = {w_reg} }}"
@@ -81,7 +81,15 @@ def run(scale, speed, t_n_m, w_reg, duration, rtol=None, atol_scale=None, z_law=
         rows = np.array([(float(x[0]), float(x[k])) for x in r])
     with open(f"{out}/summary.json") as f:
         wall = json.load(f)["wall_s"]
-    return rows[:, 0], rows[:, 1], wall
+    return rows[:, 0], rows[:, 1], wall, out
+
+
+def column(out, name):
+    """One column of a run's outputs.csv."""
+    with open(f"{out}/outputs.csv") as f:
+        r = csv.reader(f)
+        k = next(r).index(name)
+        return np.array([float(x[k]) for x in r])
 
 
 def envelope(t, x, after=SETTLE_S):
@@ -139,10 +147,10 @@ def a_star_regularised(c_lin, w, w_reg):
 
 
 def case(scale, w_reg=0.01, z_law=None, duration=DURATION_S, **kw):
-    t, x, wall = run(scale, SPEED, T_N_M, w_reg, duration, z_law=z_law, **kw)
+    t, x, wall, out = run(scale, SPEED, T_N_M, w_reg, duration, z_law=z_law, **kw)
     tp, a = envelope(t, x)
     return {"scale": scale, "a0": math.degrees(a[0]), "sigma": rate(tp, a, *FIT_S),
-            "a_end": math.degrees(a[-1]), "t_end": tp[-1], "wall": wall,
+            "a_end": math.degrees(a[-1]), "t_end": tp[-1], "wall": wall, "out": out, "t": t,
             "times": tp, "amps": np.degrees(a)}
 
 
@@ -295,6 +303,14 @@ def main():
     print()
     print(f"The describing function with c_crit at the sway's amplitude: threshold "
           f"{a_df:.3f} deg (with the linear c_crit: {a_star:.3f} deg)")
+    # What changes with amplitude in the frictionless run: the trailer wheels' load swing
+    # over the cycle nearest 1 deg.
+    c = viscous[0][1][0]
+    k = int(np.argmin(abs(c["amps"] - 1.0)))
+    fz = column(c["out"], "tyre_tl_fz [N]")
+    near = abs(c["t"] - c["times"][k]) < 0.62
+    print(f"No yaw damping, {c['amps'][k]:.2f} deg at {c['times'][k]:.1f} s: trailer left wheel "
+          f"load {np.mean(fz[near]):.0f} N +- {0.5 * np.ptp(fz[near]):.0f} N")
     os.makedirs("docs/figures", exist_ok=True)
     try:
         figure([c for c in cases], viscous, c_lin, a_star, a_lc,
