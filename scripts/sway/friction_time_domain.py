@@ -11,8 +11,14 @@ above the critical speed. The articulation is the head's rotation about its z ax
 pulse. A sway whose envelope shrinks started below the unstable limit cycle, one that
 grows above it; the threshold is bracketed by bisection on the pulse's size and set
 against the describing function's A* = 4 T / (pi w c_crit), with c_crit and w recomputed
-here by `friction_table.c_crit`. Run from the repository root after
-`cargo build --release` (writes out/fricsway/ and docs/figures/sway_friction_envelopes.png).
+here by `friction_table.c_crit`; the bracketing pair is run again at a tighter tolerance
+and release rate. Then why they differ: the frictionless sway's growth against its
+amplitude, without yaw damping and with the linear model's neutral damper c_crit, gives
+the damper c_crit(A) that holds a sway of amplitude A neutral, and the trailer wheels'
+load swing the mean loss of the trailer axle's cornering stiffness. Run from the
+repository root after `cargo build --release` (about 25 min of CPU; writes out/fricsway/,
+reused when run again, and docs/figures/sway_friction_envelopes.png; needs numpy, and
+matplotlib for the figure).
 """
 import csv
 import json
@@ -23,12 +29,13 @@ import sys
 
 import numpy as np
 
-from friction_table import HITCH, PLAIN_HEAD_N_M, c_crit
+from friction_table import HITCH, PLAIN_HEAD_N_M, c_crit, damper, mode
+from sway_table import sway
 
 TOWRIDE = "target/release/towride"
 TRAILER = "vehicles/trailer/box_trailer.toml"
+TYRE = "vehicles/tyres/trailer_155_80r13.tir"
 OUT = "out/fricsway"
-PULSE_END_S = 3.0  # the lane-change scene's rack pulse runs from 1 to 3 s
 SETTLE_S = 6.0  # the car's own transients are gone by then; envelopes start here
 
 
@@ -144,6 +151,25 @@ def a_star_regularised(c_lin, w, w_reg):
         else:
             hi = mid
     return mid
+
+
+def axle_stiffness_ratio(f_mean, f_swing):
+    """The trailer axle's cornering stiffness averaged over a cycle in which its wheels'
+    loads swing f_mean +- f_swing in opposition, over its value at f_mean: the .tir's
+    K_ya ~ sin(PKY4 atan(F_z / (PKY2 FNOMIN))) (Pacejka 2012 (4.E25)), quasi-static."""
+    v = {}
+    with open(TYRE) as f:
+        for line in f:
+            parts = line.split("=")
+            if len(parts) > 1 and parts[0].strip() in ("PKY2", "PKY4", "FNOMIN"):
+                v[parts[0].strip()] = float(parts[1].split("$")[0])
+
+    def k(fz):
+        return np.sin(v["PKY4"] * np.arctan(fz / (v["PKY2"] * v["FNOMIN"])))
+
+    th = np.linspace(0.0, 2.0 * np.pi, 1000, endpoint=False)
+    swing = f_swing * np.sin(th)
+    return np.mean(k(f_mean + swing) + k(f_mean - swing)) / (2.0 * k(f_mean))
 
 
 def case(scale, w_reg=0.01, z_law=None, duration=DURATION_S, **kw):
@@ -311,6 +337,13 @@ def main():
     near = abs(c["t"] - c["times"][k]) < 0.62
     print(f"No yaw damping, {c['amps'][k]:.2f} deg at {c['times'][k]:.1f} s: trailer left wheel "
           f"load {np.mean(fz[near]):.0f} N +- {0.5 * np.ptp(fz[near]):.0f} N")
+    ratio = axle_stiffness_ratio(np.mean(fz[near]), 0.5 * np.ptp(fz[near]))
+    m0 = mode(SPEED, 0.0)
+    m1 = sway(SPEED, -2.46, 450.0, 450.0, damper(0.0)
+              + ["--set", f"{TYRE}:SCALING_COEFFICIENTS.LKY={ratio:.4f}"])
+    print(f"Trailer axle's cornering stiffness averaged over that load swing: x {ratio:.4f}; "
+          f"the linear sway without yaw damping at LKY = {ratio:.4f}: "
+          f"{m1['real_1_per_s']:+.4f} 1/s (LKY = 1: {m0['real_1_per_s']:+.4f} 1/s)")
     os.makedirs("docs/figures", exist_ok=True)
     try:
         figure([c for c in cases], viscous, c_lin, a_star, a_lc,
