@@ -16,7 +16,7 @@ and release rate. Then why they differ: the frictionless sway's growth against i
 amplitude, without yaw damping and with the linear model's neutral damper c_crit, gives
 the damper c_crit(A) that holds a sway of amplitude A neutral, and the trailer wheels'
 load swing the mean loss of the trailer axle's cornering stiffness. Run from the
-repository root after `cargo build --release` (about 25 min of CPU; writes out/fricsway/,
+repository root after `cargo build --release` (about 15 min of CPU; writes out/fricsway/,
 reused when run again, and docs/figures/sway_friction_envelopes.png; needs numpy, and
 matplotlib for the figure).
 """
