@@ -313,7 +313,7 @@ def main():
           "| friction's c_eq there [N m s/rad] |")
     print("| --- | --- | --- | --- | --- |")
     (a0, r0), (a1, r1) = (merged_rates(runs) for _, runs in viscous)
-    prev, a_df = None, float("nan")
+    prev, a_df, t_1deg = None, float("nan"), float("nan")
     for a in [0.35, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 1.2]:
         # Only where both have measured points within 10 % (no bridging of gaps).
         if min(abs(a0 / a - 1.0)) > 0.1 or min(abs(a1 / a - 1.0)) > 0.1:
@@ -323,12 +323,15 @@ def main():
         c_a = c_lin * s0 / (s0 - s1)
         c_eq = 4.0 * T_N_M / (math.pi * w * math.radians(a))
         print(f"| {a} | {s0:+.4f} | {s1:+.4f} | {c_a:.1f} | {c_eq:.1f} |")
+        if a == 1.0:
+            t_1deg = math.pi * w * math.radians(a) * c_a / 4.0
         if prev and prev[1] > 0.0 >= c_eq - c_a:
             a_df = prev[0] + (a - prev[0]) * prev[1] / (prev[1] - (c_eq - c_a))
         prev = (a, c_eq - c_a)
     print()
     print(f"The describing function with c_crit at the sway's amplitude: threshold "
-          f"{a_df:.3f} deg (with the linear c_crit: {a_star:.3f} deg)")
+          f"{a_df:.3f} deg (with the linear c_crit: {a_star:.3f} deg); the friction that "
+          f"would hold 1 deg with c_crit(1 deg): {t_1deg:.1f} N m")
     # What changes with amplitude in the frictionless run: the trailer wheels' load swing
     # over the cycle nearest 1 deg.
     c = viscous[0][1][0]
