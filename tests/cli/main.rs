@@ -35,6 +35,7 @@ mod sensitivity;
 mod slurm;
 mod slurm_real;
 mod sway;
+mod sway_friction;
 mod sway_single_track;
 mod sweep;
 mod sweep_inputs;
