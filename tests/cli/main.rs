@@ -67,6 +67,41 @@ fn towride_ok(args: &[&str]) -> std::process::Output {
     out
 }
 
+/// The combination's sway mode from `towride linear`: the default scene rolling with the
+/// ramp 60 m ahead, `sets` (FILE:PATH=VALUE) applied, its folder in `out`; the least
+/// damped oscillation of the trailer body (lateral or yaw) between 0.3 and 3 Hz.
+fn sway_mode(out: &std::path::Path, sets: &[String]) -> serde_json::Value {
+    let s = "scenes/default.toml";
+    let mut args: Vec<String> = ["linear", s, "--at", "0.05", "--json", "--out"]
+        .iter()
+        .map(|x| x.to_string())
+        .collect();
+    args.push(out.display().to_string());
+    for x in std::iter::once(format!("{s}:road.obstacle_ahead_m=60")).chain(sets.iter().cloned()) {
+        args.push("--set".into());
+        args.push(x);
+    }
+    let v = towride_json(&args.iter().map(String::as_str).collect::<Vec<_>>());
+    v["result"]["modes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|m| {
+            let name = m["name"].as_str().unwrap_or("");
+            let hz = m["damped_hz"].as_f64().unwrap_or(0.0);
+            m["kind"] != "zero"
+                && (0.3..3.0).contains(&hz)
+                && name.starts_with("trailer_box")
+                && (name.contains("lateral") || name.contains("yaw"))
+        })
+        .min_by(|a, b| {
+            let z = |m: &serde_json::Value| m["damping_ratio"].as_f64().unwrap();
+            z(a).total_cmp(&z(b))
+        })
+        .unwrap_or_else(|| panic!("no sway mode among {}", v["result"]["modes"]))
+        .clone()
+}
+
 /// Runs the binary with `args` (including `--json`), which must succeed and print
 /// exactly one JSON document; returns it.
 fn towride_json(args: &[&str]) -> serde_json::Value {

@@ -8,16 +8,12 @@ use std::path::PathBuf;
 const TRAILER: &str = "vehicles/trailer/box_trailer.toml";
 
 /// The least damped loading: nose load of the empty trailer only, payload yaw inertia
-/// 450 kg m^2.
+/// 450 kg m^2 (FILE:PATH=VALUE overrides).
 fn loading(scene: &str) -> Vec<String> {
     vec![
-        "--set".into(),
         format!("{scene}:run.speed_km_h=130"),
-        "--set".into(),
         format!("{scene}:scene.load_case=\"legal_limit_557kg\""),
-        "--set".into(),
         format!("{TRAILER}:load_case[4].payload.cm_m=[-2.46,0.0,0.745]"),
-        "--set".into(),
         format!("{TRAILER}:load_case[4].payload.inertia_kg_m2=[42.7,450.0,450.0]"),
     ]
 }
@@ -27,44 +23,7 @@ fn the_sway_mode_decays_in_a_run_at_the_rate_the_linear_analysis_gives() {
     let dir = std::env::temp_dir().join(format!("towride_sway_{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     // Linear: the default scene rolling at 130 km/h, the ramp far ahead.
-    let mut args: Vec<String> = [
-        "linear",
-        "scenes/default.toml",
-        "--at",
-        "0.05",
-        "--json",
-        "--out",
-    ]
-    .iter()
-    .map(|s| s.to_string())
-    .collect();
-    args.push(dir.join("linear").display().to_string());
-    args.extend(loading("scenes/default.toml"));
-    args.extend([
-        "--set".into(),
-        "scenes/default.toml:road.obstacle_ahead_m=60".into(),
-    ]);
-    let a: Vec<&str> = args.iter().map(String::as_str).collect();
-    let out = crate::towride_ok(&a);
-    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    let sway = j["result"]["modes"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .filter(|m| {
-            m["name"]
-                .as_str()
-                .unwrap()
-                .starts_with("trailer_box lateral")
-        })
-        .filter(|m| m["damped_hz"].as_f64().unwrap() > 0.3)
-        .max_by(|a, b| {
-            a["real_1_per_s"]
-                .as_f64()
-                .unwrap()
-                .total_cmp(&b["real_1_per_s"].as_f64().unwrap())
-        })
-        .unwrap();
+    let sway = crate::sway_mode(&dir.join("linear"), &loading("scenes/default.toml"));
     let (sigma, hz) = (
         sway["real_1_per_s"].as_f64().unwrap(),
         sway["damped_hz"].as_f64().unwrap(),
@@ -96,8 +55,12 @@ fn the_sway_mode_decays_in_a_run_at_the_rate_the_linear_analysis_gives() {
         "--out".into(),
         dir.join("run").display().to_string(),
     ];
-    args.extend(loading(&f));
-    args.extend(["--set".into(), format!("{f}:run.duration_s=10")]);
+    for v in loading(&f)
+        .into_iter()
+        .chain([format!("{f}:run.duration_s=10")])
+    {
+        args.extend(["--set".into(), v]);
+    }
     let a: Vec<&str> = args.iter().map(String::as_str).collect();
     crate::towride_ok(&a);
     let mut r = csv::Reader::from_path(dir.join("run/outputs.csv")).unwrap();

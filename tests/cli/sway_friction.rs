@@ -18,74 +18,27 @@ const T_N_M: f64 = 6.25;
 /// The file's plain head friction about x and y (kept as shipped).
 const PLAIN: &str = "{ friction_torque_n_m = 1.35, release_rad_s = 0.01 }";
 
-fn set(args: &mut Vec<String>, s: String) {
-    args.push("--set".into());
-    args.push(s);
-}
-
 /// The legal-limit trailer, 10 kg on the ball, payload spread, the coupling head with
-/// `z_law` about its vertical axis.
-fn loading(args: &mut Vec<String>, scene: &str, z_law: &str) {
-    set(args, format!("{scene}:run.speed_km_h={SPEED}"));
-    set(
-        args,
+/// `z_law` about its vertical axis (FILE:PATH=VALUE overrides).
+fn loading(scene: &str, z_law: &str) -> Vec<String> {
+    vec![
+        format!("{scene}:run.speed_km_h={SPEED}"),
         format!("{scene}:scene.load_case=\"legal_limit_557kg\""),
-    );
-    set(
-        args,
         format!("{TRAILER}:load_case[4].payload.cm_m=[-2.46,0.0,0.745]"),
-    );
-    set(
-        args,
         format!("{TRAILER}:load_case[4].payload.inertia_kg_m2=[42.7,450.0,450.0]"),
-    );
-    set(
-        args,
         format!("{HITCH}:ball_coupling.kind=\"coupling_head\""),
-    );
-    set(
-        args,
         format!(
             "{HITCH}:ball_coupling.coupling_head.damping_n_m_s_rad=[{PLAIN}, {PLAIN}, {z_law}]"
         ),
-    );
+    ]
 }
 
 /// The sway mode (damping ratio, frequency [Hz]) with a viscous yaw damper c at the head.
 fn sway(dir: &Path, c: f64) -> (f64, f64) {
-    let mut args: Vec<String> = [
-        "linear",
-        "scenes/default.toml",
-        "--at",
-        "0.05",
-        "--json",
-        "--out",
-    ]
-    .iter()
-    .map(|s| s.to_string())
-    .collect();
-    args.push(dir.join("linear").display().to_string());
-    set(
-        &mut args,
-        "scenes/default.toml:road.obstacle_ahead_m=60".into(),
+    let m = crate::sway_mode(
+        &dir.join("linear"),
+        &loading("scenes/default.toml", &format!("{c}")),
     );
-    loading(&mut args, "scenes/default.toml", &format!("{c}"));
-    let a: Vec<&str> = args.iter().map(String::as_str).collect();
-    let j = crate::towride_json(&a);
-    let m = j["result"]["modes"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .filter(|m| {
-            let name = m["name"].as_str().unwrap();
-            let hz = m["damped_hz"].as_f64().unwrap();
-            m["kind"] != "zero" && (0.3..3.0).contains(&hz) && name.starts_with("trailer_box")
-        })
-        .min_by(|a, b| {
-            let z = |m: &serde_json::Value| m["damping_ratio"].as_f64().unwrap();
-            z(a).total_cmp(&z(b))
-        })
-        .unwrap();
     (
         m["damping_ratio"].as_f64().unwrap(),
         m["damped_hz"].as_f64().unwrap(),
@@ -118,18 +71,18 @@ fn envelope(dir: &Path, scale: f64, name: &str) -> Vec<(f64, f64)> {
         "--out".into(),
         out.display().to_string(),
     ];
-    loading(
-        &mut args,
-        &f,
-        &format!("{{ friction_torque_n_m = {T_N_M}, release_rad_s = 0.01 }}"),
-    );
-    for v in [
+    let law = format!("{{ friction_torque_n_m = {T_N_M}, release_rad_s = 0.01 }}");
+    let run = [
         "run.duration_s=12",
         "run.sample_rate_hz=100",
         "solver.rtol=1e-6",
         "run.atol_scale=1e-3",
-    ] {
-        set(&mut args, format!("{f}:{v}"));
+    ];
+    for v in loading(&f, &law)
+        .into_iter()
+        .chain(run.iter().map(|v| format!("{f}:{v}")))
+    {
+        args.extend(["--set".into(), v]);
     }
     let a: Vec<&str> = args.iter().map(String::as_str).collect();
     crate::towride_ok(&a);

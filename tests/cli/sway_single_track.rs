@@ -14,7 +14,7 @@
 
 use std::path::Path;
 
-use super::towride_json;
+use super::sway_mode;
 use towride_app::vehicle::{self, Options, Vehicle};
 use towride_mbs::input::{Loader, Override};
 use towride_mbs::model::math::rot;
@@ -285,55 +285,18 @@ fn spread_load() -> Vec<String> {
     ]
 }
 
-/// The full model's sway damping ratio at `speed` [km/h] from `towride linear`.
+/// The full model's sway damping ratio and frequency [Hz] at `speed` [km/h] from
+/// `towride linear`.
 fn full_model_sway(speed: f64, sets: &[String]) -> (f64, f64) {
     let dir = std::env::temp_dir().join(format!("towride_sway_{}_{speed}", std::process::id()));
     let s = "scenes/default.toml";
-    let mut args: Vec<String> = [
-        "linear",
-        s,
-        "--at",
-        "0.05",
-        "--json",
-        "--out",
-        dir.to_str().unwrap(),
-    ]
-    .iter()
-    .map(|x| x.to_string())
-    .collect();
-    for x in [
+    let mut all = vec![
         format!("{s}:run.speed_km_h={speed}"),
-        format!("{s}:road.obstacle_ahead_m=60"),
         format!("{s}:scene.load_case=\"legal_limit_557kg\""),
-    ]
-    .into_iter()
-    .chain(sets.iter().cloned())
-    {
-        args.push("--set".into());
-        args.push(x);
-    }
-    let v = towride_json(&args.iter().map(|x| x.as_str()).collect::<Vec<_>>());
+    ];
+    all.extend(sets.iter().cloned());
+    let sway = sway_mode(&dir, &all);
     std::fs::remove_dir_all(&dir).ok();
-    let sway = v["result"]["modes"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .filter(|m| {
-            let name = m["name"].as_str().unwrap_or("");
-            let hz = m["damped_hz"].as_f64().unwrap_or(0.0);
-            m["kind"] != "zero"
-                && (0.3..3.0).contains(&hz)
-                && name.contains("trailer_box")
-                && (name.contains("lateral") || name.contains("yaw"))
-        })
-        .min_by(|a, b| {
-            a["damping_ratio"]
-                .as_f64()
-                .unwrap()
-                .total_cmp(&b["damping_ratio"].as_f64().unwrap())
-        })
-        .unwrap()
-        .clone();
     (
         sway["damping_ratio"].as_f64().unwrap(),
         sway["damped_hz"].as_f64().unwrap(),
